@@ -1,0 +1,22 @@
+// `snapfit scene-check SCENE`: parse and validate a scene, build both parts, and say
+// what the engine will compute for it.
+#include <iostream>
+
+#include "cli/commands.h"
+#include "cli/scene_summary.h"
+
+namespace snapfit::cli {
+
+void add_scene_check_command(CLI::App& app) {
+  auto file = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("scene-check", "Validate a scene file, build its parts and print the compute plan");
+  cmd->add_option("scene", *file, "Scene file (JSON, see scenes/README.md)")->required();
+  cmd->callback([file] {
+    const Scene scene = load_scene(*file);
+    const PreparedParts parts = prepare_parts(scene);
+    print_scene_summary(std::cout, scene, parts, plan_computation(scene));
+    std::cout << "scene is valid\n";
+  });
+}
+
+}  // namespace snapfit::cli

@@ -1,0 +1,12 @@
+#pragma once
+// The subcommands of the `snapfit` tool; each file cli/cmd_*.cpp adds one.
+#include <CLI/CLI.hpp>
+
+namespace snapfit::cli {
+
+void add_devices_command(CLI::App& app);
+void add_mesh_info_command(CLI::App& app);
+void add_scene_check_command(CLI::App& app);
+void add_run_command(CLI::App& app);
+
+}  // namespace snapfit::cli

@@ -1,0 +1,28 @@
+// snapfit: haptic guidance for rigid-part assembly. One executable, one subcommand
+// per task; `snapfit SUBCOMMAND --help` describes each.
+#include <iostream>
+
+#include "cli/commands.h"
+#include "engine/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"snapfit: geometric energy, force and torque between two rigid parts for haptic assembly"};
+  app.require_subcommand(1);
+  snapfit::cli::add_devices_command(app);
+  snapfit::cli::add_mesh_info_command(app);
+  snapfit::cli::add_scene_check_command(app);
+  snapfit::cli::add_run_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const snapfit::Error& e) {
+    // The first line is the reason; anything after it (a compiler log, a device list) is detail.
+    std::cerr << "snapfit: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "snapfit: error: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,32 @@
+#pragma once
+// A rigid pose (R, t): a point p of a part's own frame maps to R p + t.
+// Part 2's pose is always given relative to part 1's frame (DESIGN.md: part 1 is the
+// frame of reference; rotation about part 2's reference point, then translation).
+#include <Eigen/Geometry>
+
+namespace snapfit {
+
+struct Pose {
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();  // unit quaternion
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+
+  Eigen::Vector3d apply(const Eigen::Vector3d& p) const { return rotation * p + translation; }
+  Pose inverse() const {
+    Pose inv;
+    inv.rotation = rotation.conjugate();
+    inv.translation = -(inv.rotation * translation);
+    return inv;
+  }
+  // (this * other).apply(p) == this->apply(other.apply(p))
+  Pose operator*(const Pose& other) const {
+    Pose out;
+    out.rotation = rotation * other.rotation;
+    out.translation = rotation * other.translation + translation;
+    return out;
+  }
+  bool is_finite() const {
+    return rotation.coeffs().allFinite() && translation.allFinite();
+  }
+};
+
+}  // namespace snapfit

@@ -1,0 +1,211 @@
+// Mesh import through Assimp (io/mesh_load.h).
+#include "io/mesh_load.h"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <Eigen/Core>
+#include <Eigen/LU>  // determinant
+#include <assimp/Importer.hpp>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "engine/error.h"
+
+namespace snapfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem) {
+  throw Error(path + ": " + problem);
+}
+
+// Whitespace-separated tokens in the first 4 KiB of a file, '#' comments skipped.
+std::vector<std::string> leading_tokens(const std::string& path, std::size_t count) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  std::istringstream lines(head);
+  std::vector<std::string> tokens;
+  std::string line;
+  while (tokens.size() < count && std::getline(lines, line)) {
+    std::istringstream words(line.substr(0, line.find('#')));
+    std::string w;
+    while (tokens.size() < count && words >> w) tokens.push_back(w);
+  }
+  return tokens;
+}
+
+bool is_count(const std::string& s) {
+  return !s.empty() && s.size() <= 19 && s.find_first_not_of("0123456789") == std::string::npos;
+}
+
+std::string lowercase_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return ext;
+}
+
+// OFF headers declare vertex and face counts, and Assimp 5.2 allocates (and constructs)
+// that many vertices up front, wrapping counts above 2^32: the regression file
+// invalid/OutOfMemory.off makes it touch ~16 GB. Every vertex or face line takes at
+// least 2 bytes ("0\n"), so counts the file cannot hold are rejected before import.
+void check_off_counts(const std::string& path, std::uintmax_t file_size) {
+  const std::vector<std::string> t = leading_tokens(path, 4);
+  if (t.empty()) return;
+  std::size_t first = 0;  // index of the vertex count
+  // Header keyword: [ST][C][N][4][n]OFF, then (with 'n') the dimension, then the counts.
+  const std::string& k = t[0];
+  if (k.size() >= 3 && k.compare(k.size() - 3, 3, "OFF") == 0 &&
+      k.find_first_not_of("STCN4nOF") == std::string::npos) {
+    first = (k.find('n') != std::string::npos) ? 2 : 1;
+  } else if (lowercase_extension(path) != ".off" || !is_count(k)) {
+    return;  // not OFF; headerless OFF starts with the counts
+  }
+  if (t.size() < first + 2 || !is_count(t[first]) || !is_count(t[first + 1])) return;
+  const unsigned long long vertices = std::stoull(t[first]);
+  const unsigned long long faces = std::stoull(t[first + 1]);
+  const unsigned long long limit = std::numeric_limits<unsigned int>::max();
+  if (vertices > limit || faces > limit || 2 * (vertices + faces) > file_size) {
+    std::ostringstream msg;
+    msg << "cannot read mesh: OFF header declares " << vertices << " vertices and " << faces
+        << " faces, more than the " << file_size << "-byte file can hold";
+    fail(path, msg.str());
+  }
+}
+
+// Missing, not a regular file, empty or unreadable: say so before Assimp guesses.
+void check_input_file(const std::string& path) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec || !fs::exists(st)) {
+    if (ec && ec != std::errc::no_such_file_or_directory) fail(path, "cannot access file: " + ec.message());
+    fail(path, "file not found");
+  }
+  if (!fs::is_regular_file(st)) fail(path, "not a regular file");
+  const auto size = fs::file_size(path, ec);
+  if (ec) fail(path, "cannot read file size: " + ec.message());
+  if (size == 0) fail(path, "file is empty");
+  std::ifstream probe(path, std::ios::binary);
+  if (!probe) fail(path, "file is not readable");
+  check_off_counts(path, size);
+}
+
+// aiMatrix4x4 is row-major: a1..a4 is the first row.
+Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
+  Eigen::Matrix4d e;
+  e << m.a1, m.a2, m.a3, m.a4,
+       m.b1, m.b2, m.b3, m.b4,
+       m.c1, m.c2, m.c3, m.c4,
+       m.d1, m.d2, m.d3, m.d4;
+  return e;
+}
+
+struct Walk {
+  const std::string& path;
+  const aiScene& scene;
+  double scale;
+  Mesh& out;
+};
+
+// Appends the triangles of one aiMesh, vertices mapped through `transform` (homogeneous).
+void append_mesh(const Walk& w, unsigned mesh_index, const Eigen::Matrix4d& transform) {
+  const aiMesh& am = *w.scene.mMeshes[mesh_index];
+  // A mirroring node transform (det < 0) turns outward normals inward: rewind.
+  const bool mirrored = transform.topLeftCorner<3, 3>().determinant() < 0.0;
+  // Only vertices used by triangles are copied; -1 = not yet copied.
+  std::vector<int> remap(am.mNumVertices, -1);
+  for (unsigned f = 0; f < am.mNumFaces; ++f) {
+    const aiFace& face = am.mFaces[f];
+    if (face.mNumIndices != 3) continue;  // points and lines are not part of a boundary
+    Eigen::Vector3i tri;
+    for (int k = 0; k < 3; ++k) {
+      const unsigned idx = face.mIndices[k];
+      if (idx >= am.mNumVertices) {
+        std::ostringstream msg;
+        msg << "face " << f << " of mesh " << mesh_index << " refers to vertex " << idx
+            << " but the mesh has " << am.mNumVertices << " vertices";
+        fail(w.path, msg.str());
+      }
+      if (remap[idx] < 0) {
+        if (w.out.vertices.size() >= static_cast<std::size_t>(std::numeric_limits<int>::max()))
+          fail(w.path, "too many vertices");
+        const aiVector3D& v = am.mVertices[idx];
+        const Eigen::Vector4d p = transform * Eigen::Vector4d(v.x, v.y, v.z, 1.0);
+        Eigen::Vector3d q = p.head<3>() / p.w() * w.scale;
+        if (!q.allFinite()) {
+          std::ostringstream msg;
+          msg << "vertex " << idx << " of mesh " << mesh_index << " ('" << am.mName.C_Str()
+              << "') has a non-finite coordinate (" << v.x << ", " << v.y << ", " << v.z
+              << " in file units)";
+          fail(w.path, msg.str());
+        }
+        remap[idx] = static_cast<int>(w.out.vertices.size());
+        w.out.vertices.push_back(q);
+      }
+      tri[k] = remap[idx];
+    }
+    if (mirrored) std::swap(tri[1], tri[2]);
+    w.out.triangles.push_back(tri);
+  }
+}
+
+// Depth-first over the node tree; a node's global transform = parent global * local.
+void walk_node(const Walk& w, const aiNode& node, const Eigen::Matrix4d& parent) {
+  const Eigen::Matrix4d global = parent * to_eigen(node.mTransformation);
+  for (unsigned i = 0; i < node.mNumMeshes; ++i) {
+    const unsigned mi = node.mMeshes[i];
+    if (mi >= w.scene.mNumMeshes || w.scene.mMeshes[mi] == nullptr)
+      fail(w.path, "node '" + std::string(node.mName.C_Str()) + "' refers to a missing mesh");
+    append_mesh(w, mi, global);
+  }
+  for (unsigned c = 0; c < node.mNumChildren; ++c)
+    if (node.mChildren[c] != nullptr) walk_node(w, *node.mChildren[c], global);
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::string& path, double scale) {
+  if (!std::isfinite(scale) || scale <= 0.0) {
+    std::ostringstream msg;
+    msg << "scale must be finite and > 0 (got " << scale << ")";
+    fail(path, msg.str());
+  }
+  check_input_file(path);
+
+  // No aiProcess_FindDegenerates: degenerate triangles are reported, not removed.
+  // ValidateDataStructure rejects out-of-range indices and similar broken data.
+  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                         aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+  Assimp::Importer importer;
+  const aiScene* scene = nullptr;
+  try {
+    scene = importer.ReadFile(path, flags);
+  } catch (const std::exception& e) {
+    fail(path, std::string("cannot read mesh: ") + e.what());
+  } catch (...) {
+    fail(path, "cannot read mesh: unknown error in the importer");
+  }
+  if (scene == nullptr) fail(path, std::string("cannot read mesh: ") + importer.GetErrorString());
+
+  Mesh mesh;
+  if (scene->mRootNode != nullptr) {
+    const Walk w{path, *scene, scale, mesh};
+    walk_node(w, *scene->mRootNode, Eigen::Matrix4d::Identity());
+  }
+  if (mesh.triangles.empty()) fail(path, "contains no triangles");
+  return mesh;
+}
+
+}  // namespace snapfit

@@ -1,0 +1,107 @@
+// Device enumeration and selection (engine/device.h), and the device self-check kernel.
+#include <doctest/doctest.h>
+
+#include <cstdlib>
+
+#include "engine/compute_context.h"
+#include "engine/device.h"
+#include "engine/device_check.h"
+#include "engine/error.h"
+
+using namespace snapfit;
+
+namespace {
+
+DeviceInfo fake(int index, int platform, int device, const std::string& platform_name, const std::string& name,
+                const std::string& type) {
+  DeviceInfo d;
+  d.index = index;
+  d.platform_index = platform;
+  d.device_index = device;
+  d.platform_name = platform_name;
+  d.platform_version = platform_name == "Portable Computing Language" ? "OpenCL 3.0 PoCL 3.1" : "OpenCL 3.0";
+  d.name = name;
+  d.vendor = type == "gpu" ? "NVIDIA Corporation" : "AuthenticAMD";
+  d.type = type;
+  return d;
+}
+
+// A machine with a GPU first, an Intel CPU runtime, then PoCL's CPU device.
+std::vector<DeviceInfo> three_devices() {
+  return {fake(0, 0, 0, "NVIDIA CUDA", "NVIDIA H100 80GB HBM3", "gpu"),
+          fake(1, 1, 0, "Intel(R) OpenCL", "AMD EPYC 9454", "cpu"),
+          fake(2, 2, 0, "Portable Computing Language", "cpu-skylake-avx512-AMD EPYC", "cpu")};
+}
+
+}  // namespace
+
+TEST_CASE("device selection: the default is PoCL's CPU device, wherever it is listed") {
+  CHECK(select_device_index(three_devices(), "") == 2);
+  auto no_pocl = three_devices();
+  no_pocl.pop_back();
+  CHECK(select_device_index(no_pocl, "") == 1);  // then the first CPU
+  std::vector<DeviceInfo> gpu_only = {three_devices()[0]};
+  CHECK(select_device_index(gpu_only, "") == 0);  // then device 0
+}
+
+TEST_CASE("device selection: by index, platform:device, type and name substring") {
+  const auto devices = three_devices();
+  CHECK(select_device_index(devices, "1") == 1);
+  CHECK(select_device_index(devices, "0:0") == 0);
+  CHECK(select_device_index(devices, "2:0") == 2);
+  CHECK(select_device_index(devices, "gpu") == 0);
+  CHECK(select_device_index(devices, "GPU") == 0);
+  CHECK(select_device_index(devices, "cpu") == 1);
+  CHECK(select_device_index(devices, "h100") == 0);
+  CHECK(select_device_index(devices, "portable") == 2);
+  CHECK(select_device_index(devices, "  Intel ") == 1);
+}
+
+TEST_CASE("device selection: a spec that matches nothing names the spec and lists the devices") {
+  const auto devices = three_devices();
+  CHECK_THROWS_WITH_AS(select_device_index(devices, "7"), doctest::Contains("H100"), Error);
+  CHECK_THROWS_WITH_AS(select_device_index(devices, "3:1"), doctest::Contains("3:1"), Error);
+  CHECK_THROWS_WITH_AS(select_device_index(devices, "accelerator"), doctest::Contains("no accelerator device"), Error);
+  CHECK_THROWS_WITH_AS(select_device_index(devices, "radeon"), doctest::Contains("'radeon'"), Error);
+  CHECK_THROWS_WITH_AS(select_device_index({}, ""), doctest::Contains("no OpenCL device"), Error);
+}
+
+TEST_CASE("device selection: SNAPFIT_DEVICE applies when --device is not given") {
+  ::setenv("SNAPFIT_DEVICE", "gpu", 1);
+  CHECK(device_spec_from("") == "gpu");
+  CHECK(device_spec_from("cpu") == "cpu");
+  ::unsetenv("SNAPFIT_DEVICE");
+  CHECK(device_spec_from("") == "");
+}
+
+TEST_CASE("device enumeration: this machine has an OpenCL device with sane capabilities") {
+  const std::vector<Device> devices = enumerate_devices();
+  REQUIRE_MESSAGE(!devices.empty(), "no OpenCL device: is pocl-opencl-icd installed?");
+  for (const Device& d : devices) {
+    CHECK(!d.info.name.empty());
+    CHECK(!d.info.driver_version.empty());
+    CHECK(d.info.compute_units > 0);
+    CHECK(d.info.global_memory_bytes > 0);
+    CHECK(d.info.max_work_group_size > 0);
+  }
+  const Device chosen = select_device("");
+  MESSAGE("default device: " << describe_device(chosen.info));
+  CHECK(chosen.info.type == "cpu");
+}
+
+TEST_CASE("device self-check: every device computes the reference sum, in float and (where supported) double") {
+  ProgramCacheConfig no_cache;  // always compile: this checks the compiler, not the cache
+  for (const Device& d : enumerate_devices()) {
+    const ComputeContext ctx = make_compute_context(d);
+    const DeviceCheckResult f = run_device_check(ctx, false, no_cache);
+    CHECK_MESSAGE(f.passed, d.info.name << " float: relative error " << f.relative_error << " > " << f.tolerance);
+    CHECK(f.relative_error < 1e-3);  // the float sum carries ~7 digits; a broken reduction is off by O(1)
+    if (d.info.fp64) {
+      const DeviceCheckResult dbl = run_device_check(ctx, true, no_cache);
+      CHECK_MESSAGE(dbl.passed, d.info.name << " double: relative error " << dbl.relative_error);
+      CHECK(dbl.relative_error < 1e-10);
+    } else {
+      CHECK_THROWS_AS(run_device_check(ctx, true, no_cache), Error);
+    }
+  }
+}
