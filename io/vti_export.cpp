@@ -1,0 +1,175 @@
+// VTK XML ImageData export (io/vti_export.h).
+#include "io/vti_export.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <set>
+#include <string>
+
+#include "engine/error.h"
+
+namespace snapfit {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem) {
+  throw Error(path + ": " + problem);
+}
+
+// Writes through `body` into "<path>.tmp.<pid>" and renames it onto `path`.
+// `body` returns false when a write failed (errno set). The temporary is removed on failure.
+void write_atomically(const std::string& path, const std::function<bool(std::FILE*)>& body) {
+  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (f == nullptr) fail(path, std::string("cannot create file: ") + std::strerror(errno));
+  bool ok = body(f) && std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
+  int err = ok ? 0 : errno;
+  if (std::fclose(f) != 0 && ok) {
+    ok = false;
+    err = errno;
+  }
+  if (ok && std::rename(tmp.c_str(), path.c_str()) != 0) {
+    ok = false;
+    err = errno;
+  }
+  if (!ok) {
+    std::remove(tmp.c_str());
+    fail(path, std::string("cannot write file: ") + std::strerror(err != 0 ? err : EIO));
+  }
+}
+
+// Attribute values: names may hold any character, the XML must stay well formed.
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string number(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+void check_inputs(const std::string& path, const GridSpec& grid, const std::vector<GridField>& fields) {
+  const Eigen::Vector3i& d = grid.dims;
+  if (d.x() < 1 || d.y() < 1 || d.z() < 1)
+    fail(path, "cannot write VTI: empty grid (dims " + std::to_string(d.x()) + " x " + std::to_string(d.y()) +
+                   " x " + std::to_string(d.z()) + ")");
+  if (!(grid.spacing > 0.0) || !std::isfinite(grid.spacing))
+    fail(path, "cannot write VTI: grid spacing " + number(grid.spacing) + " is not a positive number");
+  if (!grid.origin.allFinite()) fail(path, "cannot write VTI: grid origin is not finite");
+  if (fields.empty()) fail(path, "cannot write VTI: no fields given");
+  std::set<std::string> names;
+  for (std::size_t f = 0; f < fields.size(); ++f) {
+    const GridField& field = fields[f];
+    const std::string which = "field " + std::to_string(f) + " '" + field.name + "'";
+    if (field.name.empty()) fail(path, "cannot write VTI: field " + std::to_string(f) + " has an empty name");
+    if (!names.insert(field.name).second) fail(path, "cannot write VTI: two fields are named '" + field.name + "'");
+    if (field.values == nullptr) fail(path, "cannot write VTI: " + which + " has no values (null pointer)");
+    if (field.components < 1 || field.components > 9)
+      fail(path, "cannot write VTI: " + which + " has " + std::to_string(field.components) +
+                     " components; 1 to 9 are allowed");
+  }
+}
+
+bool host_is_little_endian() {
+  const std::uint32_t one = 1;
+  unsigned char first;
+  std::memcpy(&first, &one, 1);
+  return first == 1;
+}
+
+bool put_u64(std::FILE* f, std::uint64_t v) {
+  unsigned char b[8];
+  for (int i = 0; i < 8; ++i) b[i] = static_cast<unsigned char>(v >> (8 * i));
+  return std::fwrite(b, 1, 8, f) == 8;
+}
+
+// `n` floats as little-endian float32, swapped in chunks on a big-endian host.
+bool put_floats(std::FILE* f, const float* v, std::size_t n) {
+  if (host_is_little_endian()) return std::fwrite(v, sizeof(float), n, f) == n;
+  unsigned char buf[4096];
+  for (std::size_t start = 0; start < n; start += sizeof buf / 4) {
+    const std::size_t m = std::min(n - start, sizeof buf / 4);
+    for (std::size_t i = 0; i < m; ++i) {
+      std::uint32_t bits;
+      std::memcpy(&bits, v + start + i, 4);
+      for (int b = 0; b < 4; ++b) buf[4 * i + b] = static_cast<unsigned char>(bits >> (8 * b));
+    }
+    if (std::fwrite(buf, 4, m, f) != m) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void write_vti(const std::string& path, const GridSpec& grid, const std::vector<GridField>& fields) {
+  check_inputs(path, grid, fields);
+  const Eigen::Vector3i& d = grid.dims;
+  const std::string extent = "0 " + std::to_string(d.x() - 1) + " 0 " + std::to_string(d.y() - 1) + " 0 " +
+                             std::to_string(d.z() - 1);
+  const std::string s = number(grid.spacing);
+
+  // The first scalar and the first 3-vector become ParaView's active arrays.
+  std::string active;
+  for (const GridField& f : fields)
+    if (f.components == 1) {
+      active += " Scalars=\"" + xml_escape(f.name) + "\"";
+      break;
+    }
+  for (const GridField& f : fields)
+    if (f.components == 3) {
+      active += " Vectors=\"" + xml_escape(f.name) + "\"";
+      break;
+    }
+
+  std::string xml = "<?xml version=\"1.0\"?>\n";
+  xml += "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
+  xml += "  <ImageData WholeExtent=\"" + extent + "\" Origin=\"" + number(grid.origin.x()) + " " +
+         number(grid.origin.y()) + " " + number(grid.origin.z()) + "\" Spacing=\"" + s + " " + s + " " + s + "\">\n";
+  xml += "    <Piece Extent=\"" + extent + "\">\n";
+  xml += "      <PointData" + active + ">\n";
+  std::uint64_t offset = 0;
+  std::vector<std::uint64_t> bytes(fields.size());
+  for (std::size_t f = 0; f < fields.size(); ++f) {
+    bytes[f] = static_cast<std::uint64_t>(grid.count()) * static_cast<std::uint64_t>(fields[f].components) * 4u;
+    xml += "        <DataArray type=\"Float32\" Name=\"" + xml_escape(fields[f].name) + "\" NumberOfComponents=\"" +
+           std::to_string(fields[f].components) + "\" format=\"appended\" offset=\"" + std::to_string(offset) +
+           "\"/>\n";
+    offset += 8 + bytes[f];
+  }
+  xml += "      </PointData>\n";
+  xml += "      <CellData>\n      </CellData>\n";
+  xml += "    </Piece>\n";
+  xml += "  </ImageData>\n";
+  xml += "  <AppendedData encoding=\"raw\">\n   _";
+  const std::string tail = "\n  </AppendedData>\n</VTKFile>\n";
+
+  write_atomically(path, [&](std::FILE* out) {
+    if (std::fwrite(xml.data(), 1, xml.size(), out) != xml.size()) return false;
+    for (std::size_t f = 0; f < fields.size(); ++f) {
+      if (!put_u64(out, bytes[f])) return false;
+      if (!put_floats(out, fields[f].values, grid.count() * static_cast<std::size_t>(fields[f].components)))
+        return false;
+    }
+    return std::fwrite(tail.data(), 1, tail.size(), out) == tail.size();
+  });
+}
+
+}  // namespace snapfit
