@@ -42,7 +42,9 @@ struct DescriptorParams {
   double sigma = 0.5;        // Gaussian width in g_sigma(eta/|xi| - 1), dimensionless
   double lambda_in = 3.0;    // affinity factor inside (seed 000: p = lambda_in/lambda_out = 3)
   double lambda_out = 1.0;   // affinity factor outside
-  double tolerance = 1e-3;   // surface-integral error tolerance (adaptive subdivision)
+  // Relative error allowed per cluster of the surface integrals (winding number and
+  // skeletal density; kernels/skeletal_density.cl); a rigorous per-point bound is reported.
+  double tolerance = 0.1;
 };
 
 struct GridParams {

@@ -1,6 +1,8 @@
 // Progress reports for long host work (scheduler/progress.h).
 #include "scheduler/progress.h"
 
+#include <memory>
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -136,6 +138,26 @@ void Progress::draw(bool final) {
     out_ << line << '\n';
   }
   out_.flush();
+}
+
+std::function<void(const std::string&, std::uint64_t, std::uint64_t)> pass_progress_bars(std::ostream& out) {
+  struct State {
+    std::string pass;
+    std::unique_ptr<Progress> bar;
+    std::uint64_t reported = 0;
+  };
+  auto state = std::make_shared<State>();
+  return [state, &out](const std::string& pass, std::uint64_t done, std::uint64_t total) {
+    if (!state->bar || pass != state->pass) {
+      if (state->bar) state->bar->finish();
+      state->pass = pass;
+      state->bar = std::make_unique<Progress>(pass, total, out);
+      state->reported = 0;
+    }
+    state->bar->advance(done - state->reported);
+    state->reported = done;
+    if (done >= total) state->bar->finish();
+  };
 }
 
 }  // namespace snapfit

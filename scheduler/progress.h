@@ -71,4 +71,9 @@ class Progress {
   std::size_t last_width_ = 0;  // terminal: the last line's length, to blank leftovers
 };
 
+// A callback for work done in named passes that each report (done, total): one
+// progress bar per pass, started when its name first appears and finished when it
+// reaches its total (or when the next pass starts).
+std::function<void(const std::string&, std::uint64_t, std::uint64_t)> pass_progress_bars(std::ostream& out = std::cerr);
+
 }  // namespace snapfit

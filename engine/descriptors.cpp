@@ -1,0 +1,199 @@
+#include "engine/descriptors.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "engine/error.h"
+#include "engine/kernel_sources.h"
+#include "engine/triangle_bvh.h"
+#include "engine/triangle_refine.h"
+
+namespace snapfit {
+namespace {
+
+// A chunk-sized device buffer tied to a whole-grid host array.
+struct ChunkIo {
+  cl::Buffer buffer;
+  std::vector<float>* host;
+};
+
+// Runs `kernel` over the grid chunk by chunk. Arguments 0..5 (first point, point count,
+// origin, spacing, nx, ny) are set here, the rest by the caller beforehand. Inputs are
+// written from their host arrays before each launch, outputs read back after it.
+void run_pass(const ComputeContext& ctx, const GridSpec& grid, const DescriptorOptions& options, cl::Kernel& kernel,
+              const std::vector<ChunkIo>& inputs, const std::vector<ChunkIo>& outputs, const std::string& pass) {
+  const std::size_t count = grid.count();
+  const cl_float3 origin{{static_cast<float>(grid.origin.x()), static_cast<float>(grid.origin.y()),
+                          static_cast<float>(grid.origin.z()), 0.0f}};
+  kernel.setArg(2, origin);
+  kernel.setArg(3, static_cast<float>(grid.spacing));
+  kernel.setArg(4, static_cast<cl_int>(grid.dims.x()));
+  kernel.setArg(5, static_cast<cl_int>(grid.dims.y()));
+  for (std::size_t first = 0; first < count; first += options.chunk_points) {
+    const std::size_t n = std::min(options.chunk_points, count - first);
+    kernel.setArg(0, static_cast<cl_long>(first));
+    kernel.setArg(1, static_cast<cl_long>(n));
+    for (const ChunkIo& in : inputs)
+      ctx.queue.enqueueWriteBuffer(in.buffer, CL_FALSE, 0, sizeof(float) * n, in.host->data() + first);
+    std::size_t global = n;
+    cl::NDRange local = cl::NullRange;
+    if (options.work_group_size > 0) {
+      global = (n + options.work_group_size - 1) / options.work_group_size * options.work_group_size;
+      local = cl::NDRange(options.work_group_size);
+    }
+    ctx.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), local);
+    for (const ChunkIo& out : outputs)
+      ctx.queue.enqueueReadBuffer(out.buffer, CL_FALSE, 0, sizeof(float) * n, out.host->data() + first);
+    ctx.queue.finish();
+    if (options.progress) options.progress(pass, first + n, count);
+  }
+}
+
+cl::Kernel make_kernel(const ComputeContext& ctx, const std::string& name, int stack_size,
+                       const DescriptorOptions& options, const std::string& variant = "") {
+  // Each descriptor kernel is compiled with the shared geometry in front of it.
+  const std::string source = kernel_source("geometry") + "\n" + kernel_source(name);
+  const std::string flags = "-cl-std=CL1.2 -D STACK_SIZE=" + std::to_string(stack_size) + variant;
+  return cl::Kernel(build_program(ctx, name, source, flags, options.program_cache).program, name.c_str());
+}
+
+}  // namespace
+
+DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh, const GridSpec& grid,
+                                     const DescriptorParams& params, const DescriptorOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  if (mesh.empty()) throw Error("cannot compute descriptors of an empty mesh");
+  if (grid.count() == 0) throw Error("cannot compute descriptors on an empty grid");
+  if (options.chunk_points == 0) throw Error("descriptor chunk size must be positive");
+  if (!(params.tolerance > 0 && params.tolerance < 1)) throw Error("descriptor tolerance must be in (0, 1)");
+  const bool skeletal = params.kind == DescriptorKind::skeletal_density;
+  if (skeletal && !(params.sigma > 0)) throw Error("descriptor sigma must be positive");
+
+  DescriptorFields out;
+  auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  // Distance and winding number run on the mesh as given; the skeletal density on
+  // the refined mesh, whose small leaves it integrates without per-point splitting.
+  auto t = std::chrono::steady_clock::now();
+  const TriangleBvh bvh = build_triangle_bvh(mesh, options.bvh_leaf_size);
+  TriangleBvh refined_bvh;
+  if (skeletal && options.refine_fraction > 0 && !options.brute_force_density) {
+    const Mesh refined = refine_triangles(mesh, options.refine_fraction * grid.spacing);
+    out.refine_seconds = seconds_since(t);
+    refined_bvh = build_triangle_bvh(refined, options.bvh_leaf_size);
+  }
+  const TriangleBvh& density_bvh = refined_bvh.nodes.empty() ? bvh : refined_bvh;
+  out.bvh_seconds = seconds_since(t) - out.refine_seconds;
+  out.refined_triangles = density_bvh.triangles.size() / 3;
+  // A traversal holds at most depth + 1 nodes on its stack.
+  const int stack_size = std::max(bvh.depth, density_bvh.depth) + 8;
+
+  out.grid = grid;
+  out.params = params;
+  const std::size_t count = grid.count();
+  std::vector<float> distance(count);
+  out.winding.resize(count);
+  out.winding_bound.resize(count);
+  try {
+    const std::size_t chunk = std::min(options.chunk_points, count);
+    cl::Buffer nodes(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(BvhNode) * bvh.nodes.size(),
+                     const_cast<BvhNode*>(bvh.nodes.data()));
+    cl::Buffer triangles(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                         sizeof(cl_float4) * bvh.triangles.size(), const_cast<cl_float4*>(bvh.triangles.data()));
+    cl::Buffer density_nodes = nodes, density_triangles = triangles;
+    if (&density_bvh != &bvh) {
+      density_nodes = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                 sizeof(BvhNode) * density_bvh.nodes.size(), const_cast<BvhNode*>(density_bvh.nodes.data()));
+      density_triangles = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                     sizeof(cl_float4) * density_bvh.triangles.size(),
+                                     const_cast<cl_float4*>(density_bvh.triangles.data()));
+    }
+    cl::Buffer chunk_a(ctx.context, CL_MEM_READ_WRITE, sizeof(float) * chunk);
+    cl::Buffer chunk_b(ctx.context, CL_MEM_READ_WRITE, sizeof(float) * chunk);
+    cl::Buffer chunk_c(ctx.context, CL_MEM_READ_WRITE, sizeof(float) * chunk);
+
+    // 1. Unsigned distance |xi|.
+    t = std::chrono::steady_clock::now();
+    cl::Kernel distance_kernel = make_kernel(ctx, "unsigned_distance", stack_size, options);
+    distance_kernel.setArg(6, nodes);
+    distance_kernel.setArg(7, triangles);
+    distance_kernel.setArg(8, chunk_a);
+    run_pass(ctx, grid, options, distance_kernel, {}, {{chunk_a, &distance}}, "distance");
+    out.distance_seconds = seconds_since(t);
+    t = std::chrono::steady_clock::now();
+
+    // 2. Winding number w and its error bound.
+    cl::Kernel winding_kernel = make_kernel(ctx, "winding_number", stack_size, options);
+    winding_kernel.setArg(6, nodes);
+    winding_kernel.setArg(7, triangles);
+    winding_kernel.setArg(8, static_cast<float>(params.tolerance));
+    winding_kernel.setArg(9, chunk_a);
+    winding_kernel.setArg(10, chunk_b);
+    run_pass(ctx, grid, options, winding_kernel, {}, {{chunk_a, &out.winding}, {chunk_b, &out.winding_bound}},
+             "winding number");
+    out.winding_seconds = seconds_since(t);
+    t = std::chrono::steady_clock::now();
+
+    // 3. Skeletal density s and its error bound, from |xi|.
+    if (skeletal) {
+      out.skeletal_density.resize(count);
+      out.density_bound.resize(count);
+      cl::Kernel density_kernel =
+          make_kernel(ctx, "skeletal_density", stack_size, options,
+                      options.brute_force_density ? " -D BRUTE_FORCE -D MAX_SPLIT_DEPTH=40" : "");
+      density_kernel.setArg(6, density_nodes);
+      density_kernel.setArg(7, density_triangles);
+      density_kernel.setArg(8, chunk_c);
+      density_kernel.setArg(9, static_cast<float>(options.min_distance_fraction * grid.spacing));
+      density_kernel.setArg(10, static_cast<float>(params.sigma));
+      density_kernel.setArg(11, static_cast<float>(params.tolerance));
+      density_kernel.setArg(12, static_cast<cl_int>(density_bvh.triangles.size() / 3));
+      density_kernel.setArg(13, chunk_a);
+      density_kernel.setArg(14, chunk_b);
+      run_pass(ctx, grid, options, density_kernel, {{chunk_c, &distance}},
+               {{chunk_a, &out.skeletal_density}, {chunk_b, &out.density_bound}}, "skeletal density");
+      out.density_seconds = seconds_since(t);
+    }
+  } catch (const cl::Error& e) {
+    throw Error("descriptor computation failed on device " + ctx.device.info.name + ": " + e.what() + " (error " +
+                std::to_string(e.err()) + ")");
+  }
+
+  // xi: negative inside (w >= 1/2).
+  out.signed_distance.resize(count);
+  for (std::size_t i = 0; i < count; ++i) out.signed_distance[i] = out.winding[i] >= 0.5f ? -distance[i] : distance[i];
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+std::vector<float> affinity_imaginary(const DescriptorFields& fields) {
+  std::vector<float> rho(fields.winding.size());
+  const bool skeletal = fields.params.kind == DescriptorKind::skeletal_density;
+  for (std::size_t i = 0; i < rho.size(); ++i) {
+    const bool inside = fields.winding[i] >= 0.5f;
+    if (!skeletal) {
+      rho[i] = inside ? 1.0f : 0.0f;
+    } else {
+      const double lambda = inside ? fields.params.lambda_in : fields.params.lambda_out;
+      rho[i] = static_cast<float>(lambda * fields.skeletal_density[i]);
+    }
+  }
+  return rho;
+}
+
+std::vector<std::vector<float>> affinity_moments(const DescriptorFields& fields, const Eigen::Vector3d& reference_point) {
+  const std::vector<float> rho = affinity_imaginary(fields);
+  std::vector<std::vector<float>> moments(3, std::vector<float>(rho.size()));
+  const GridSpec& g = fields.grid;
+  for (int k = 0; k < g.dims.z(); ++k)
+    for (int j = 0; j < g.dims.y(); ++j)
+      for (int i = 0; i < g.dims.x(); ++i) {
+        const std::size_t idx = g.index(i, j, k);
+        const Eigen::Vector3d q = g.point(i, j, k) - reference_point;
+        for (int a = 0; a < 3; ++a) moments[a][idx] = static_cast<float>(q[a] * rho[idx]);
+      }
+  return moments;
+}
+
+}  // namespace snapfit

@@ -1,0 +1,71 @@
+#pragma once
+// Shape descriptors of one part on a uniform grid (seed 000 sec. 2.3 and 3.1;
+// DESIGN.md "Shape descriptors"), computed by the OpenCL kernels
+// kernels/unsigned_distance.cl, winding_number.cl and skeletal_density.cl over a
+// TriangleBvh of the part's mesh:
+//   w    generalized winding number (1 inside, 0 outside; robust on open meshes)
+//   xi   signed distance to the boundary, negative inside (w >= 1/2)
+//   s    skeletal density, seed 000 eq. 2 with the Gaussian-times-inverse-square
+//        kernel: s > 0 inside, s < 0 outside (only for DescriptorKind::skeletal_density)
+// and a rigorous per-point bound on the quadrature error of w and of s.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engine/compute_context.h"
+#include "engine/grid.h"
+#include "engine/program_cache.h"
+#include "io/mesh.h"
+#include "io/scene.h"
+
+namespace snapfit {
+
+struct DescriptorOptions {
+  // Points closer to the surface than this fraction of the grid spacing use it as |xi|
+  // (so grid points on the surface give finite values, with the sign of w).
+  double min_distance_fraction = 1e-3;
+  // Before the hierarchy is built, triangles are split until each fits in a ball of
+  // this fraction of the grid spacing (engine/triangle_refine.h); 0 disables it.
+  double refine_fraction = 0.25;
+  // The paper's brute-force O(m n) skeletal density (every triangle, adaptive splitting,
+  // no hierarchy, no refinement): for benchmarks and cross-checks only.
+  bool brute_force_density = false;
+  std::size_t chunk_points = 16384;  // points per kernel launch (progress granularity)
+  std::size_t work_group_size = 0;   // 0: let the OpenCL runtime choose
+  int bvh_leaf_size = 4;
+  ProgramCacheConfig program_cache = default_program_cache();
+  // Called after every chunk of every pass with (pass name, points done, grid points);
+  // the passes are "distance", "winding number" and "skeletal density", in that order.
+  std::function<void(const std::string&, std::uint64_t, std::uint64_t)> progress;
+};
+
+struct DescriptorFields {
+  GridSpec grid;
+  DescriptorParams params;
+  std::vector<float> winding;           // w
+  std::vector<float> winding_bound;     // bound on |w error|
+  std::vector<float> signed_distance;   // xi, scene units
+  std::vector<float> skeletal_density;  // s (empty for the indicator kind)
+  std::vector<float> density_bound;     // bound on |s error| (empty for the indicator kind)
+  double seconds = 0;                   // wall time of the computation
+  double refine_seconds = 0, bvh_seconds = 0;  // host work on TBB
+  double distance_seconds = 0, winding_seconds = 0, density_seconds = 0;  // kernels (incl. build)
+  std::size_t refined_triangles = 0;
+};
+
+// Computes every field the descriptor kind needs. Throws snapfit::Error for an empty
+// mesh or grid, or a device failure (naming the device).
+DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh, const GridSpec& grid,
+                                     const DescriptorParams& params, const DescriptorOptions& options = {});
+
+// The affinity rho = i * lambda * s (DESIGN.md): its imaginary part lambda * s, with
+// lambda = lambda_in where w >= 1/2 and lambda_out elsewhere. For the indicator kind,
+// the indicator itself (1 inside, 0 outside), real-valued.
+std::vector<float> affinity_imaginary(const DescriptorFields& fields);
+
+// The three fields q_a * Im(rho)(q), a = x, y, z, with q measured from
+// `reference_point` (part 2's rotation centre): the torque spectra's inputs (seed 000 eq. 12).
+std::vector<std::vector<float>> affinity_moments(const DescriptorFields& fields, const Eigen::Vector3d& reference_point);
+
+}  // namespace snapfit

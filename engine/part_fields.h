@@ -1,0 +1,24 @@
+#pragma once
+// Descriptor fields of one scene part: from the field cache when a matching entry
+// exists, else computed (with progress) and cached.
+#include <functional>
+#include <string>
+
+#include "engine/descriptors.h"
+
+namespace snapfit {
+
+struct PartFieldsResult {
+  DescriptorFields fields;
+  bool from_cache = false;
+};
+
+// `note` receives cache messages (stale or corrupt entries, write failures).
+PartFieldsResult part_fields(const ComputeContext& ctx, const Mesh& mesh, const GridSpec& grid,
+                             const DescriptorParams& params, const DescriptorOptions& options, bool use_cache,
+                             const std::function<void(const std::string&)>& note);
+
+// The grid of a part: its mesh's box grown by the scene's padding, at `spacing`.
+GridSpec part_grid(const Mesh& mesh, const GridParams& params, double spacing);
+
+}  // namespace snapfit
