@@ -47,10 +47,9 @@ std::pair<char, double> parse_slice(const std::string& text) {
 const std::vector<float>& pick_field(const DescriptorFields& f, const std::vector<float>& rho, const std::string& name) {
   if (name == "rho") return rho;
   if (name == "w") return f.winding;
-  if (name == "xi") return f.signed_distance;
-  if (name == "s" || name == "bound") {
-    if (f.skeletal_density.empty()) throw Error("--field " + name + ": the scene's descriptor is the indicator, which has no skeletal density");
-    return name == "s" ? f.skeletal_density : f.density_bound;
+  if (name == "s" || name == "bound" || name == "xi") {
+    if (f.skeletal_density.empty()) throw Error("--field " + name + ": the scene's descriptor is the indicator (collision response only), which computes the winding number alone");
+    return name == "s" ? f.skeletal_density : name == "xi" ? f.signed_distance : f.density_bound;
   }
   throw Error("--field: expected rho, s, w, xi or bound (got '" + name + "')");
 }
@@ -96,8 +95,9 @@ void run_fields(const FieldsOptions& opt) {
 
   const std::vector<float> rho = affinity_imaginary(f);
   if (!opt.vti.empty()) {
-    std::vector<GridField> out = {{"w", f.winding.data()}, {"xi", f.signed_distance.data()}, {"rho_imag", rho.data()}};
+    std::vector<GridField> out = {{"w", f.winding.data()}, {"rho_imag", rho.data()}};
     if (!f.skeletal_density.empty()) {
+      out.push_back({"xi", f.signed_distance.data()});
       out.push_back({"s", f.skeletal_density.data()});
       out.push_back({"s_error_bound", f.density_bound.data()});
     }

@@ -67,6 +67,7 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
   if (options.chunk_points == 0) throw Error("descriptor chunk size must be positive");
   if (!(params.tolerance > 0 && params.tolerance < 1)) throw Error("descriptor tolerance must be in (0, 1)");
   const bool skeletal = params.kind == DescriptorKind::skeletal_density;
+  const bool need_distance = skeletal || options.indicator_signed_distance;
   if (skeletal && !(params.sigma > 0)) throw Error("descriptor sigma must be positive");
 
   DescriptorFields out;
@@ -92,7 +93,7 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
   out.grid = grid;
   out.params = params;
   const std::size_t count = grid.count();
-  std::vector<float> distance(count);
+  std::vector<float> distance(need_distance ? count : 0);
   out.winding.resize(count);
   out.winding_bound.resize(count);
   try {
@@ -113,14 +114,16 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
     cl::Buffer chunk_b(ctx.context, CL_MEM_READ_WRITE, sizeof(float) * chunk);
     cl::Buffer chunk_c(ctx.context, CL_MEM_READ_WRITE, sizeof(float) * chunk);
 
-    // 1. Unsigned distance |xi|.
+    // 1. Unsigned distance |xi| (not for the indicator, which needs w alone).
     t = std::chrono::steady_clock::now();
-    cl::Kernel distance_kernel = make_kernel(ctx, "unsigned_distance", stack_size, options);
-    distance_kernel.setArg(6, nodes);
-    distance_kernel.setArg(7, triangles);
-    distance_kernel.setArg(8, chunk_a);
-    run_pass(ctx, grid, options, distance_kernel, {}, {{chunk_a, &distance}}, "distance");
-    out.distance_seconds = seconds_since(t);
+    if (need_distance) {
+      cl::Kernel distance_kernel = make_kernel(ctx, "unsigned_distance", stack_size, options);
+      distance_kernel.setArg(6, nodes);
+      distance_kernel.setArg(7, triangles);
+      distance_kernel.setArg(8, chunk_a);
+      run_pass(ctx, grid, options, distance_kernel, {}, {{chunk_a, &distance}}, "distance");
+      out.distance_seconds = seconds_since(t);
+    }
     t = std::chrono::steady_clock::now();
 
     // 2. Winding number w and its error bound.
@@ -161,8 +164,10 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
   }
 
   // xi: negative inside (w >= 1/2).
-  out.signed_distance.resize(count);
-  for (std::size_t i = 0; i < count; ++i) out.signed_distance[i] = out.winding[i] >= 0.5f ? -distance[i] : distance[i];
+  if (need_distance) {
+    out.signed_distance.resize(count);
+    for (std::size_t i = 0; i < count; ++i) out.signed_distance[i] = out.winding[i] >= 0.5f ? -distance[i] : distance[i];
+  }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -4,7 +4,8 @@
 // kernels/unsigned_distance.cl, winding_number.cl and skeletal_density.cl over a
 // TriangleBvh of the part's mesh:
 //   w    generalized winding number (1 inside, 0 outside; robust on open meshes)
-//   xi   signed distance to the boundary, negative inside (w >= 1/2)
+//   xi   signed distance to the boundary, negative inside (w >= 1/2); not for the
+//        indicator kind (collision response only), which needs w alone
 //   s    skeletal density, seed 000 eq. 2 with the Gaussian-times-inverse-square
 //        kernel: s > 0 inside, s < 0 outside (only for DescriptorKind::skeletal_density)
 // and a rigorous per-point bound on the quadrature error of w and of s.
@@ -31,6 +32,8 @@ struct DescriptorOptions {
   // The paper's brute-force O(m n) skeletal density (every triangle, adaptive splitting,
   // no hierarchy, no refinement): for benchmarks and cross-checks only.
   bool brute_force_density = false;
+  // Also compute xi for the indicator kind (which needs only w): for checks and exports.
+  bool indicator_signed_distance = false;
   std::size_t chunk_points = 16384;  // points per kernel launch (progress granularity)
   std::size_t work_group_size = 0;   // 0: let the OpenCL runtime choose
   int bvh_leaf_size = 4;
@@ -45,7 +48,7 @@ struct DescriptorFields {
   DescriptorParams params;
   std::vector<float> winding;           // w
   std::vector<float> winding_bound;     // bound on |w error|
-  std::vector<float> signed_distance;   // xi, scene units
+  std::vector<float> signed_distance;   // xi, scene units (empty for the indicator kind)
   std::vector<float> skeletal_density;  // s (empty for the indicator kind)
   std::vector<float> density_bound;     // bound on |s error| (empty for the indicator kind)
   double seconds = 0;                   // wall time of the computation

@@ -273,7 +273,9 @@ struct WindingStats {
 WindingStats check_closed_mesh(const std::string& name, const Mesh& mesh, const GridSpec& grid,
                                const std::function<double(const Vector3d&)>& exact_sd, double sd_tol) {
   WindingStats st;
-  st.fields = compute(mesh, grid, indicator_params());
+  DescriptorOptions with_distance = test_options();
+  with_distance.indicator_signed_distance = true;
+  st.fields = compute(mesh, grid, indicator_params(), with_distance);
   const DescriptorFields& f = st.fields;
   REQUIRE(f.winding.size() == grid.count());
   REQUIRE(f.winding_bound.size() == grid.count());
@@ -491,7 +493,9 @@ TEST_CASE("descriptors: inside/outside of assimp test models against ray parity 
     }
     const Mesh m = load_mesh(path);
     const GridSpec grid = grid_around(m, 22, 0.05);
-    const DescriptorFields f = compute(m, grid, indicator_params());
+    DescriptorOptions with_distance = test_options();
+    with_distance.indicator_signed_distance = true;
+    const DescriptorFields f = compute(m, grid, indicator_params(), with_distance);
     const std::vector<Vector3d> pts = all_points(grid);
     const double size = mesh_size(m);
     // References in double: winding number (with sum |Omega| / 4pi as the scale of the
@@ -983,6 +987,7 @@ TEST_CASE("descriptors: affinity is lambda * s by side, and its moments are q * 
   const DescriptorFields g = compute(m, grid, indicator_params());
   CHECK(g.skeletal_density.empty());
   CHECK(g.density_bound.empty());
+  CHECK(g.signed_distance.empty());  // collision response needs w alone
   const std::vector<float> ind = affinity_imaginary(g);
   REQUIRE(ind.size() == grid.count());
   for (std::size_t i = 0; i < ind.size(); ++i) CHECK(ind[i] == (g.winding[i] >= 0.5f ? 1.0f : 0.0f));
