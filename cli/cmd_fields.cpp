@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "cli/scene_summary.h"
 #include "engine/descriptors.h"
 #include "engine/error.h"
 #include "engine/part_fields.h"
@@ -61,13 +62,9 @@ void run_fields(const FieldsOptions& opt) {
   const auto [axis, coordinate] = parse_slice(opt.slice);
   const PreparedParts parts = prepare_parts(scene);
   const Mesh& mesh = opt.part == "1" ? parts.part1.mesh : parts.part2.mesh;
-  const auto box = [](const Mesh& m) {
-    Eigen::AlignedBox3d b;
-    for (const auto& v : m.vertices) b.extend(v);
-    return b;
-  };
-  const double spacing = common_spacing(scene.grid, {box(parts.part1.mesh), box(parts.part2.mesh)});
-  const GridSpec grid = part_grid(mesh, scene.grid, spacing);
+  const ScenePartGrids grids = scene_part_grids(scene.grid, parts.part1.mesh, parts.part2.mesh);
+  const GridSpec& grid = opt.part == "1" ? grids.part1 : grids.part2;
+  const double spacing = grids.spacing;
   const int slice = slice_index_for(grid, axis, coordinate);  // fail before the long work
 
   const ComputeContext ctx = make_compute_context(select_device(device_spec_from(opt.device)));
@@ -79,19 +76,7 @@ void run_fields(const FieldsOptions& opt) {
   const PartFieldsResult result = part_fields(ctx, mesh, grid, scene.descriptor, options, !opt.no_cache,
                                               [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; });
   const DescriptorFields& f = result.fields;
-  if (result.from_cache) {
-    std::cout << "fields loaded from the cache\n";
-  } else {
-    std::cout << std::setprecision(3) << "computed in " << f.seconds << " s (distance " << f.distance_seconds
-              << " s, winding " << f.winding_seconds << " s, skeletal density " << f.density_seconds << " s; "
-              << f.refined_triangles << " triangles after refinement)\n";
-  }
-  if (!f.density_bound.empty()) {
-    const float max_bound = *std::max_element(f.density_bound.begin(), f.density_bound.end());
-    double mean = 0;
-    for (float b : f.density_bound) mean += b;
-    std::cout << "skeletal density error bound: max " << max_bound << ", mean " << mean / static_cast<double>(f.density_bound.size()) << "\n";
-  }
+  print_fields_summary(std::cout, result);
 
   const std::vector<float> rho = affinity_imaginary(f);
   if (!opt.vti.empty()) {

@@ -1,8 +1,10 @@
 // `snapfit run SCENE`: the main job. Today it loads the scene, builds and validates
 // both parts in parallel, opens the OpenCL device, builds (or loads from the program
-// cache) and self-checks the kernels, prints the compute plan, and writes a report
-// folder with the part meshes and a JSON summary. Later stages (descriptors, spectra,
-// the haptic loop) add their steps here.
+// cache) and self-checks the kernels, prints the compute plan, computes (or loads from
+// the field cache) both parts' descriptor fields, and writes a report folder with the
+// part meshes, a PNG slice of each part's affinity and a JSON summary. Later stages
+// (spectra, the haptic loop) add their steps here.
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +15,9 @@
 #include "cli/scene_summary.h"
 #include "engine/device_check.h"
 #include "engine/error.h"
+#include "engine/part_fields.h"
+#include "io/png_export.h"
+#include "scheduler/progress.h"
 #include "io/mesh_export.h"
 #include "io/mesh_report.h"
 
@@ -32,15 +37,15 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 void run_main_job(const RunOptions& opt) {
   namespace fs = std::filesystem;
   const auto start = std::chrono::steady_clock::now();
-  std::cout << "[1/4] reading scene " << opt.scene << "\n";
+  std::cout << "[1/5] reading scene " << opt.scene << "\n";
   const Scene scene = load_scene(opt.scene);
 
-  std::cout << "[2/4] building and validating both parts (in parallel)\n";
+  std::cout << "[2/5] building and validating both parts (in parallel)\n";
   const PreparedParts parts = prepare_parts(scene);
   const ComputePlan plan = plan_computation(scene);
   print_scene_summary(std::cout, scene, parts, plan);
 
-  std::cout << "[3/4] opening the OpenCL device and checking it\n";
+  std::cout << "[3/5] opening the OpenCL device and checking it\n";
   const Device device = select_device(device_spec_from(opt.device));
   std::cout << "    device " << describe_device(device.info) << "\n";
   const ComputeContext ctx = make_compute_context(device);
@@ -50,11 +55,47 @@ void run_main_job(const RunOptions& opt) {
             << check.build_ms << " ms)\n";
   if (!check.passed) throw Error("device " + device.info.name + " failed its self-check; choose another with --device");
 
+  const ScenePartGrids grids = scene_part_grids(scene.grid, parts.part1.mesh, parts.part2.mesh);
+  std::cout << "[4/5] descriptor fields of both parts at spacing " << grids.spacing << " " << scene.units
+            << " (from the field cache when present)\n";
+  DescriptorOptions options;
+  options.progress = pass_progress_bars();
+  const auto note = [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; };
+  std::vector<PartFieldsResult> fields;
+  for (int part = 1; part <= 2; ++part) {
+    const Mesh& mesh = part == 1 ? parts.part1.mesh : parts.part2.mesh;
+    const GridSpec& grid = part == 1 ? grids.part1 : grids.part2;
+    std::cout << "  part " << part << ": grid " << grid.dims.x() << " x " << grid.dims.y() << " x " << grid.dims.z()
+              << " = " << grid.count() << " points, " << mesh.triangles.size() << " triangles" << std::endl;
+    fields.push_back(part_fields(ctx, mesh, grid, scene.descriptor, options, true, note));
+    print_fields_summary(std::cout, fields.back());
+  }
+
   const fs::path out = opt.out.empty() ? fs::path("results") / fs::path(opt.scene).stem() : fs::path(opt.out);
-  std::cout << "[4/4] writing the report to " << out.string() << "\n";
+  std::cout << "[5/5] writing the report to " << out.string() << "\n";
   fs::create_directories(out);
   write_stl(parts.part1.mesh, (out / "part1.stl").string());
   write_stl(parts.part2.mesh, (out / "part2.stl").string());
+  // A slice of each part's affinity through y = 0 of its own frame (seed 000 Fig. 2 style).
+  nlohmann::json field_summary = nlohmann::json::array();
+  for (int part = 1; part <= 2; ++part) {
+    const DescriptorFields& f = fields[part - 1].fields;
+    const std::vector<float> rho = affinity_imaginary(f);
+    const int slice = slice_index_for(f.grid, 'y', std::clamp(0.0, f.grid.origin.y(), f.grid.point(0, f.grid.dims.y() - 1, 0).y()));
+    const ColorMap map = f.skeletal_density.empty() ? ColorMap::sequential : ColorMap::diverging;
+    const std::string png = "part" + std::to_string(part) + "_affinity_y0.png";
+    write_png((out / png).string(), render_slice(f.grid, rho.data(), 'y', slice, map, std::nullopt, 4),
+              {{"Title", "snapfit affinity Im(rho) of part " + std::to_string(part) + " at y=0"}});
+    double max_bound = 0;
+    for (float b : f.density_bound) max_bound = std::max(max_bound, static_cast<double>(b));
+    field_summary.push_back({{"part", part},
+                             {"grid_points", f.grid.count()},
+                             {"dims", {f.grid.dims.x(), f.grid.dims.y(), f.grid.dims.z()}},
+                             {"from_cache", fields[part - 1].from_cache},
+                             {"seconds", f.seconds},
+                             {"max_density_bound", max_bound},
+                             {"affinity_png", png}});
+  }
   nlohmann::json summary = {
       {"scene", scene.name},
       {"scene_file", scene.source_path},
@@ -65,10 +106,13 @@ void run_main_job(const RunOptions& opt) {
       {"part1", nlohmann::json::parse(mesh_report_json(parts.part1.report))},
       {"part2", nlohmann::json::parse(mesh_report_json(parts.part2.report))},
       {"plan", plan.lines},
+      {"spacing", grids.spacing},
+      {"fields", field_summary},
       {"seconds", seconds_since(start)},
   };
   std::ofstream(out / "summary.json") << summary.dump(2) << "\n";
-  std::cout << "done in " << seconds_since(start) << " s: " << (out / "summary.json").string() << ", part1.stl, part2.stl\n";
+  std::cout << "done in " << seconds_since(start) << " s: " << (out / "summary.json").string()
+            << ", part1.stl, part2.stl, part1_affinity_y0.png, part2_affinity_y0.png\n";
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "cli/scene_summary.h"
 
+#include <algorithm>
 #include <iomanip>
 
 namespace snapfit::cli {
@@ -34,6 +35,29 @@ void print_scene_summary(std::ostream& out, const Scene& scene, const PreparedPa
   if (!scene.trajectory.keyframes.empty()) out << " over " << scene.trajectory.keyframes.back().time_s << " s";
   out << "\nplan:\n";
   for (const std::string& line : plan.lines) out << "  - " << line << "\n";
+}
+
+void print_fields_summary(std::ostream& out, const PartFieldsResult& result) {
+  const DescriptorFields& f = result.fields;
+  const auto precision = out.precision(3);
+  if (result.from_cache) {
+    out << "    fields loaded from the cache\n";
+  } else {
+    out << "    computed in " << f.seconds << " s (distance " << f.distance_seconds << " s, winding number "
+        << f.winding_seconds << " s, skeletal density " << f.density_seconds << " s; " << f.refined_triangles
+        << " triangles after refinement)\n";
+  }
+  if (!f.density_bound.empty()) {
+    double mean_bound = 0, mean_s = 0;
+    for (std::size_t i = 0; i < f.density_bound.size(); ++i) {
+      mean_bound += f.density_bound[i];
+      mean_s += std::abs(f.skeletal_density[i]);
+    }
+    out << "    skeletal density error bound: mean " << mean_bound / f.density_bound.size() << " (mean |s| "
+        << mean_s / f.density_bound.size() << "), max "
+        << *std::max_element(f.density_bound.begin(), f.density_bound.end()) << "\n";
+  }
+  out.precision(precision);
 }
 
 }  // namespace snapfit::cli

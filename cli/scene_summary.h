@@ -3,11 +3,15 @@
 #include <ostream>
 
 #include "engine/compute_plan.h"
+#include "engine/part_fields.h"
 #include "io/scene.h"
 #include "scheduler/prepare_parts.h"
 
 namespace snapfit::cli {
 
 void print_scene_summary(std::ostream& out, const Scene& scene, const PreparedParts& parts, const ComputePlan& plan);
+
+// Where a part's fields came from, how long they took, and their error bounds.
+void print_fields_summary(std::ostream& out, const PartFieldsResult& result);
 
 }  // namespace snapfit::cli

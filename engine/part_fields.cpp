@@ -4,9 +4,26 @@
 
 namespace snapfit {
 
-GridSpec part_grid(const Mesh& mesh, const GridParams& params, double spacing) {
+namespace {
+
+Eigen::AlignedBox3d bounding_box(const Mesh& mesh) {
   Eigen::AlignedBox3d box;
   for (const Eigen::Vector3d& v : mesh.vertices) box.extend(v);
+  return box;
+}
+
+}  // namespace
+
+ScenePartGrids scene_part_grids(const GridParams& params, const Mesh& part1, const Mesh& part2) {
+  ScenePartGrids grids;
+  grids.spacing = common_spacing(params, {bounding_box(part1), bounding_box(part2)});
+  grids.part1 = part_grid(part1, params, grids.spacing);
+  grids.part2 = part_grid(part2, params, grids.spacing);
+  return grids;
+}
+
+GridSpec part_grid(const Mesh& mesh, const GridParams& params, double spacing) {
+  const Eigen::AlignedBox3d box = bounding_box(mesh);
   GridParams fixed = params;
   fixed.spacing = spacing;
   fixed.resolution.reset();

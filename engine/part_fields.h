@@ -21,4 +21,11 @@ PartFieldsResult part_fields(const ComputeContext& ctx, const Mesh& mesh, const 
 // The grid of a part: its mesh's box grown by the scene's padding, at `spacing`.
 GridSpec part_grid(const Mesh& mesh, const GridParams& params, double spacing);
 
+// Both parts' grids at one common spacing (their spectra must share it).
+struct ScenePartGrids {
+  GridSpec part1, part2;
+  double spacing = 0;
+};
+ScenePartGrids scene_part_grids(const GridParams& params, const Mesh& part1, const Mesh& part2);
+
 }  // namespace snapfit
