@@ -1,8 +1,5 @@
 #include "io/cache_file.h"
 
-#include <unistd.h>
-
-#include <atomic>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -10,6 +7,7 @@
 #include <fstream>
 
 #include "engine/error.h"
+#include "io/atomic_write.h"
 #include "io/hash.h"
 
 namespace snapfit {
@@ -110,7 +108,6 @@ CacheRead read_cache_file(const std::string& path, const std::string& kind, std:
 void write_cache_file(const std::string& path, const std::string& kind, std::uint32_t version,
                       const std::string& key, const void* payload, std::size_t payload_size) {
   namespace fs = std::filesystem;
-  static std::atomic<unsigned> counter{0};
   std::string header(kMagic, sizeof kMagic);
   put_u32(header, kContainerVersion);
   put_text(header, kind);
@@ -119,30 +116,14 @@ void write_cache_file(const std::string& path, const std::string& kind, std::uin
   put_u64(header, payload_size);
   put_u64(header, fnv1a64(payload, payload_size));
 
-  const fs::path target(path);
   std::error_code ec;
+  const fs::path target(path);
   if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
   if (ec) throw Error(path + ": cannot create cache folder: " + ec.message());
-  const std::string temp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error(path + ": cannot write cache file: " + std::strerror(errno));
-    out.write(header.data(), static_cast<std::streamsize>(header.size()));
-    out.write(static_cast<const char*>(payload), static_cast<std::streamsize>(payload_size));
-    out.flush();
-    if (!out) {
-      const std::string why = std::strerror(errno);
-      out.close();
-      fs::remove(temp, ec);
-      throw Error(path + ": writing cache file failed (" + why + "; disk full?)");
-    }
-  }
-  fs::rename(temp, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    throw Error(path + ": cannot move cache file into place: " + ec.message());
-  }
+  write_file_atomically(path, errno_status([&](std::FILE* f) {
+    return std::fwrite(header.data(), 1, header.size(), f) == header.size() &&
+           std::fwrite(payload, 1, payload_size, f) == payload_size;
+  }));
 }
 
 }  // namespace snapfit

@@ -32,7 +32,7 @@ struct CacheRead {
 CacheRead read_cache_file(const std::string& path, const std::string& kind, std::uint32_t version,
                           const std::string& key);
 
-// Creates parent folders, writes "<path>.tmp.<pid>.<n>" and renames it over `path`, so a
+// Creates parent folders and writes through io/atomic_write.h, so a
 // reader sees the old file or the new one, never half of one. Throws snapfit::Error
 // naming the path on failure (unwritable folder, full disk); no temp file is left.
 void write_cache_file(const std::string& path, const std::string& kind, std::uint32_t version,

@@ -13,9 +13,11 @@
 #include <string>
 
 #include "engine/error.h"
+#include "io/atomic_write.h"
 
 namespace snapfit {
 namespace {
+
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem) {
   throw Error(path + ": " + problem);
@@ -32,28 +34,6 @@ void check_mesh(const Mesh& mesh, const std::string& path) {
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
     if (!mesh.vertices[i].allFinite())
       fail(path, "cannot write: vertex " + std::to_string(i) + " has a non-finite coordinate");
-}
-
-// Writes through `body` into "<path>.tmp.<pid>" and renames it onto `path`.
-// `body` returns false when a write failed (errno set). The temporary is removed on failure.
-void write_atomically(const std::string& path, const std::function<bool(std::FILE*)>& body) {
-  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (f == nullptr) fail(path, std::string("cannot create file: ") + std::strerror(errno));
-  bool ok = body(f) && std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
-  int err = ok ? 0 : errno;
-  if (std::fclose(f) != 0 && ok) {
-    ok = false;
-    err = errno;
-  }
-  if (ok && std::rename(tmp.c_str(), path.c_str()) != 0) {
-    ok = false;
-    err = errno;
-  }
-  if (!ok) {
-    std::remove(tmp.c_str());
-    fail(path, std::string("cannot write file: ") + std::strerror(err != 0 ? err : EIO));
-  }
 }
 
 // Little-endian encoders, independent of the host byte order.
@@ -73,7 +53,7 @@ void write_stl(const Mesh& mesh, const std::string& path) {
   check_mesh(mesh, path);
   if (mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max())
     fail(path, "cannot write: too many triangles for STL");
-  write_atomically(path, [&mesh](std::FILE* f) {
+  write_file_atomically(path, errno_status([&mesh](std::FILE* f) {
     // The header must not start with "solid", or readers take the file for ASCII STL.
     unsigned char head[84] = {};
     const char title[] = "binary STL written by snapfit";
@@ -94,12 +74,12 @@ void write_stl(const Mesh& mesh, const std::string& path) {
       if (std::fwrite(rec, 1, sizeof rec, f) != sizeof rec) return false;
     }
     return true;
-  });
+  }));
 }
 
 void write_obj(const Mesh& mesh, const std::string& path) {
   check_mesh(mesh, path);
-  write_atomically(path, [&mesh](std::FILE* f) {
+  write_file_atomically(path, errno_status([&mesh](std::FILE* f) {
     if (std::fprintf(f, "# written by snapfit: %zu vertices, %zu triangles\n", mesh.vertices.size(),
                      mesh.triangles.size()) < 0)
       return false;
@@ -108,7 +88,7 @@ void write_obj(const Mesh& mesh, const std::string& path) {
     for (const auto& t : mesh.triangles)
       if (std::fprintf(f, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1) < 0) return false;
     return true;
-  });
+  }));
 }
 
 }  // namespace snapfit

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "engine/error.h"
+#include "io/atomic_write.h"
 
 namespace snapfit {
 namespace {
@@ -55,22 +56,6 @@ Rgb sequential(double t) {
   Rgb c;
   for (int k = 0; k < 3; ++k) c[k] = channel(kStops[i][k] + f * (kStops[i + 1][k] - kStops[i][k]));
   return c;
-}
-
-// Writes through `body` into "<path>.tmp.<pid>" and renames it onto `path`. `body`
-// returns "" or the problem. The temporary is removed on failure.
-void write_atomically(const std::string& path, const std::function<std::string(std::FILE*)>& body) {
-  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (f == nullptr) throw Error(path + ": cannot create file: " + std::strerror(errno));
-  std::string problem = body(f);
-  if (problem.empty() && (std::fflush(f) != 0 || ::fsync(::fileno(f)) != 0)) problem = std::strerror(errno);
-  if (std::fclose(f) != 0 && problem.empty()) problem = std::strerror(errno);
-  if (problem.empty() && std::rename(tmp.c_str(), path.c_str()) != 0) problem = std::strerror(errno);
-  if (!problem.empty()) {
-    std::remove(tmp.c_str());
-    throw Error(path + ": cannot write PNG: " + problem);
-  }
 }
 
 // Everything encode_png reads; it lives in the caller's frame, so libpng's longjmp
@@ -237,7 +222,7 @@ void write_png(const std::string& path, const SliceImage& image,
   job.image = &image;
   job.text = chunks.data();
   job.text_count = static_cast<int>(chunks.size());
-  write_atomically(path, [&job](std::FILE* f) {
+  write_file_atomically(path, [&job](std::FILE* f) {
     errno = 0;
     if (encode_png(f, &job)) return std::string();
     std::string problem = job.error;

@@ -14,34 +14,14 @@
 #include <string>
 
 #include "engine/error.h"
+#include "io/atomic_write.h"
 
 namespace snapfit {
 namespace {
 
+
 [[noreturn]] void fail(const std::string& path, const std::string& problem) {
   throw Error(path + ": " + problem);
-}
-
-// Writes through `body` into "<path>.tmp.<pid>" and renames it onto `path`.
-// `body` returns false when a write failed (errno set). The temporary is removed on failure.
-void write_atomically(const std::string& path, const std::function<bool(std::FILE*)>& body) {
-  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (f == nullptr) fail(path, std::string("cannot create file: ") + std::strerror(errno));
-  bool ok = body(f) && std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
-  int err = ok ? 0 : errno;
-  if (std::fclose(f) != 0 && ok) {
-    ok = false;
-    err = errno;
-  }
-  if (ok && std::rename(tmp.c_str(), path.c_str()) != 0) {
-    ok = false;
-    err = errno;
-  }
-  if (!ok) {
-    std::remove(tmp.c_str());
-    fail(path, std::string("cannot write file: ") + std::strerror(err != 0 ? err : EIO));
-  }
 }
 
 // Attribute values: names may hold any character, the XML must stay well formed.
@@ -161,7 +141,7 @@ void write_vti(const std::string& path, const GridSpec& grid, const std::vector<
   xml += "  <AppendedData encoding=\"raw\">\n   _";
   const std::string tail = "\n  </AppendedData>\n</VTKFile>\n";
 
-  write_atomically(path, [&](std::FILE* out) {
+  write_file_atomically(path, errno_status([&](std::FILE* out) {
     if (std::fwrite(xml.data(), 1, xml.size(), out) != xml.size()) return false;
     for (std::size_t f = 0; f < fields.size(); ++f) {
       if (!put_u64(out, bytes[f])) return false;
@@ -169,7 +149,7 @@ void write_vti(const std::string& path, const GridSpec& grid, const std::vector<
         return false;
     }
     return std::fwrite(tail.data(), 1, tail.size(), out) == tail.size();
-  });
+  }));
 }
 
 }  // namespace snapfit
