@@ -1,0 +1,79 @@
+#include "engine/fft3d.h"
+
+#include <clFFT.h>
+
+#include <string>
+
+#include "engine/error.h"
+
+namespace snapfit {
+namespace {
+
+std::string dims_text(const std::array<std::size_t, 3>& d) {
+  return std::to_string(d[0]) + " x " + std::to_string(d[1]) + " x " + std::to_string(d[2]);
+}
+
+bool only_fast_factors(std::size_t n) {
+  if (n == 0) return false;
+  for (std::size_t p : {2, 3, 5, 7})
+    while (n % p == 0) n /= p;
+  return n == 1;
+}
+
+void check(clfftStatus status, const std::string& what) {
+  if (status != CLFFT_SUCCESS) throw Error(what + " (clFFT status " + std::to_string(static_cast<int>(status)) + ")");
+}
+
+}  // namespace
+
+std::size_t next_fft_size(std::size_t n) {
+  std::size_t m = std::max<std::size_t>(n, 1);
+  while (!only_fast_factors(m)) ++m;
+  return m;
+}
+
+FftLibrary::FftLibrary() {
+  clfftSetupData setup;
+  check(clfftInitSetupData(&setup), "clFFT set-up failed");
+  check(clfftSetup(&setup), "clFFT set-up failed");
+}
+
+FftLibrary::~FftLibrary() { clfftTeardown(); }
+
+Fft3d::Fft3d(const FftLibrary&, const ComputeContext& ctx, std::array<std::size_t, 3> dims) : ctx_(ctx), dims_(dims) {
+  for (std::size_t n : dims)
+    if (!only_fast_factors(n))
+      throw Error("FFT size " + dims_text(dims) + " has a factor other than 2, 3, 5, 7; use next_fft_size");
+  const std::string where = "FFT plan " + dims_text(dims) + " on " + ctx.device.info.name;
+  clfftPlanHandle plan = 0;
+  std::size_t lengths[3] = {dims[0], dims[1], dims[2]};
+  check(clfftCreateDefaultPlan(&plan, ctx.context(), CLFFT_3D, lengths), where + ": cannot create");
+  plan_ = plan;
+  try {
+    check(clfftSetPlanPrecision(plan, CLFFT_SINGLE), where);
+    check(clfftSetLayout(plan, CLFFT_COMPLEX_INTERLEAVED, CLFFT_COMPLEX_INTERLEAVED), where);
+    check(clfftSetResultLocation(plan, CLFFT_OUTOFPLACE), where);
+    check(clfftSetPlanScale(plan, CLFFT_BACKWARD, 1.0f), where);  // unnormalized inverse (eq. 14 without 1/N)
+    cl_command_queue queue = ctx.queue();
+    check(clfftBakePlan(plan, 1, &queue, nullptr, nullptr), where + ": cannot bake");
+  } catch (...) {
+    clfftDestroyPlan(&plan);
+    throw;
+  }
+}
+
+Fft3d::~Fft3d() {
+  clfftPlanHandle plan = plan_;
+  clfftDestroyPlan(&plan);
+}
+
+void Fft3d::transform(FftDirection direction, const cl::Buffer& input, const cl::Buffer& output) const {
+  cl_command_queue queue = ctx_.queue();
+  cl_mem in = input(), out = output();
+  check(clfftEnqueueTransform(plan_, direction == FftDirection::forward ? CLFFT_FORWARD : CLFFT_BACKWARD, 1, &queue, 0,
+                              nullptr, nullptr, &in, &out, nullptr),
+        "FFT " + dims_text(dims_) + " failed on " + ctx_.device.info.name);
+  ctx_.queue.finish();
+}
+
+}  // namespace snapfit
