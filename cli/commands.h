@@ -9,5 +9,6 @@ void add_mesh_info_command(CLI::App& app);
 void add_scene_check_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_fields_command(CLI::App& app);
+void add_query_command(CLI::App& app);
 
 }  // namespace snapfit::cli

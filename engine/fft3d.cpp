@@ -1,6 +1,8 @@
 #include "engine/fft3d.h"
 
 #include <clFFT.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <string>
 
@@ -19,6 +21,23 @@ bool only_fast_factors(std::size_t n) {
     while (n % p == 0) n /= p;
   return n == 1;
 }
+
+// PoCL's compiler prints "N warnings generated." for clFFT's generated kernels while a
+// plan bakes; this hides stderr for that call only (clFFT still returns its status).
+struct QuietStderr {
+  int saved = ::dup(2);
+  QuietStderr() {
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (null >= 0 && saved >= 0) ::dup2(null, 2);
+    if (null >= 0) ::close(null);
+  }
+  ~QuietStderr() {
+    if (saved >= 0) {
+      ::dup2(saved, 2);
+      ::close(saved);
+    }
+  }
+};
 
 void check(clfftStatus status, const std::string& what) {
   if (status != CLFFT_SUCCESS) throw Error(what + " (clFFT status " + std::to_string(static_cast<int>(status)) + ")");
@@ -55,7 +74,12 @@ Fft3d::Fft3d(const FftLibrary&, const ComputeContext& ctx, std::array<std::size_
     check(clfftSetResultLocation(plan, CLFFT_OUTOFPLACE), where);
     check(clfftSetPlanScale(plan, CLFFT_BACKWARD, 1.0f), where);  // unnormalized inverse (eq. 14 without 1/N)
     cl_command_queue queue = ctx.queue();
-    check(clfftBakePlan(plan, 1, &queue, nullptr, nullptr), where + ": cannot bake");
+    clfftStatus baked;
+    {
+      QuietStderr quiet;
+      baked = clfftBakePlan(plan, 1, &queue, nullptr, nullptr);
+    }
+    check(baked, where + ": cannot bake");
   } catch (...) {
     clfftDestroyPlan(&plan);
     throw;

@@ -1,0 +1,62 @@
+#pragma once
+// Fourier spectra of both parts' affinity fields (seed 000 eq. 8, 13; DESIGN.md
+// "Correlation in the Fourier domain"), on one common zero-padded FFT grid so both
+// parts share the frequency nodes w_k = k / L (L_a = dims_a * h per axis).
+//
+// Continuous transform: rho^(w) = integral rho(p) exp(-2 pi i w.p) dV. Sampled at the
+// grid points p_i = o + h i, rho^(w_k) = h^3 exp(-2 pi i w_k.o) DFT(rho)[k].
+// Each part's spectrum is stored "centred": S(w) = rho^(w) exp(+2 pi i w.c), c the
+// centre of the part's padded FFT box, which removes the fast phase oscillation that
+// an off-centre support gives, so S interpolates well at rotated frequencies. The
+// torque spectra of part 2 are stored the same way: SQ_a(w) = Q2_a^(w) exp(2 pi i w.c),
+// Q2_a(q) = q_a rho2(q) with q in part 2's own frame (seed 000 eq. 12).
+#include <Eigen/Core>
+#include <array>
+#include <complex>
+#include <functional>
+#include <vector>
+
+#include "engine/descriptors.h"
+#include "engine/fft3d.h"
+
+namespace snapfit {
+
+using Complex = std::complex<float>;
+
+struct SpectrumOptions {
+  // Each padded FFT axis holds at least oversampling * (points of the larger part):
+  // zero padding in space oversamples the spectrum, which the rotation interpolation needs.
+  double oversampling = 2.0;
+};
+
+struct PartSpectrum {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();       // c, in the part's own frame
+  Eigen::Vector3d half_extent = Eigen::Vector3d::Zero();  // samples lie within c +- this
+  std::vector<Complex> rho;                           // S(w_k), FFT order (k_x fastest, negative k wrapped)
+  std::array<std::vector<Complex>, 3> moments;        // SQ_a(w_k); empty unless torque
+};
+
+struct PairSpectra {
+  std::array<std::size_t, 3> dims{};  // common FFT grid
+  double spacing = 0;                 // h, scene units
+  Eigen::Vector3d length = Eigen::Vector3d::Zero();  // L_a = dims_a * h
+  PartSpectrum part1, part2;
+  bool torque = false;
+  double seconds = 0;
+  // Frequency of FFT index k along axis a (negative for k > dims/2): w = k' / L_a.
+  double frequency(int axis, std::size_t k) const;
+};
+
+// Forward FFTs of Im-affinity fields i * rho (engine/descriptors.h affinity_imaginary),
+// and for torque of q * rho2 about part 2's frame origin. Both fields must share a spacing.
+// Throws snapfit::Error for mismatched spacings or an FFT failure (naming the device).
+PairSpectra compute_pair_spectra(const FftLibrary& library, const ComputeContext& ctx, const DescriptorFields& part1,
+                                 const DescriptorFields& part2, bool torque, const SpectrumOptions& options = {});
+
+// Same, from arbitrary complex sample grids (tests with analytic fields use this):
+// values[i] = rho(grid.point(i)), x fastest.
+PairSpectra compute_pair_spectra(const FftLibrary& library, const ComputeContext& ctx, const GridSpec& grid1,
+                                 const std::vector<Complex>& rho1, const GridSpec& grid2,
+                                 const std::vector<Complex>& rho2, bool torque, const SpectrumOptions& options = {});
+
+}  // namespace snapfit

@@ -1,0 +1,126 @@
+// Per-pose energy, force and torque from the truncated spectra (seed 000 eq. 10-12;
+// engine/pose_query.h has the formulas and frames). One work-group reduces a slice of
+// the retained modes of one pose; the host adds the groups' partial sums.
+//
+// Options: -D WG_SIZE=n (power of two)  -D FORCE  -D TORQUE  -D TRANSLATION_ONLY
+//          -D TRICUBIC (Catmull-Rom; default trilinear)
+// Per mode k: w = w_k (part 1's frequency node), weight W_k = S1(w_k) dw, and
+//   6-DOF: w' = -R^T w, term = W_k S2(w') e^{i phi}, phi = 2 pi w.tau, tau = t + R c2 - c1
+//          torque (part 2 frame): Re[2 pi i W_k e^{i phi} (w' x SQ(w'))]
+//   translation only: W_k already holds S1(w_k) S2(-w_k) dw, term = W_k e^{i phi}.
+// Partial sums per group (8 floats): Re f, Im f, F (3), T in part 2's frame (3).
+
+#define TWO_PI 6.28318530717958647f
+
+inline float2 cmul(const float2 a, const float2 b) { return (float2)(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
+
+#ifndef TRANSLATION_ONLY
+inline int wrap(const int i, const int n) {
+  const int r = i % n;
+  return r < 0 ? r + n : r;
+}
+
+// Interpolation weights along one axis at fractional index u: taps i0 + j.
+#ifdef TRICUBIC
+#define TAPS 4
+inline int axis_weights(const float u, float* w) {
+  const float f = floor(u);
+  const float t = u - f, t2 = t * t, t3 = t2 * t;
+  // Catmull-Rom: interpolating, exact for quadratics.
+  w[0] = 0.5f * (-t3 + 2.0f * t2 - t);
+  w[1] = 0.5f * (3.0f * t3 - 5.0f * t2 + 2.0f);
+  w[2] = 0.5f * (-3.0f * t3 + 4.0f * t2 + t);
+  w[3] = 0.5f * (t3 - t2);
+  return (int)f - 1;
+}
+#else
+#define TAPS 2
+inline int axis_weights(const float u, float* w) {
+  const float f = floor(u);
+  w[1] = u - f;
+  w[0] = 1.0f - w[1];
+  return (int)f;
+}
+#endif
+#endif
+
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void pose_query(__global const float4* modes, __global const float2* weights, __global const float2* s2,
+                __global const float2* sq0, __global const float2* sq1, __global const float2* sq2,
+                const int4 dims, const float4 length, __global const float* poses, const int mode_count,
+                const int groups_per_pose, __global float* partials) {
+  const int group = get_group_id(0);
+  const int pose = group / groups_per_pose;
+  const int slice = group % groups_per_pose;
+  const int lid = get_local_id(0);
+  __global const float* P = poses + 12 * pose;  // R row-major (9), tau (3)
+  const float3 tau = (float3)(P[9], P[10], P[11]);
+
+  float2 f = (float2)(0.0f);
+  float3 force = (float3)(0.0f), torque = (float3)(0.0f);
+  for (int m = slice * WG_SIZE + lid; m < mode_count; m += groups_per_pose * WG_SIZE) {
+    const float3 w = modes[m].xyz;
+    float c;
+    const float s = sincos(TWO_PI * dot(w, tau), &c);
+    float2 term = cmul(weights[m], (float2)(c, s));
+#ifndef TRANSLATION_ONLY
+    // w' = -R^T w (R^T's rows are R's columns).
+    const float3 wp = -(float3)(P[0] * w.x + P[3] * w.y + P[6] * w.z, P[1] * w.x + P[4] * w.y + P[7] * w.z,
+                                P[2] * w.x + P[5] * w.y + P[8] * w.z);
+    const float3 u = wp * length.xyz;  // fractional FFT index
+    float wx[TAPS], wy[TAPS], wz[TAPS];
+    const int ix = axis_weights(u.x, wx), iy = axis_weights(u.y, wy), iz = axis_weights(u.z, wz);
+    float2 v = (float2)(0.0f);
+#ifdef TORQUE
+    float2 q0 = (float2)(0.0f), q1 = (float2)(0.0f), q2 = (float2)(0.0f);
+#endif
+    for (int c3 = 0; c3 < TAPS; ++c3) {
+      const int z = wrap(iz + c3, dims.z);
+      for (int b = 0; b < TAPS; ++b) {
+        const int zy = dims.y * z + wrap(iy + b, dims.y);
+        const float wyz = wy[b] * wz[c3];
+        for (int a = 0; a < TAPS; ++a) {
+          const int at = dims.x * zy + wrap(ix + a, dims.x);
+          const float wt = wx[a] * wyz;
+          v += wt * s2[at];
+#ifdef TORQUE
+          q0 += wt * sq0[at];
+          q1 += wt * sq1[at];
+          q2 += wt * sq2[at];
+#endif
+        }
+      }
+    }
+#ifdef TORQUE
+    // 2 pi i term_q (w' x SQ): Re of i z is -Im z.
+    const float2 e = term;  // W_k e^{i phi}
+    const float2 t0 = cmul(e, q0), t1 = cmul(e, q1), t2 = cmul(e, q2);
+    const float3 im = (float3)(wp.y * t2.y - wp.z * t1.y, wp.z * t0.y - wp.x * t2.y, wp.x * t1.y - wp.y * t0.y);
+    torque += -TWO_PI * im;
+#endif
+    term = cmul(term, v);
+#endif
+    f += term;
+#ifdef FORCE
+    force += -TWO_PI * term.y * w;  // Re(2 pi i w term)
+#endif
+  }
+
+  // Work-group reduction of the 8 sums.
+  __local float scratch[8 * WG_SIZE];
+  scratch[8 * lid + 0] = f.x;
+  scratch[8 * lid + 1] = f.y;
+  scratch[8 * lid + 2] = force.x;
+  scratch[8 * lid + 3] = force.y;
+  scratch[8 * lid + 4] = force.z;
+  scratch[8 * lid + 5] = torque.x;
+  scratch[8 * lid + 6] = torque.y;
+  scratch[8 * lid + 7] = torque.z;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int stride = WG_SIZE / 2; stride > 0; stride >>= 1) {
+    if (lid < stride)
+      for (int j = 0; j < 8; ++j) scratch[8 * lid + j] += scratch[8 * (lid + stride) + j];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (lid < 8) partials[8 * group + lid] = scratch[lid];
+}
