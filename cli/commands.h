@@ -10,5 +10,6 @@ void add_scene_check_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_fields_command(CLI::App& app);
 void add_query_command(CLI::App& app);
+void add_map_command(CLI::App& app);
 
 }  // namespace snapfit::cli

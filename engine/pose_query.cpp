@@ -113,7 +113,7 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
     if (variant.torque) options += " -D TORQUE";
     if (variant.translation_only) options += " -D TRANSLATION_ONLY";
     if (!variant.translation_only && variant.interpolation == Interpolation::tricubic) options += " -D TRICUBIC";
-    m.kernel = cl::Kernel(build_program(ctx, "pose_query", kernel_source("pose_query"), options, cache).program, "pose_query");
+    m.kernel = cl::Kernel(build_program(ctx, "pose_query", kernel_source("spectrum_sample") + kernel_source("pose_query"), options, cache).program, "pose_query");
     m.kernel.setArg(0, m.modes);
     m.kernel.setArg(1, m.weights);
     m.kernel.setArg(2, m.s2);

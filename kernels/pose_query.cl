@@ -10,40 +10,6 @@
 //   translation only: W_k already holds S1(w_k) S2(-w_k) dw, term = W_k e^{i phi}.
 // Partial sums per group (8 floats): Re f, Im f, F (3), T in part 2's frame (3).
 
-#define TWO_PI 6.28318530717958647f
-
-inline float2 cmul(const float2 a, const float2 b) { return (float2)(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
-
-#ifndef TRANSLATION_ONLY
-inline int wrap(const int i, const int n) {
-  const int r = i % n;
-  return r < 0 ? r + n : r;
-}
-
-// Interpolation weights along one axis at fractional index u: taps i0 + j.
-#ifdef TRICUBIC
-#define TAPS 4
-inline int axis_weights(const float u, float* w) {
-  const float f = floor(u);
-  const float t = u - f, t2 = t * t, t3 = t2 * t;
-  // Catmull-Rom: interpolating, exact for quadratics.
-  w[0] = 0.5f * (-t3 + 2.0f * t2 - t);
-  w[1] = 0.5f * (3.0f * t3 - 5.0f * t2 + 2.0f);
-  w[2] = 0.5f * (-3.0f * t3 + 4.0f * t2 + t);
-  w[3] = 0.5f * (t3 - t2);
-  return (int)f - 1;
-}
-#else
-#define TAPS 2
-inline int axis_weights(const float u, float* w) {
-  const float f = floor(u);
-  w[1] = u - f;
-  w[0] = 1.0f - w[1];
-  return (int)f;
-}
-#endif
-#endif
-
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void pose_query(__global const float4* modes, __global const float2* weights, __global const float2* s2,
                 __global const float2* sq0, __global const float2* sq1, __global const float2* sq2,
