@@ -17,9 +17,48 @@ struct PoseQueryEngine::Impl {
   Eigen::Vector3d c1, c2, half1, half2, length;
   std::size_t mode_total = 0, mode_count = 0;
   std::size_t wg = 64, max_groups = 4;
-  cl::Buffer modes, weights, s2, sq[3], poses, partials;
+  cl::Buffer modes, weights, cube, poses, partials, mode_index, tables;
+  std::vector<int> table_half;  // max |k| over all axes of modes [0, i]: the phase tables' reach
+  std::size_t table_capacity = 0;
+  // Part 2's spectra (host), the |w| of every mode in order, and the radius (in |w|)
+  // the device cube currently covers.
+  std::array<std::size_t, 3> dims{};
+  std::vector<Complex> s2;
+  std::array<std::vector<Complex>, 3> sq;
+  std::vector<float> mode_radius;
+  double cube_radius = -1;
   std::size_t pose_capacity = 0, partial_capacity = 0;
   cl::Kernel kernel;
+
+  // Uploads the part of S2 (and SQ) that interpolation at |w'| <= radius can touch:
+  // signed indices |i_a| <= ceil(radius L_a) + 2 (Catmull-Rom reaches 2 beyond floor),
+  // sampled periodically. Grown with a margin, so m' changes rarely re-upload.
+  void ensure_cube(double radius) {
+    if (variant.translation_only || radius <= cube_radius) return;
+    radius = std::min(radius * 1.25, double(mode_radius.back()));
+    int half[3], n[3];
+    for (int a = 0; a < 3; ++a) {
+      half[a] = static_cast<int>(std::ceil(radius * length[a])) + 2;
+      n[a] = 2 * half[a] + 2;
+    }
+    const int per_node = variant.torque ? 4 : 1;
+    std::vector<Complex> data(static_cast<std::size_t>(n[0]) * n[1] * n[2] * per_node);
+    auto wrap = [](long i, std::size_t m) { return static_cast<std::size_t>(((i % long(m)) + long(m)) % long(m)); };
+    for (int z = 0; z < n[2]; ++z)
+      for (int y = 0; y < n[1]; ++y)
+        for (int x = 0; x < n[0]; ++x) {
+          const std::size_t k = wrap(x - half[0], dims[0]) + dims[0] * (wrap(y - half[1], dims[1]) + dims[1] * wrap(z - half[2], dims[2]));
+          Complex* node = &data[per_node * (static_cast<std::size_t>(x) + n[0] * (static_cast<std::size_t>(y) + n[1] * z))];
+          node[0] = s2[k];
+          if (variant.torque)
+            for (int a = 0; a < 3; ++a) node[1 + a] = sq[a][k];
+        }
+    cube = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * data.size(), data.data());
+    kernel.setArg(2, cube);
+    kernel.setArg(3, cl_int4{{n[0], n[1], n[2], 0}});
+    kernel.setArg(4, cl_int4{{half[0], half[1], half[2], 0}});
+    cube_radius = radius;
+  }
 
   void ensure_capacity(std::size_t pose_count, std::size_t groups) {
     if (pose_count > pose_capacity) {
@@ -77,10 +116,19 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
   // dw = 1 / (L_x L_y L_z) (DESIGN.md), folded into the weights.
   const double dw = 1.0 / (spectra.length.x() * spectra.length.y() * spectra.length.z());
   std::vector<cl_float4> mode_data(total);
+  std::vector<cl_int4> index_data(total);
+  m.table_half.resize(total);
+  int reach = 0;
+  auto signed_k = [](std::size_t k, std::size_t n) { return k <= n / 2 ? int(k) : int(k) - int(n); };
   std::vector<Complex> weight_data(total);
   for (std::size_t i = 0; i < total; ++i) {
     const std::size_t k = order[i];
     mode_data[i] = cl_float4{{w[k].x(), w[k].y(), w[k].z(), 0.0f}};
+    const int kx = signed_k(k % dims[0], dims[0]), ky = signed_k((k / dims[0]) % dims[1], dims[1]),
+              kz = signed_k(k / (dims[0] * dims[1]), dims[2]);
+    index_data[i] = cl_int4{{kx, ky, kz, 0}};
+    reach = std::max({reach, std::abs(kx), std::abs(ky), std::abs(kz)});
+    m.table_half[i] = reach;
     Complex weight = spectra.part1.rho[k] * static_cast<float>(dw);
     if (variant.translation_only) {
       // rho2^(-w_k) at the node -k: S2(-w) e^{-2 pi i (-w).c2} folds into the phase tau.
@@ -92,19 +140,18 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
   }
   m.mode_total = total;
   m.mode_count = total;
+  m.mode_radius.resize(total);
+  for (std::size_t i = 0; i < total; ++i) m.mode_radius[i] = std::sqrt(norm2[order[i]]);
 
   try {
     m.modes = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * total, mode_data.data());
     m.weights = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * total, weight_data.data());
-    auto upload = [&](const std::vector<Complex>& v) {
-      return cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * v.size(),
-                        const_cast<Complex*>(v.data()));
-    };
-    // Unused spectrum arguments get a small placeholder buffer (OpenCL needs a valid one).
-    const std::vector<Complex> none(1);
-    m.s2 = variant.translation_only ? upload(none) : upload(spectra.part2.rho);
-    for (int a = 0; a < 3; ++a) m.sq[a] = variant.torque ? upload(spectra.part2.moments[a]) : upload(none);
-
+    m.mode_index = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_int4) * total, index_data.data());
+    m.dims = dims;
+    if (!variant.translation_only) {
+      m.s2 = spectra.part2.rho;
+      if (variant.torque) m.sq = spectra.part2.moments;
+    }
     m.wg = 1;
     while (m.wg * 2 <= std::min<std::size_t>(64, ctx.device.info.max_work_group_size)) m.wg *= 2;
     m.max_groups = std::max<std::size_t>(2, 2 * ctx.device.info.compute_units);
@@ -116,12 +163,16 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
     m.kernel = cl::Kernel(build_program(ctx, "pose_query", kernel_source("spectrum_sample") + kernel_source("pose_query"), options, cache).program, "pose_query");
     m.kernel.setArg(0, m.modes);
     m.kernel.setArg(1, m.weights);
-    m.kernel.setArg(2, m.s2);
-    m.kernel.setArg(3, m.sq[0]);
-    m.kernel.setArg(4, m.sq[1]);
-    m.kernel.setArg(5, m.sq[2]);
-    m.kernel.setArg(6, cl_int4{{int(dims[0]), int(dims[1]), int(dims[2]), 0}});
-    m.kernel.setArg(7, cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
+    if (variant.translation_only) {
+      // No spectrum of part 2 is read: a one-node placeholder keeps the arguments valid.
+      const Complex none[4] = {};
+      m.cube = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof none, const_cast<Complex*>(none));
+      m.kernel.setArg(2, m.cube);
+      m.kernel.setArg(3, cl_int4{{1, 1, 1, 0}});
+      m.kernel.setArg(4, cl_int4{{0, 0, 0, 0}});
+    }
+    m.kernel.setArg(5, cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
+    m.kernel.setArg(9, m.mode_index);
     m.ensure_capacity(1, m.max_groups);
   } catch (const cl::Error& e) {
     throw Error("cannot set up pose queries on " + ctx.device.info.name + ": " + e.what() + " (error " +
@@ -133,7 +184,10 @@ PoseQueryEngine::~PoseQueryEngine() = default;
 
 std::size_t PoseQueryEngine::max_modes() const { return impl_->mode_total; }
 std::size_t PoseQueryEngine::modes() const { return impl_->mode_count; }
-void PoseQueryEngine::set_modes(std::size_t m) { impl_->mode_count = std::clamp<std::size_t>(m, 1, impl_->mode_total); }
+void PoseQueryEngine::set_modes(std::size_t m) {
+  impl_->mode_count = std::clamp<std::size_t>(m, 1, impl_->mode_total);
+  impl_->ensure_cube(impl_->mode_radius[impl_->mode_count - 1]);
+}
 
 QueryResult PoseQueryEngine::query(const Pose& pose) { return query_batch({pose}).front(); }
 
@@ -144,6 +198,7 @@ std::vector<QueryResult> PoseQueryEngine::query_batch(const std::vector<Pose>& p
   std::vector<float> packed;
   std::vector<std::size_t> slot;  // poses sent to the device, by index
   std::vector<Eigen::Matrix3d> rotations;
+  std::vector<Eigen::Vector3d> taus;
   for (std::size_t i = 0; i < poses.size(); ++i) {
     results[i].modes = m.mode_count;
     Eigen::Matrix3d R;
@@ -162,6 +217,7 @@ std::vector<QueryResult> PoseQueryEngine::query_batch(const std::vector<Pose>& p
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) packed.push_back(static_cast<float>(R(r, c)));
     for (int a = 0; a < 3; ++a) packed.push_back(static_cast<float>(tau[a]));
+    taus.push_back(tau);
     slot.push_back(i);
     rotations.push_back(R);
   }
@@ -171,10 +227,28 @@ std::vector<QueryResult> PoseQueryEngine::query_batch(const std::vector<Pose>& p
     try {
       m.ensure_capacity(slot.size(), groups);
       m.ctx.queue.enqueueWriteBuffer(m.poses, CL_FALSE, 0, sizeof(float) * packed.size(), packed.data());
-      m.kernel.setArg(8, m.poses);
-      m.kernel.setArg(9, static_cast<cl_int>(m.mode_count));
-      m.kernel.setArg(10, static_cast<cl_int>(groups_per_pose));
-      m.kernel.setArg(11, m.partials);
+      m.ensure_cube(m.mode_radius[m.mode_count - 1]);
+      // Per pose and axis: exp(2 pi i k tau_a / L_a) for |k| <= half, in double.
+      const int half = m.table_half[m.mode_count - 1];
+      const std::size_t table = 2 * static_cast<std::size_t>(half) + 1;
+      std::vector<Complex> tables(3 * table * slot.size());
+      for (std::size_t p = 0; p < slot.size(); ++p)
+        for (int a = 0; a < 3; ++a)
+          for (int k = -half; k <= half; ++k) {
+            const double phi = 2.0 * M_PI * k * taus[p][a] / m.length[a];
+            tables[(3 * p + a) * table + (k + half)] = Complex(float(std::cos(phi)), float(std::sin(phi)));
+          }
+      if (tables.size() > m.table_capacity) {
+        m.table_capacity = std::max<std::size_t>(tables.size(), 1024);
+        m.tables = cl::Buffer(m.ctx.context, CL_MEM_READ_ONLY, sizeof(Complex) * m.table_capacity);
+      }
+      m.ctx.queue.enqueueWriteBuffer(m.tables, CL_FALSE, 0, sizeof(Complex) * tables.size(), tables.data());
+      m.kernel.setArg(6, m.poses);
+      m.kernel.setArg(7, static_cast<cl_int>(m.mode_count));
+      m.kernel.setArg(8, static_cast<cl_int>(groups_per_pose));
+      m.kernel.setArg(10, m.tables);
+      m.kernel.setArg(11, static_cast<cl_int>(half));
+      m.kernel.setArg(12, m.partials);
       m.ctx.queue.enqueueNDRangeKernel(m.kernel, cl::NullRange, cl::NDRange(groups * m.wg), cl::NDRange(m.wg));
       std::vector<float> partial(8 * groups);
       m.ctx.queue.enqueueReadBuffer(m.partials, CL_TRUE, 0, sizeof(float) * partial.size(), partial.data());

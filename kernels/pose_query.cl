@@ -6,29 +6,43 @@
 //          -D TRICUBIC (Catmull-Rom; default trilinear)
 // Per mode k: w = w_k (part 1's frequency node), weight W_k = S1(w_k) dw, and
 //   6-DOF: w' = -R^T w, term = W_k S2(w') e^{i phi}, phi = 2 pi w.tau, tau = t + R c2 - c1
+//          (e^{i phi} from per-axis tables: no sincos per mode)
 //          torque (part 2 frame): Re[2 pi i W_k e^{i phi} (w' x SQ(w'))]
 //   translation only: W_k already holds S1(w_k) S2(-w_k) dw, term = W_k e^{i phi}.
 // Partial sums per group (8 floats): Re f, Im f, F (3), T in part 2's frame (3).
 
+// The spectrum of part 2 near the low-pass ball, as a compact cube (no wrapping):
+// signed FFT index i sits at cube index i + offset. With torque each node holds
+// S2, SQ_x, SQ_y, SQ_z interleaved (one 32-byte load per tap).
+#ifdef TORQUE
+typedef float8 Sample;
+#else
+typedef float2 Sample;
+#endif
+
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void pose_query(__global const float4* modes, __global const float2* weights, __global const float2* s2,
-                __global const float2* sq0, __global const float2* sq1, __global const float2* sq2,
-                const int4 dims, const float4 length, __global const float* poses, const int mode_count,
-                const int groups_per_pose, __global float* partials) {
+void pose_query(__global const float4* modes, __global const float2* weights, __global const Sample* cube,
+                const int4 cube_dims, const int4 offset, const float4 length, __global const float* poses,
+                const int mode_count, const int groups_per_pose, __global const int4* mode_index,
+                __global const float2* phase_tables, const int table_half, __global float* partials) {
   const int group = get_group_id(0);
   const int pose = group / groups_per_pose;
   const int slice = group % groups_per_pose;
   const int lid = get_local_id(0);
   __global const float* P = poses + 12 * pose;  // R row-major (9), tau (3)
-  const float3 tau = (float3)(P[9], P[10], P[11]);
+  // exp(2 pi i w.tau) is separable per axis (DESIGN.md): the host tabulates
+  // exp(2 pi i k tau_a / L_a) for |k| <= table_half, per pose and axis.
+  const int table = 2 * table_half + 1;
+  __global const float2* tx = phase_tables + 3 * table * pose + table_half;
+  __global const float2* ty = tx + table;
+  __global const float2* tz = ty + table;
 
   float2 f = (float2)(0.0f);
   float3 force = (float3)(0.0f), torque = (float3)(0.0f);
   for (int m = slice * WG_SIZE + lid; m < mode_count; m += groups_per_pose * WG_SIZE) {
     const float3 w = modes[m].xyz;
-    float c;
-    const float s = sincos(TWO_PI * dot(w, tau), &c);
-    float2 term = cmul(weights[m], (float2)(c, s));
+    const int4 k = mode_index[m];
+    float2 term = cmul(weights[m], cmul(tx[k.x], cmul(ty[k.y], tz[k.z])));
 #ifndef TRANSLATION_ONLY
     // w' = -R^T w (R^T's rows are R's columns).
     const float3 wp = -(float3)(P[0] * w.x + P[3] * w.y + P[6] * w.z, P[1] * w.x + P[4] * w.y + P[7] * w.z,
@@ -36,27 +50,20 @@ void pose_query(__global const float4* modes, __global const float2* weights, __
     const float3 u = wp * length.xyz;  // fractional FFT index
     float wx[TAPS], wy[TAPS], wz[TAPS];
     const int ix = axis_weights(u.x, wx), iy = axis_weights(u.y, wy), iz = axis_weights(u.z, wz);
-    float2 v = (float2)(0.0f);
-#ifdef TORQUE
-    float2 q0 = (float2)(0.0f), q1 = (float2)(0.0f), q2 = (float2)(0.0f);
-#endif
+    Sample acc = (Sample)(0.0f);
     for (int c3 = 0; c3 < TAPS; ++c3) {
-      const int z = wrap(iz + c3, dims.z);
+      const int z = iz + c3 + offset.z;
       for (int b = 0; b < TAPS; ++b) {
-        const int zy = dims.y * z + wrap(iy + b, dims.y);
+        const int row = cube_dims.x * (cube_dims.y * z + iy + b + offset.y) + ix + offset.x;
         const float wyz = wy[b] * wz[c3];
-        for (int a = 0; a < TAPS; ++a) {
-          const int at = dims.x * zy + wrap(ix + a, dims.x);
-          const float wt = wx[a] * wyz;
-          v += wt * s2[at];
-#ifdef TORQUE
-          q0 += wt * sq0[at];
-          q1 += wt * sq1[at];
-          q2 += wt * sq2[at];
-#endif
-        }
+        for (int a = 0; a < TAPS; ++a) acc += (wx[a] * wyz) * cube[row + a];
       }
     }
+#ifdef TORQUE
+    const float2 v = acc.s01, q0 = acc.s23, q1 = acc.s45, q2 = acc.s67;
+#else
+    const float2 v = acc;
+#endif
 #ifdef TORQUE
     // 2 pi i term_q (w' x SQ): Re of i z is -Im z.
     const float2 e = term;  // W_k e^{i phi}
