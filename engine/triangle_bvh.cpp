@@ -64,7 +64,10 @@ struct Builder {
     }
     BvhNode& out = nodes[node];
     out.bbox_min = f4(box.min(), area);
-    out.bbox_max = f4(box.max(), radius * (1.0 + 1e-6));  // float rounding must not shrink the ball
+    // The kernels see float centroids and vertices: grow the ball by their rounding
+    // (a few float steps at the coordinates' magnitude), so it still holds every vertex.
+    const double magnitude = std::max(box.min().cwiseAbs().maxCoeff(), box.max().cwiseAbs().maxCoeff());
+    out.bbox_max = f4(box.max(), radius * (1.0 + 1e-6) + 8.0 * 1.2e-7 * magnitude);
     out.centroid = f4(c);
     out.area_normal = f4(normal);
     for (int row = 0; row < 3; ++row) out.moment[row] = f4(moment.row(row).transpose());

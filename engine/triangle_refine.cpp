@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <string>
 
@@ -53,6 +55,16 @@ Mesh refine_triangles(const Mesh& mesh, double max_radius, std::size_t max_trian
   if (!(max_radius > 0) || !std::isfinite(max_radius)) throw Error("refinement radius must be a positive number");
   const std::size_t n = mesh.triangles.size();
   auto corner = [&](std::size_t t, int k) -> const Vec3& { return mesh.vertices[mesh.triangles[t][k]]; };
+  // A piece within a ball of radius r has area at most (3 sqrt 3 / 4) r^2 (the
+  // inscribed equilateral triangle), so area / that bounds the piece count from below:
+  // refuse at once rather than after counting billions of pieces.
+  double area = 0;
+  for (std::size_t t = 0; t < n; ++t) area += 0.5 * (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0)).norm();
+  const double at_least = area / (1.299038105676658 * max_radius * max_radius);
+  if (at_least > static_cast<double>(max_triangles))
+    throw Error("refining " + std::to_string(n) + " triangles to radius " + std::to_string(max_radius) +
+                " gives at least " + std::to_string(static_cast<unsigned long long>(at_least)) + " pieces, more than " +
+                std::to_string(max_triangles));
   // Count first, so every triangle writes its pieces at a known offset in parallel.
   std::vector<std::size_t> offset(n + 1, 0);
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t t) {

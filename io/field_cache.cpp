@@ -43,7 +43,7 @@ std::string descriptor_cache_key(const Mesh& mesh, const GridSpec& grid, const D
   if (params.kind == DescriptorKind::skeletal_density)
     key << "|sigma=" << params.sigma << "|refine=" << options.refine_fraction
         << "|brute_force=" << options.brute_force_density;
-  key << "|xi=" << (params.kind == DescriptorKind::skeletal_density || options.indicator_signed_distance)
+  key << "|leaf=" << options.bvh_leaf_size << "|xi=" << (params.kind == DescriptorKind::skeletal_density || options.indicator_signed_distance)
       << "|tolerance=" << params.tolerance << "|min_distance=" << options.min_distance_fraction
       << "|kernels=" << hex64(sources);
   return key.str();

@@ -148,7 +148,9 @@ std::function<void(const std::string&, std::uint64_t, std::uint64_t)> pass_progr
   };
   auto state = std::make_shared<State>();
   return [state, &out](const std::string& pass, std::uint64_t done, std::uint64_t total) {
-    if (!state->bar || pass != state->pass) {
+    // A new pass, or the same pass name starting over (one callback reused for several
+    // computations, e.g. both parts of a scene): a new bar.
+    if (!state->bar || pass != state->pass || done < state->reported || state->bar->done() >= total) {
       if (state->bar) state->bar->finish();
       state->pass = pass;
       state->bar = std::make_unique<Progress>(pass, total, out);
