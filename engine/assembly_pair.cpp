@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "engine/compute_plan.h"
+#include "io/spectra_cache.h"
 
 namespace snapfit {
 
@@ -23,8 +24,16 @@ AssemblyPair build_assembly_pair(const Scene& scene, const ComputeContext& ctx, 
   pair.fields2 = part_fields(ctx, pair.parts.part2.mesh, grids.part2, scene.descriptor, options.descriptors,
                              options.use_cache, note);
   const ComputePlan plan = plan_computation(scene);
-  pair.spectra = compute_pair_spectra(fft, ctx, pair.fields1.fields, pair.fields2.fields, plan.torque_fields,
-                                      options.spectrum);
+  const std::string key = options.use_cache ? spectra_cache_key(pair.fields1.fields, pair.fields2.fields,
+                                                                  plan.torque_fields, options.spectrum)
+                                            : std::string();
+  if (auto cached = options.use_cache ? load_cached_spectra(key, note) : std::nullopt) {
+    pair.spectra = std::move(*cached);
+  } else {
+    pair.spectra = compute_pair_spectra(fft, ctx, pair.fields1.fields, pair.fields2.fields, plan.torque_fields,
+                                        options.spectrum);
+    if (options.use_cache) save_cached_spectra(key, pair.spectra, note);
+  }
   return pair;
 }
 

@@ -29,6 +29,7 @@ void run_pass(const ComputeContext& ctx, const GridSpec& grid, const DescriptorO
   kernel.setArg(3, static_cast<float>(grid.spacing));
   kernel.setArg(4, static_cast<cl_int>(grid.dims.x()));
   kernel.setArg(5, static_cast<cl_int>(grid.dims.y()));
+  if (options.progress) options.progress(pass, 0, count);  // starts the clock before the first chunk
   for (std::size_t first = 0; first < count; first += options.chunk_points) {
     const std::size_t n = std::min(options.chunk_points, count - first);
     kernel.setArg(0, static_cast<cl_long>(first));

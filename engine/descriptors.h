@@ -38,7 +38,8 @@ struct DescriptorOptions {
   std::size_t work_group_size = 0;   // 0: let the OpenCL runtime choose
   int bvh_leaf_size = 4;
   ProgramCacheConfig program_cache = default_program_cache();
-  // Called after every chunk of every pass with (pass name, points done, grid points);
+  // Called with (pass name, 0, grid points) when a pass starts and after each of its
+  // chunks with (pass name, points done, grid points);
   // the passes are "distance", "winding number" and "skeletal density", in that order.
   std::function<void(const std::string&, std::uint64_t, std::uint64_t)> progress;
 };
