@@ -28,6 +28,7 @@
 #include "io/mesh_load.h"
 #include "scenes/procedural/procedural_parts.h"
 #include "tests/descriptor_reference.h"
+#include "tests/test_engine_support.h"
 #include "tests/test_support.h"
 
 using namespace snapfit;
@@ -43,21 +44,11 @@ constexpr double kPi = 3.14159265358979323846;
 
 // ---------------------------------------------------------------- device and options
 
-const ComputeContext& context() {
-  static const ComputeContext ctx = make_compute_context(select_device(""));
-  return ctx;
-}
-
-// Programs are cached in one temporary folder for the whole run (compiled once).
-const test::TempDir& program_dir() {
-  static const test::TempDir dir;
-  return dir;
-}
+const ComputeContext& context() { return test::test_context(); }
 
 DescriptorOptions test_options() {
   DescriptorOptions o;
-  o.program_cache.directory = program_dir().file("programs");
-  o.program_cache.note = [](const std::string&) {};
+  o.program_cache = test::test_program_cache();
   return o;
 }
 

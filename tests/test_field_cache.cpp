@@ -19,6 +19,7 @@
 #include "io/cache_file.h"
 #include "io/field_cache.h"
 #include "scenes/procedural/procedural_parts.h"
+#include "tests/test_engine_support.h"
 #include "tests/test_support.h"
 
 using namespace snapfit;
@@ -26,22 +27,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const ComputeContext& context() {
-  static const ComputeContext ctx = make_compute_context(select_device(""));
-  return ctx;
-}
+const ComputeContext& context() { return test::test_context(); }
 
-// Compiled programs live in their own folder for the whole run (built once), apart
-// from the field cache under test.
-const test::TempDir& program_dir() {
-  static const test::TempDir dir;
-  return dir;
-}
-
+// Compiled programs live in their own folder (built once), apart from the field cache under test.
 DescriptorOptions options() {
   DescriptorOptions o;
-  o.program_cache.directory = program_dir().file("programs");
-  o.program_cache.note = [](const std::string&) {};
+  o.program_cache = test::test_program_cache();
   return o;
 }
 
