@@ -1,0 +1,1289 @@
+// Benchmark of per-pose queries (engine/pose_query.h), batched queries, full
+// translational maps (engine/full_map.h) and a roofline of the query kernel against
+// this device's measured memory bandwidth and arithmetic peak.
+//
+//   bench_queries [--quick] [--device SPEC] [--scene FILE] [--out DIR] [--repeats N]
+//
+// What is measured, on the selected OpenCL device, for the scene (default
+// scenes/default.json; its descriptor fields come from the field cache or are computed
+// once, with progress bars):
+//   1. latency   wall clock around PoseQueryEngine::query(pose), p50 / p99 / max in
+//                microseconds, N repetitions (default 2000, --quick 300) after 100
+//                warm-up queries, at m' in {1, 1024, ..., 131072} (m' = 1: the fixed
+//                cost of one query: host tables, upload, launch, read-back), for
+//                  6dof_eft_trilinear   6-DOF energy + force + torque, trilinear (8 taps)
+//                  6dof_eft_tricubic    6-DOF energy + force + torque, Catmull-Rom (64 taps)
+//                  6dof_ef_trilinear    6-DOF energy + force, trilinear
+//                  translation_ef       translation only, energy + force
+//                The translation-only engine runs on the same spectra
+//                (QueryVariant{force, torque = false, translation_only = true}): its
+//                weights fold S1(w) S2(-w) and no spectrum of part 2 is read, so it is
+//                exactly what a translation scene would run. Poses: samples along the
+//                scene's trajectory with small random perturbations (fixed seed), all
+//                different within a sweep point; the translation-only poses keep R = I.
+//   2. throughput  query_batch poses per second against batch size {1, 16, 256, 4096}
+//                at m' in {4096, 32768} (a point whose one batch would take longer than
+//                30 s, 3 s with --quick, predicted from its latency, is skipped).
+//   3. maps      translational_energy_map (all modes) at the scene's FFT grid:
+//                rotations per second, cold (first call) and warm.
+//   4. roofline  bytes and flops per mode counted from kernels/pose_query.cl (see
+//                cost_model below), times m'; the device's memory bandwidth (copy and
+//                read-reduce kernels over a 256 MiB buffer, best of 5) and arithmetic
+//                peak (independent fma chains on float4 / float8, best of 5), measured
+//                with small kernels built here from source; achieved GB/s and GFLOP/s
+//                per variant at m' = 32768, from the single-query p50 and from the
+//                largest batch.
+//   5. targets   6-DOF E+F+T at m' >= 32768 with p99 <= 1 ms, per scheme; translation
+//                only >= 10x faster than 6-DOF at the same m'. Seed 000's figure (1 kHz at
+//                m' = 4096 on a Tesla K20c, translation only) is listed as published, not
+//                measured here.
+// Output in DIR (default results/bench_queries): queries.csv, throughput.csv,
+// queries.json (everything, with device, driver, load averages, command line, date) and
+// PNG charts: latency_<variant>.png, latency_p99_all.png, throughput.png, roofline.png.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+#include "engine/assembly_pair.h"
+#include "engine/compute_context.h"
+#include "engine/device.h"
+#include "engine/error.h"
+#include "engine/fft3d.h"
+#include "engine/full_map.h"
+#include "engine/pose_query.h"
+#include "io/plot.h"
+#include "io/scene.h"
+#include "scheduler/progress.h"
+
+namespace {
+
+using snapfit::Interpolation;
+using snapfit::Pose;
+using snapfit::PoseQueryEngine;
+using snapfit::QueryVariant;
+using Clock = std::chrono::steady_clock;
+
+// ---------------------------------------------------------------- command line
+
+struct Args {
+  bool quick = false;
+  std::string device;
+  std::string scene = "scenes/default.json";
+  std::string out = "results/bench_queries";
+  int repeats = 0;  // 0: 2000, or 300 with --quick
+  std::string command_line;
+};
+
+void usage(std::ostream& os) {
+  os << "usage: bench_queries [--quick] [--device SPEC] [--scene FILE] [--out DIR] [--repeats N]\n"
+        "  --quick         a few m' values, 300 repetitions (under a minute once fields are cached)\n"
+        "  --device SPEC   OpenCL device: index, P:D, cpu|gpu|accelerator or a name substring\n"
+        "                  (default: $SNAPFIT_DEVICE, else PoCL's CPU device)\n"
+        "  --scene FILE    scene (default scenes/default.json)\n"
+        "  --out DIR       output folder (default results/bench_queries)\n"
+        "  --repeats N     timed queries per latency point (default 2000, --quick 300)\n";
+}
+
+Args parse_args(int argc, char** argv) {
+  Args a;
+  for (int i = 0; i < argc; ++i) a.command_line += (i ? " " : "") + std::string(argv[i]);
+  for (int i = 1; i < argc; ++i) {
+    const std::string s = argv[i];
+    auto value = [&](const std::string& name) -> std::string {
+      const std::string prefix = name + "=";
+      if (s.rfind(prefix, 0) == 0) return s.substr(prefix.size());
+      if (i + 1 >= argc) throw snapfit::Error(name + ": needs a value");
+      return argv[++i];
+    };
+    auto is = [&](const std::string& name) { return s == name || s.rfind(name + "=", 0) == 0; };
+    if (s == "--quick") {
+      a.quick = true;
+    } else if (s == "-h" || s == "--help") {
+      usage(std::cout);
+      std::exit(0);
+    } else if (is("--device")) {
+      a.device = value("--device");
+    } else if (is("--scene")) {
+      a.scene = value("--scene");
+      if (a.scene.empty()) throw snapfit::Error("--scene: must not be empty");
+    } else if (is("--out")) {
+      a.out = value("--out");
+      if (a.out.empty()) throw snapfit::Error("--out: must not be empty");
+    } else if (is("--repeats")) {
+      const std::string v = value("--repeats");
+      std::size_t used = 0;
+      long n = 0;
+      try {
+        n = std::stol(v, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != v.size() || n < 1 || n > 10000000) throw snapfit::Error("--repeats: expected an integer >= 1 (got '" + v + "')");
+      a.repeats = static_cast<int>(n);
+    } else {
+      throw snapfit::Error("unknown argument '" + s + "' (see --help)");
+    }
+  }
+  return a;
+}
+
+// ---------------------------------------------------------------- small helpers
+
+std::string read_loadavg() {
+  std::ifstream f("/proc/loadavg");
+  std::string line;
+  std::getline(f, line);
+  return line;
+}
+double load1() {
+  std::istringstream in(read_loadavg());
+  double l = -1;
+  in >> l;
+  return l;
+}
+
+// CPU time used by the whole machine (non-idle, all cores) and by this process (all
+// its threads, the device's worker threads included), in core-seconds: their
+// difference over an interval is what other processes took from the cores meanwhile.
+struct CpuSample {
+  double machine_busy_s = 0, own_s = 0;
+  Clock::time_point at = Clock::now();
+};
+CpuSample cpu_sample() {
+  CpuSample c;
+  const double tick = double(sysconf(_SC_CLK_TCK));
+  {
+    std::ifstream f("/proc/stat");
+    std::string cpu;
+    double user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
+    f >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal;
+    c.machine_busy_s = (user + nice + system + irq + softirq + steal) / tick;
+  }
+  {
+    std::ifstream f("/proc/self/stat");
+    std::string line;
+    std::getline(f, line);
+    const auto close = line.rfind(')');
+    if (close != std::string::npos) {
+      std::istringstream in(line.substr(close + 2));
+      std::string field;
+      double utime = 0, stime = 0;
+      for (int i = 3; i <= 15 && in >> field; ++i) {  // fields 3.. after "pid (comm)"
+        if (i == 14) utime = std::stod(field);
+        if (i == 15) stime = std::stod(field);
+      }
+      c.own_s = (utime + stime) / tick;
+    }
+  }
+  return c;
+}
+// Cores kept busy by other processes between two samples (0 on a quiet machine).
+double other_cores(const CpuSample& a, const CpuSample& b) {
+  const double wall = std::chrono::duration<double>(b.at - a.at).count();
+  if (wall <= 0) return 0;
+  return std::max(0.0, ((b.machine_busy_s - a.machine_busy_s) - (b.own_s - a.own_s)) / wall);
+}
+
+std::string now_iso() {
+  const std::time_t t = std::time(nullptr);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S%z", std::localtime(&t));
+  return buf;
+}
+
+std::string fmt(double v, int prec = 3) {
+  if (!std::isfinite(v)) return "-";
+  std::ostringstream os;
+  os << std::setprecision(prec) << v;
+  return os.str();
+}
+std::string fixed(double v, int prec = 1) {
+  if (!std::isfinite(v)) return "-";
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(prec) << v;
+  return os.str();
+}
+std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s : std::string(w - s.size(), ' ') + s; }
+std::string padr(const std::string& s, std::size_t w) { return s.size() >= w ? s : s + std::string(w - s.size(), ' '); }
+
+// Nearest-rank percentile of sorted values.
+double percentile(const std::vector<double>& sorted, double q) {
+  if (sorted.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size())));
+  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
+}
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return percentile(v, 0.5);
+}
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// ---------------------------------------------------------------- variants and cost model
+
+struct VariantSpec {
+  std::string key, label;
+  QueryVariant variant;
+};
+
+std::vector<VariantSpec> variant_specs() {
+  return {
+      {"6dof_eft_trilinear", "6-DOF E+F+T trilinear", QueryVariant{true, true, false, Interpolation::trilinear}},
+      {"6dof_eft_tricubic", "6-DOF E+F+T tricubic", QueryVariant{true, true, false, Interpolation::tricubic}},
+      {"6dof_ef_trilinear", "6-DOF E+F trilinear", QueryVariant{true, false, false, Interpolation::trilinear}},
+      {"translation_ef", "translation-only E+F", QueryVariant{true, false, true, Interpolation::trilinear}},
+  };
+}
+
+// Bytes and flops per retained mode, counted from kernels/pose_query.cl (one work-item
+// iteration of the mode loop). Bytes: every global load the loop issues, counted once
+// per mode as if nothing were cached (the "requested" traffic; the compact cube and the
+// phase tables are small enough to stay in cache on a CPU, so DRAM traffic is lower):
+//   modes[m] float4 16 B, mode_index[m] int4 16 B, weights[m] float2 8 B,
+//   3 phase-table lookups 3 x 8 B                                   = 64 B for every variant
+//   6-DOF: TAPS^3 cube taps x sizeof(Sample): float8 (32 B) with torque, float2 (8 B) without
+// Flops: an add, a multiply or a subtraction is 1, an fma 2; integer index arithmetic,
+// floor and conversions are not counted:
+//   phase: 3 complex multiplies (4 mul + 2 add each)                           18
+//   6-DOF: w' = -R^T w (9 mul + 6 add) 15, u = w' L 3;
+//          axis weights per axis: trilinear 2, Catmull-Rom 20 (t^2, t^3 and four cubics);
+//          taps: per (z, y) pair one wy*wz multiply (TAPS^2), per tap one wx*wyz
+//          multiply and one multiply-add per Sample component (8 or 2): TAPS^3 (1 + 2c);
+//          term *= v: one complex multiply 6
+//   torque: 3 complex multiplies 18, cross product of imaginary parts 9, *(-2 pi) and += 6
+//   f += term 2; force += -2 pi term.y w: 1 + 3 + 3 = 7
+// Per query on top (not per mode): 3 (2 h + 1) complex table entries and 12 pose floats
+// uploaded, 8 floats per work-group read back, and the work-group reductions.
+struct Cost {
+  double bytes = 0, flops = 0;
+  std::string bytes_detail, flops_detail;
+};
+
+Cost cost_model(const QueryVariant& v) {
+  Cost c;
+  const double stream = 16 + 16 + 8 + 3 * 8;
+  const double phase = 18, accumulate = 2, force = v.force ? 7 : 0;
+  if (v.translation_only) {
+    c.bytes = stream;
+    c.flops = phase + accumulate + force;
+    c.bytes_detail = "64 (modes 16 + index 16 + weight 8 + 3 tables 24)";
+    c.flops_detail = "18 phase + 2 sum + 7 force";
+    return c;
+  }
+  const int taps = v.interpolation == Interpolation::tricubic ? 4 : 2;
+  const int comps = v.torque ? 8 : 2;
+  const double taps3 = double(taps) * taps * taps;
+  const double gather_bytes = taps3 * comps * 4;
+  const double rotate = 15 + 3;
+  const double weights = 3 * (taps == 4 ? 20 : 2);
+  const double gather = taps * taps + taps3 * (1 + 2 * comps);
+  const double torque = v.torque ? 18 + 9 + 6 : 0;
+  c.bytes = stream + gather_bytes;
+  c.flops = phase + rotate + weights + gather + 6 + torque + accumulate + force;
+  c.bytes_detail = "64 stream + " + fmt(taps3, 3) + " taps x " + std::to_string(comps * 4) + " B = " + fmt(c.bytes, 5);
+  c.flops_detail = "18 phase + 18 rotate + " + fmt(weights, 3) + " weights + " + fmt(gather, 5) + " gather + 6 + " +
+                   fmt(torque, 3) + " torque + 2 sum + 7 force = " + fmt(c.flops, 5);
+  return c;
+}
+
+// ---------------------------------------------------------------- poses
+
+Pose trajectory_pose(const std::vector<snapfit::Keyframe>& keys, double t) {
+  if (keys.size() == 1 || t <= keys.front().time_s) return keys.front().pose;
+  if (t >= keys.back().time_s) return keys.back().pose;
+  std::size_t i = 1;
+  while (keys[i].time_s < t) ++i;
+  const auto& a = keys[i - 1];
+  const auto& b = keys[i];
+  const double s = (t - a.time_s) / (b.time_s - a.time_s);
+  Pose p;
+  p.translation = (1 - s) * a.pose.translation + s * b.pose.translation;
+  p.rotation = a.pose.rotation.slerp(s, b.pose.rotation).normalized();
+  return p;
+}
+
+// `count` poses along the scene's trajectory (or from its initial pose to the assembled
+// one), each perturbed by up to +-0.5 grid spacings per axis and, with rotation, by up
+// to 0.5 degrees about a random axis; translation-only poses have R = I.
+std::vector<Pose> make_poses(const snapfit::Scene& scene, double spacing, std::size_t count, bool rotate,
+                             unsigned seed) {
+  std::vector<snapfit::Keyframe> keys = scene.trajectory.keyframes;
+  if (keys.empty()) {
+    keys.push_back({0.0, scene.part2.pose});
+    if (scene.assembled_pose) keys.push_back({1.0, *scene.assembled_pose});
+  }
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Pose> poses;
+  poses.reserve(count);
+  const double t0 = keys.front().time_s, t1 = keys.back().time_s;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double t = t0 + (t1 - t0) * (count > 1 ? double(i) / double(count - 1) : 0.0);
+    Pose p = trajectory_pose(keys, t);
+    p.translation += 0.5 * spacing * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    if (rotate) {
+      Eigen::Vector3d axis(u(rng), u(rng), u(rng));
+      if (axis.norm() < 1e-6) axis = Eigen::Vector3d::UnitZ();
+      const double angle = 0.5 * M_PI / 180.0 * std::abs(u(rng));
+      p.rotation = (Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis.normalized())) * p.rotation).normalized();
+    } else {
+      p.rotation = Eigen::Quaterniond::Identity();
+    }
+    poses.push_back(p);
+  }
+  return poses;
+}
+
+// Poses the engine accepts (not outside the padded box, not rejected).
+std::vector<Pose> usable_poses(PoseQueryEngine& engine, const std::vector<Pose>& poses, std::size_t& rejected) {
+  const auto results = engine.query_batch(poses);
+  std::vector<Pose> out;
+  rejected = 0;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (results[i].flags == snapfit::query_ok) out.push_back(poses[i]);
+    else ++rejected;
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- geometry of the spectra
+
+// |w| of every FFT node, sorted (the engine's low-pass order).
+std::vector<float> sorted_mode_radii(const snapfit::PairSpectra& s) {
+  const auto& d = s.dims;
+  std::vector<double> fx(d[0]), fy(d[1]), fz(d[2]);
+  for (std::size_t i = 0; i < d[0]; ++i) fx[i] = s.frequency(0, i);
+  for (std::size_t i = 0; i < d[1]; ++i) fy[i] = s.frequency(1, i);
+  for (std::size_t i = 0; i < d[2]; ++i) fz[i] = s.frequency(2, i);
+  std::vector<float> r;
+  r.reserve(d[0] * d[1] * d[2]);
+  for (std::size_t z = 0; z < d[2]; ++z)
+    for (std::size_t y = 0; y < d[1]; ++y)
+      for (std::size_t x = 0; x < d[0]; ++x) r.push_back(float(std::sqrt(fx[x] * fx[x] + fy[y] * fy[y] + fz[z] * fz[z])));
+  std::sort(r.begin(), r.end());
+  return r;
+}
+
+// The working set of one query at m' (what engine/pose_query.cpp uploads): the mode
+// arrays (40 B per mode), the compact cube of part 2's spectrum (as ensure_cube builds
+// it fresh for this m') and the three phase tables.
+struct Footprint {
+  double mode_bytes = 0, cube_bytes = 0, table_bytes = 0;
+  std::array<int, 3> cube_dims{};
+};
+Footprint footprint(const snapfit::PairSpectra& s, const std::vector<float>& radii, std::size_t m, const QueryVariant& v) {
+  Footprint f;
+  m = std::clamp<std::size_t>(m, 1, radii.size());
+  f.mode_bytes = 40.0 * double(m);
+  const double r = radii[m - 1];
+  int table_half = 0;
+  for (int a = 0; a < 3; ++a) table_half = std::max(table_half, int(std::floor(r * s.length[a] + 1e-6)));
+  f.table_bytes = 3.0 * (2 * table_half + 1) * 8;
+  if (!v.translation_only) {
+    const double radius = std::min(double(r) * 1.25, double(radii.back()));
+    double nodes = 1;
+    for (int a = 0; a < 3; ++a) {
+      const int half = int(std::ceil(radius * s.length[a])) + 2;
+      f.cube_dims[a] = 2 * half + 2;
+      nodes *= f.cube_dims[a];
+    }
+    f.cube_bytes = nodes * (v.torque ? 32 : 8);
+  }
+  return f;
+}
+
+// ---------------------------------------------------------------- device limits
+
+const char* kLimitsSource = R"CLC(
+__kernel void copy_f4(__global const float4* src, __global float4* dst) {
+  const size_t i = get_global_id(0);
+  dst[i] = src[i];
+}
+// Each work-item sums every stride-th float4 (coalesced on GPUs).
+__kernel void read_strided(__global const float4* src, const uint n, __global float* out) {
+  const uint g = get_global_id(0), stride = get_global_size(0);
+  float4 s = (float4)(0.0f);
+  for (uint i = g; i < n; i += stride) s += src[i];
+  out[g] = s.x + s.y + s.z + s.w;
+}
+// Each work-item sums one contiguous block (streams well on CPUs).
+__kernel void read_blocked(__global const float4* src, const uint chunk, __global float* out) {
+  const uint g = get_global_id(0);
+  __global const float4* p = src + (size_t)g * chunk;
+  float4 s0 = (float4)(0.0f), s1 = (float4)(0.0f);
+  for (uint i = 0; i < chunk; i += 2) { s0 += p[i]; s1 += p[i + 1]; }
+  const float4 s = s0 + s1;
+  out[g] = s.x + s.y + s.z + s.w;
+}
+// Same, each block read `reps` times: a buffer that fits in the last-level cache.
+__kernel void read_blocked_repeat(__global const float4* src, const uint chunk, const uint reps, __global float* out) {
+  const uint g = get_global_id(0);
+  __global const float4* p = src + (size_t)g * chunk;
+  float4 s0 = (float4)(0.0f), s1 = (float4)(0.0f);
+  for (uint r = 0; r < reps; ++r)
+    for (uint i = 0; i < chunk; i += 2) { s0 += p[i]; s1 += p[i + 1]; }
+  const float4 s = s0 + s1;
+  out[g] = s.x + s.y + s.z + s.w;
+}
+// 8 independent fma chains per work-item, ITERS steps each.
+#define CHAINS(T)                                                                       \
+  const float g = (float)get_global_id(0) * 1e-7f;                                      \
+  T a0 = (T)(g), a1 = a0 + (T)(0.01f), a2 = a0 + (T)(0.02f), a3 = a0 + (T)(0.03f),      \
+    a4 = a0 + (T)(0.04f), a5 = a0 + (T)(0.05f), a6 = a0 + (T)(0.06f), a7 = a0 + (T)(0.07f); \
+  const T vb = (T)(b), vc = (T)(c);                                                     \
+  for (int i = 0; i < ITERS; ++i) {                                                     \
+    a0 = fma(a0, vb, vc); a1 = fma(a1, vb, vc); a2 = fma(a2, vb, vc); a3 = fma(a3, vb, vc); \
+    a4 = fma(a4, vb, vc); a5 = fma(a5, vb, vc); a6 = fma(a6, vb, vc); a7 = fma(a7, vb, vc); \
+  }                                                                                     \
+  const T s = ((a0 + a1) + (a2 + a3)) + ((a4 + a5) + (a6 + a7));
+__kernel void fma_f4(const float b, const float c, __global float* out) {
+  CHAINS(float4)
+  out[get_global_id(0)] = s.x + s.y + s.z + s.w;
+}
+__kernel void fma_f8(const float b, const float c, __global float* out) {
+  CHAINS(float8)
+  out[get_global_id(0)] = s.s0 + s.s1 + s.s2 + s.s3 + s.s4 + s.s5 + s.s6 + s.s7;
+}
+__kernel void fma_f16(const float b, const float c, __global float* out) {
+  CHAINS(float16)
+  out[get_global_id(0)] = s.s0 + s.s1 + s.s2 + s.s3 + s.s4 + s.s5 + s.s6 + s.s7 + s.s8 + s.s9 + s.sa + s.sb + s.sc + s.sd +
+                          s.se + s.sf;
+}
+)CLC";
+
+constexpr int kFmaIters = 1024;
+
+struct LimitResult {
+  std::string name;
+  double best = 0;  // GB/s or GFLOP/s
+  std::vector<double> runs;
+  std::string detail;
+};
+
+struct DeviceLimits {
+  std::vector<LimitResult> bandwidth, compute;
+  double bandwidth_gbs = 0, read_gbs = 0, peak_gflops = 0;
+  double cached_gbs = 0, cached_mib = 0;  // reads of a buffer that fits in the last-level cache
+  double buffer_mib = 0;
+};
+
+// Seconds of one kernel run (event profiling when the queue has it, else wall clock).
+double time_kernel(const snapfit::ComputeContext& ctx, cl::Kernel& k, std::size_t global) {
+  cl::Event ev;
+  const auto t0 = Clock::now();
+  ctx.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global), cl::NullRange, nullptr, &ev);
+  ev.wait();
+  const double wall = seconds_since(t0);
+  try {
+    const cl_ulong a = ev.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+    const cl_ulong b = ev.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+    if (b > a) return double(b - a) * 1e-9;
+  } catch (const cl::Error&) {
+  }
+  return wall;
+}
+
+DeviceLimits measure_limits(const snapfit::ComputeContext& ctx, bool quick) {
+  DeviceLimits L;
+  cl::Program program(ctx.context, std::string(kLimitsSource));
+  const std::string options = "-cl-std=CL1.2 -D ITERS=" + std::to_string(kFmaIters);
+  try {
+    program.build({ctx.device.device}, options.c_str());
+  } catch (const cl::Error&) {
+    const std::string log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(ctx.device.device);
+    throw snapfit::Error("bench_queries: the limit kernels do not build on " + ctx.device.info.name + ":\n" + log);
+  }
+  const int runs = 5;
+  // Memory: a 256 MiB buffer (less if the device cannot allocate it).
+  std::size_t bytes = std::size_t(256) << 20;
+  if (ctx.device.info.max_alloc_bytes > 0) bytes = std::min<std::size_t>(bytes, ctx.device.info.max_alloc_bytes / 4096 * 4096);
+  const std::size_t n4 = bytes / 16;
+  L.buffer_mib = double(bytes) / (1 << 20);
+  {
+    std::vector<float> host(n4 * 4);
+    for (std::size_t i = 0; i < host.size(); ++i) host[i] = float(i % 1024) * 1e-3f;
+    cl::Buffer src(ctx.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, host.data());
+    cl::Buffer dst(ctx.context, CL_MEM_READ_WRITE, bytes);
+    const std::size_t strided_items = 65536, blocked_items = 1024;
+    cl::Buffer partial(ctx.context, CL_MEM_READ_WRITE, sizeof(float) * strided_items);
+    cl::Kernel copy(program, "copy_f4"), strided(program, "read_strided"), blocked(program, "read_blocked");
+    copy.setArg(0, src);
+    copy.setArg(1, dst);
+    strided.setArg(0, src);
+    strided.setArg(1, cl_uint(n4));
+    strided.setArg(2, partial);
+    blocked.setArg(0, src);
+    blocked.setArg(1, cl_uint(n4 / blocked_items));
+    blocked.setArg(2, partial);
+    struct Case {
+      const char* name;
+      cl::Kernel* k;
+      std::size_t global;
+      double bytes;
+      const char* detail;
+    };
+    const Case cases[] = {
+        {"copy", &copy, n4, 2.0 * double(bytes), "dst[i] = src[i] (float4): read + write counted, write-allocate not"},
+        {"read_strided", &strided, strided_items, double(bytes), "65536 work-items, grid-stride float4 sums"},
+        {"read_blocked", &blocked, blocked_items, double(bytes), "1024 work-items, contiguous float4 blocks"},
+    };
+    for (const Case& c : cases) {
+      LimitResult r;
+      r.name = c.name;
+      r.detail = c.detail;
+      time_kernel(ctx, *c.k, c.global);  // warm-up (first touch, page mapping)
+      for (int i = 0; i < runs; ++i) {
+        const double s = time_kernel(ctx, *c.k, c.global);
+        r.runs.push_back(c.bytes / s * 1e-9);
+        r.best = std::max(r.best, r.runs.back());
+      }
+      if (r.name == "copy") L.bandwidth_gbs = std::max(L.bandwidth_gbs, r.best);
+      else L.read_gbs = std::max(L.read_gbs, r.best);
+      L.bandwidth.push_back(r);
+    }
+    L.bandwidth_gbs = std::max(L.bandwidth_gbs, L.read_gbs);
+    // Cache-resident reads: 6 MiB (about the query kernel's largest working set at
+    // m' = 32768), read 64 times per run.
+    const std::size_t small4 = (std::size_t(6) << 20) / 16, reps = quick ? 16 : 64;
+    cl::Kernel cached(program, "read_blocked_repeat");
+    cached.setArg(0, src);
+    cached.setArg(1, cl_uint(small4 / blocked_items));
+    cached.setArg(2, cl_uint(reps));
+    cached.setArg(3, partial);
+    LimitResult r;
+    r.name = "read_cached";
+    r.detail = "6 MiB of the buffer, contiguous blocks, read " + std::to_string(reps) + " times";
+    time_kernel(ctx, cached, blocked_items);
+    for (int i = 0; i < runs; ++i) {
+      r.runs.push_back(double(small4 * 16 * reps) / time_kernel(ctx, cached, blocked_items) * 1e-9);
+      r.best = std::max(r.best, r.runs.back());
+    }
+    L.cached_gbs = r.best;
+    L.cached_mib = 6;
+    L.bandwidth.push_back(r);
+  }
+  // Arithmetic: grow the work until one run takes >= 0.1 s (0.03 s with --quick).
+  for (const auto& [name, width] : std::vector<std::pair<std::string, int>>{{"fma_f4", 4}, {"fma_f8", 8}, {"fma_f16", 16}}) {
+    cl::Kernel k(program, name.c_str());
+    k.setArg(0, 0.9999f);
+    k.setArg(1, 1e-4f);
+    std::size_t global = 4096;
+    const double target = quick ? 0.03 : 0.1;
+    cl::Buffer out;
+    double s = 0;
+    while (true) {
+      out = cl::Buffer(ctx.context, CL_MEM_WRITE_ONLY, sizeof(float) * global);
+      k.setArg(2, out);
+      s = time_kernel(ctx, k, global);
+      if (s >= target || global >= (std::size_t(1) << 26)) break;
+      global *= std::clamp<std::size_t>(std::size_t(target / std::max(s, 1e-6)) + 1, 2, 64);
+    }
+    const double flops = double(global) * kFmaIters * 8 * width * 2;
+    LimitResult r;
+    r.name = name;
+    r.detail = std::to_string(global) + " work-items x " + std::to_string(kFmaIters) + " iterations x 8 chains x float" +
+               std::to_string(width) + " fma (2 flops per lane)";
+    for (int i = 0; i < runs; ++i) {
+      r.runs.push_back(flops / time_kernel(ctx, k, global) * 1e-9);
+      r.best = std::max(r.best, r.runs.back());
+    }
+    L.peak_gflops = std::max(L.peak_gflops, r.best);
+    L.compute.push_back(r);
+  }
+  return L;
+}
+
+// ---------------------------------------------------------------- measurements
+
+struct LatencyRow {
+  std::string key, label;
+  QueryVariant variant;
+  std::size_t modes = 0, modes_used = 0;
+  int repeats = 0, warmup = 0;
+  double p50 = 0, p99 = 0, max = 0, mean = 0, min = 0, p10 = 0, p90 = 0;  // microseconds
+  std::size_t flagged = 0;
+  Cost cost;
+  Footprint fp;
+  double load_before = 0, load_after = 0;
+  double other_cores = 0;  // cores busy with other processes during the timed queries
+};
+
+LatencyRow measure_latency(PoseQueryEngine& engine, const VariantSpec& spec, const std::vector<Pose>& poses,
+                           std::size_t modes, int warmup, int repeats, std::size_t& cursor, double& sink) {
+  LatencyRow r;
+  r.key = spec.key;
+  r.label = spec.label;
+  r.variant = spec.variant;
+  r.modes = modes;
+  engine.set_modes(modes);
+  r.modes_used = engine.modes();
+  r.warmup = warmup;
+  r.repeats = repeats;
+  r.load_before = load1();
+  for (int i = 0; i < warmup; ++i) sink += engine.query(poses[cursor++ % poses.size()]).energy;
+  std::vector<double> us(static_cast<std::size_t>(repeats));
+  const CpuSample cpu0 = cpu_sample();
+  for (int i = 0; i < repeats; ++i) {
+    const Pose& pose = poses[cursor++ % poses.size()];
+    const auto t0 = Clock::now();
+    const snapfit::QueryResult q = engine.query(pose);
+    us[static_cast<std::size_t>(i)] = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+    if (q.flags != snapfit::query_ok) ++r.flagged;
+    sink += q.energy;
+  }
+  r.other_cores = other_cores(cpu0, cpu_sample());
+  r.load_after = load1();
+  double sum = 0;
+  for (double v : us) sum += v;
+  std::sort(us.begin(), us.end());
+  r.p50 = percentile(us, 0.5);
+  r.p10 = percentile(us, 0.1);
+  r.p90 = percentile(us, 0.9);
+  r.p99 = percentile(us, 0.99);
+  r.max = us.back();
+  r.min = us.front();
+  r.mean = sum / double(us.size());
+  return r;
+}
+
+struct ThroughputRow {
+  std::string key, label;
+  std::size_t modes = 0, batch = 0;
+  int batches = 0;
+  double seconds = 0;            // all timed batches
+  double poses_per_s = 0;        // best batch
+  double median_poses_per_s = 0;
+  bool skipped = false;
+  std::string note;
+};
+
+struct MapRow {
+  std::string interpolation;
+  std::array<std::size_t, 3> dims{};
+  double cold_s = 0;
+  std::vector<double> warm_s;
+  double warm_median_s = 0, rotations_per_s = 0;
+};
+
+// ---------------------------------------------------------------- output
+
+void write_csvs(const std::filesystem::path& dir, const std::vector<LatencyRow>& lat,
+                const std::vector<ThroughputRow>& thr, const std::string& device) {
+  {
+    std::ofstream f(dir / "queries.csv");
+    f << "variant,label,interpolation,torque,translation_only,modes,modes_used,repeats,warmup,p50_us,p99_us,max_us,"
+         "mean_us,min_us,p10_us,p90_us,flagged,bytes_per_mode,flops_per_mode,gbs_at_p50,gflops_at_p50,cube_bytes,load_before,"
+         "load_after,other_cores,device,source\n";
+    for (const auto& r : lat) {
+      const double s = r.p50 * 1e-6;
+      f << r.key << ",\"" << r.label << "\","
+        << (r.variant.translation_only ? "none" : r.variant.interpolation == Interpolation::tricubic ? "tricubic" : "trilinear")
+        << ',' << r.variant.torque << ',' << r.variant.translation_only << ',' << r.modes << ',' << r.modes_used << ','
+        << r.repeats << ',' << r.warmup << ',' << r.p50 << ',' << r.p99 << ',' << r.max << ',' << r.mean << ',' << r.min
+        << ',' << r.p10 << ',' << r.p90 << ',' << r.flagged << ',' << r.cost.bytes << ',' << r.cost.flops << ','
+        << r.cost.bytes * double(r.modes_used) / s * 1e-9 << ',' << r.cost.flops * double(r.modes_used) / s * 1e-9 << ','
+        << r.fp.cube_bytes << ',' << r.load_before << ',' << r.load_after << ',' << r.other_cores << ",\"" << device << "\",measured\n";
+    }
+    f << "seed000_translation,\"seed 000: translation only, 1 kHz (1000 us per frame) on a Tesla K20c\",none,0,1,4096,"
+         "4096,,,,,,,,,,,,,,,,,,,\"NVIDIA Tesla K20c\",\"published, not measured here\"\n";
+    if (!f) throw snapfit::Error((dir / "queries.csv").string() + ": cannot write");
+  }
+  {
+    std::ofstream f(dir / "throughput.csv");
+    f << "variant,label,modes,batch,batches,seconds,poses_per_s_best,poses_per_s_median,skipped,note\n";
+    for (const auto& r : thr)
+      f << r.key << ",\"" << r.label << "\"," << r.modes << ',' << r.batch << ',' << r.batches << ',' << r.seconds << ','
+        << r.poses_per_s << ',' << r.median_poses_per_s << ',' << r.skipped << ",\"" << r.note << "\"\n";
+    if (!f) throw snapfit::Error((dir / "throughput.csv").string() + ": cannot write");
+  }
+}
+
+// ---------------------------------------------------------------- the run
+
+int run(const Args& args) {
+  const std::string load_start = read_loadavg();
+  const CpuSample cpu_start = cpu_sample();
+  const std::string date = now_iso();
+  const auto t_start = Clock::now();
+  std::cout << "bench_queries: " << args.command_line << "\n  date " << date << ", load average at start: " << load_start
+            << "\n";
+
+  const std::vector<std::size_t> modes_list =
+      args.quick ? std::vector<std::size_t>{1, 1024, 4096, 32768}
+                 : std::vector<std::size_t>{1, 1024, 4096, 8192, 16384, 32768, 65536, 131072};
+  const int repeats = args.repeats > 0 ? args.repeats : (args.quick ? 300 : 2000);
+  const int warmup = 100;
+  const std::vector<std::size_t> batch_modes = {4096, 32768};
+  const std::vector<std::size_t> batch_sizes = {1, 16, 256, 4096};
+  const double batch_cap_s = args.quick ? 3.0 : 30.0;
+
+  // ---- device, scene, spectra
+  const snapfit::FftLibrary fft;
+  const snapfit::ComputeContext ctx = snapfit::make_compute_context(snapfit::select_device(snapfit::device_spec_from(args.device)));
+  const auto& info = ctx.device.info;
+  std::cout << "  device: " << snapfit::describe_device(info) << "\n  driver " << info.driver_version << ", "
+            << info.compute_units << " compute units\n";
+  const snapfit::Scene scene = snapfit::load_scene(args.scene);
+  std::cout << "  scene " << args.scene << " (" << scene.name << ")\n";
+  snapfit::PairOptions popt;
+  popt.descriptors.progress = snapfit::pass_progress_bars(std::cerr);
+  auto t0 = Clock::now();
+  const snapfit::AssemblyPair pair = snapfit::build_assembly_pair(scene, ctx, fft, popt);
+  const double pair_s = seconds_since(t0);
+  const snapfit::PairSpectra& spectra = pair.spectra;
+  const auto& dims = spectra.dims;
+  const std::size_t total_modes = dims[0] * dims[1] * dims[2];
+  std::cout << "  pair ready in " << fixed(pair_s, 1) << " s (fields " << (pair.fields1.from_cache ? "cached" : "computed")
+            << " / " << (pair.fields2.from_cache ? "cached" : "computed") << "), FFT grid " << dims[0] << "x" << dims[1]
+            << "x" << dims[2] << " = " << total_modes << " modes, spacing " << spectra.spacing << " " << scene.units
+            << ", torque spectra " << (spectra.torque ? "yes" : "no") << "\n";
+  if (!spectra.torque) throw snapfit::Error(args.scene + ": the scene has no torque spectra; the benchmark needs a 6-DOF scene with torque");
+  const std::vector<float> radii = sorted_mode_radii(spectra);
+
+  // ---- 1. latency
+  const auto specs = variant_specs();
+  std::vector<LatencyRow> latency;
+  std::map<std::string, std::vector<Pose>> poses_of;
+  std::map<std::string, std::size_t> rejected_of;
+  double sink = 0;
+  std::cout << "\n[1] per-query latency: " << repeats << " timed queries after " << warmup
+            << " warm-up per point (wall clock around engine.query)\n";
+  const std::size_t pose_count = std::max<std::size_t>(4096, std::size_t(repeats) + warmup);
+  std::map<std::string, std::unique_ptr<PoseQueryEngine>> engines;
+  for (const auto& spec : specs) {
+    auto engine = std::make_unique<PoseQueryEngine>(ctx, spectra, spec.variant);
+    engine->set_modes(1024);
+    const auto all = make_poses(scene, spectra.spacing, pose_count, !spec.variant.translation_only, 12345u);
+    std::size_t rejected = 0;
+    poses_of[spec.key] = usable_poses(*engine, all, rejected);
+    rejected_of[spec.key] = rejected;
+    if (poses_of[spec.key].empty()) throw snapfit::Error("no usable pose for " + spec.label + " (all outside the grid?)");
+    std::cout << "  " << padr(spec.label, 24) << " " << poses_of[spec.key].size() << " poses (" << rejected
+              << " outside the padded box dropped)\n";
+    std::size_t cursor = 0;
+    for (std::size_t m : modes_list) {
+      LatencyRow r = measure_latency(*engine, spec, poses_of[spec.key], m, warmup, repeats, cursor, sink);
+      r.cost = cost_model(spec.variant);
+      r.fp = footprint(spectra, radii, r.modes_used, spec.variant);
+      std::cout << "    m' " << pad(std::to_string(r.modes_used), 7) << "  p50 " << pad(fixed(r.p50), 9) << " us  p99 "
+                << pad(fixed(r.p99), 9) << " us  max " << pad(fixed(r.max), 9) << " us  [p10 " << pad(fixed(r.p10), 8)
+                << " p90 " << pad(fixed(r.p90), 8) << " mean " << pad(fixed(r.mean), 8) << "]  (load " << fixed(r.load_before, 2)
+                << " -> " << fixed(r.load_after, 2) << ", others " << fixed(r.other_cores, 2) << " cores"
+                << (r.flagged ? ", FLAGGED " + std::to_string(r.flagged) : "") << ")\n"
+                << std::flush;
+      latency.push_back(r);
+    }
+    engines[spec.key] = std::move(engine);
+  }
+  auto find_lat = [&](const std::string& key, std::size_t m) -> const LatencyRow* {
+    for (const auto& r : latency)
+      if (r.key == key && r.modes == m) return &r;
+    return nullptr;
+  };
+
+  // ---- 2. throughput
+  std::cout << "\n[2] batched throughput (query_batch), poses per second\n";
+  std::vector<ThroughputRow> throughput;
+  for (const auto& spec : specs) {
+    PoseQueryEngine& engine = *engines[spec.key];
+    const auto& poses = poses_of[spec.key];
+    for (std::size_t m : batch_modes) {
+      engine.set_modes(m);
+      const LatencyRow* lr = find_lat(spec.key, m);
+      for (std::size_t b : batch_sizes) {
+        ThroughputRow t;
+        t.key = spec.key;
+        t.label = spec.label;
+        t.modes = engine.modes();
+        t.batch = b;
+        const double predicted = lr ? lr->p50 * 1e-6 * double(b) : 0.0;
+        if (predicted > batch_cap_s) {
+          t.skipped = true;
+          t.note = "skipped: one batch predicted " + fixed(predicted, 0) + " s from the single-query p50";
+          std::cout << "  " << padr(spec.label, 24) << " m' " << pad(std::to_string(m), 6) << " batch " << pad(std::to_string(b), 5)
+                    << "  " << t.note << "\n";
+          throughput.push_back(t);
+          continue;
+        }
+        std::vector<Pose> batch(b);
+        std::size_t offset = 0;
+        auto fill = [&] {
+          for (std::size_t i = 0; i < b; ++i) batch[i] = poses[(offset + i) % poses.size()];
+          offset += 7919;
+        };
+        fill();
+        // Warm-up (buffer growth) with the whole batch unless that would take long.
+        if (predicted < 2.0)
+          for (const auto& q : engine.query_batch(batch)) sink += q.energy;
+        std::vector<double> rates;
+        const double min_time = args.quick ? 0.2 : 1.0;
+        const int min_batches = predicted > 5.0 ? 2 : 3, max_batches = b == 1 ? 2000 : 200;
+        double spent = 0;
+        while ((spent < min_time || int(rates.size()) < min_batches) && int(rates.size()) < max_batches) {
+          fill();
+          const auto tb = Clock::now();
+          const auto res = engine.query_batch(batch);
+          const double s = seconds_since(tb);
+          for (const auto& q : res) sink += q.energy;
+          spent += s;
+          rates.push_back(double(b) / s);
+          if (s > batch_cap_s) break;
+        }
+        t.batches = int(rates.size());
+        t.seconds = spent;
+        t.poses_per_s = *std::max_element(rates.begin(), rates.end());
+        t.median_poses_per_s = median(rates);
+        std::cout << "  " << padr(spec.label, 24) << " m' " << pad(std::to_string(t.modes), 6) << " batch "
+                  << pad(std::to_string(b), 5) << "  " << pad(fmt(t.median_poses_per_s, 4), 9) << " poses/s median, "
+                  << pad(fmt(t.poses_per_s, 4), 9) << " best (" << t.batches << " batches, " << fixed(spent, 2) << " s)\n"
+                  << std::flush;
+        throughput.push_back(t);
+      }
+    }
+  }
+  engines.clear();
+
+  // ---- 3. full maps
+  std::cout << "\n[3] full translational maps (translational_energy_map, all modes) at the FFT grid " << dims[0] << "x"
+            << dims[1] << "x" << dims[2] << "\n";
+  std::vector<MapRow> maps;
+  {
+    const auto rot_poses = make_poses(scene, spectra.spacing, 16, true, 777u);
+    const int warm_runs = args.quick ? 1 : 4;
+    std::size_t next = 0;
+    for (Interpolation interp : {Interpolation::trilinear, Interpolation::tricubic}) {
+      MapRow row;
+      row.interpolation = interp == Interpolation::tricubic ? "tricubic" : "trilinear";
+      row.dims = dims;
+      for (int i = 0; i <= warm_runs; ++i) {
+        const Eigen::Matrix3d R = rot_poses[next++ % rot_poses.size()].rotation.toRotationMatrix();
+        const auto tm = Clock::now();
+        const snapfit::TranslationMap map = snapfit::translational_energy_map(fft, ctx, spectra, R, interp, 0);
+        const double s = seconds_since(tm);
+        sink += map.energy.empty() ? 0.0 : double(map.energy[map.energy.size() / 2] == map.energy[map.energy.size() / 2]);
+        if (i == 0) row.cold_s = s;
+        else row.warm_s.push_back(s);
+      }
+      row.warm_median_s = median(row.warm_s);
+      row.rotations_per_s = 1.0 / row.warm_median_s;
+      std::cout << "  " << padr(row.interpolation, 10) << " cold " << fixed(row.cold_s, 3) << " s, warm median "
+                << fixed(row.warm_median_s, 3) << " s over " << row.warm_s.size() << " -> " << fmt(row.rotations_per_s, 3)
+                << " rotations/s (" << fmt(double(total_modes) * row.rotations_per_s / 1e6, 3) << " M translations/s)\n"
+                << std::flush;
+      maps.push_back(row);
+    }
+  }
+
+  // ---- 4. roofline
+  std::cout << "\n[4] device limits (best of 5) and roofline\n";
+  const DeviceLimits limits = measure_limits(ctx, args.quick);
+  for (const auto& r : limits.bandwidth)
+    std::cout << "  " << padr(r.name, 13) << pad(fixed(r.best, 1), 8) << " GB/s   (" << r.detail
+              << (r.name == "read_cached" ? std::string() : ", " + fixed(limits.buffer_mib, 0) + " MiB") << ")\n";
+  for (const auto& r : limits.compute)
+    std::cout << "  " << padr(r.name, 13) << pad(fixed(r.best, 1), 8) << " GFLOP/s (" << r.detail << ")\n";
+  const double bw = limits.read_gbs, peak = limits.peak_gflops;
+  std::cout << "  limits used below: read bandwidth " << fixed(bw, 1) << " GB/s (the query kernel only reads), peak "
+            << fixed(peak, 1) << " GFLOP/s, ridge at " << fmt(peak / bw, 3) << " flop/B\n";
+  struct RoofRow {
+    std::string key, label;
+    std::size_t modes = 0;
+    Cost cost;
+    Footprint fp;
+    double p50_us = 0, single_gbs = 0, single_gflops = 0;
+    double batch = 0, batch_pps = 0, batch_gbs = 0, batch_gflops = 0;
+  };
+  std::vector<RoofRow> roof;
+  const std::size_t roof_m = 32768;
+  std::cout << "  per mode (counting in the header of perf/bench_queries.cpp), at m' = " << roof_m << ":\n";
+  std::cout << "  " << padr("variant", 24) << pad("B/mode", 8) << pad("flop/mode", 10) << pad("flop/B", 8)
+            << pad("cube KiB", 10) << " | " << pad("p50 us", 9) << pad("GB/s", 8) << pad("%BW", 7) << pad("GFLOP/s", 9)
+            << pad("%peak", 7) << " | " << pad("batch", 6) << pad("GB/s", 8) << pad("%BW", 7) << pad("GFLOP/s", 9)
+            << pad("%peak", 7) << "\n";
+  for (const auto& spec : specs) {
+    const LatencyRow* lr = find_lat(spec.key, roof_m);
+    if (!lr) continue;
+    RoofRow rr;
+    rr.key = spec.key;
+    rr.label = spec.label;
+    rr.modes = lr->modes_used;
+    rr.cost = lr->cost;
+    rr.fp = lr->fp;
+    rr.p50_us = lr->p50;
+    const double bytes = rr.cost.bytes * double(rr.modes), flops = rr.cost.flops * double(rr.modes);
+    rr.single_gbs = bytes / (lr->p50 * 1e-6) * 1e-9;
+    rr.single_gflops = flops / (lr->p50 * 1e-6) * 1e-9;
+    for (const auto& t : throughput)
+      if (t.key == spec.key && t.modes == lr->modes_used && !t.skipped && double(t.batch) > rr.batch) {
+        rr.batch = double(t.batch);
+        rr.batch_pps = t.median_poses_per_s;
+      }
+    rr.batch_gbs = bytes * rr.batch_pps * 1e-9;
+    rr.batch_gflops = flops * rr.batch_pps * 1e-9;
+    std::cout << "  " << padr(spec.label, 24) << pad(fmt(rr.cost.bytes, 5), 8) << pad(fmt(rr.cost.flops, 5), 10)
+              << pad(fmt(rr.cost.flops / rr.cost.bytes, 2), 8) << pad(fixed(rr.fp.cube_bytes / 1024, 0), 10) << " | "
+              << pad(fixed(rr.p50_us, 0), 9) << pad(fixed(rr.single_gbs, 2), 8) << pad(fixed(100 * rr.single_gbs / bw, 1), 7)
+              << pad(fixed(rr.single_gflops, 2), 9) << pad(fixed(100 * rr.single_gflops / peak, 1), 7) << " | "
+              << pad(fmt(rr.batch, 4), 6) << pad(fixed(rr.batch_gbs, 2), 8) << pad(fixed(100 * rr.batch_gbs / bw, 1), 7)
+              << pad(fixed(rr.batch_gflops, 2), 9) << pad(fixed(100 * rr.batch_gflops / peak, 1), 7)
+              << "   (single query: " << fixed(100 * rr.single_gbs / limits.cached_gbs, 1) << "% of cache-resident reads)\n";
+    roof.push_back(rr);
+  }
+  for (const auto& spec : specs) {
+    const Cost c = cost_model(spec.variant);
+    std::cout << "    " << padr(spec.label, 24) << " bytes: " << c.bytes_detail << "; flops: " << c.flops_detail << "\n";
+  }
+
+  // ---- where the time goes: p50 differences between the variants.
+  nlohmann::json split = nlohmann::json::array();
+  std::cout << "\n  where the time of one 6-DOF E+F+T query goes (p50 differences between variants, us):\n  "
+            << pad("m'", 7) << pad("fixed", 9) << pad("stream", 9) << pad("rot+2^3", 9) << pad("float8", 9)
+            << pad("E+F+T tri", 11) << pad("4^3 taps", 10) << pad("E+F+T cub", 11) << "\n";
+  for (std::size_t m : modes_list) {
+    const LatencyRow *t1 = find_lat("translation_ef", 1), *t = find_lat("translation_ef", m),
+                     *ef = find_lat("6dof_ef_trilinear", m), *eft = find_lat("6dof_eft_trilinear", m),
+                     *cub = find_lat("6dof_eft_tricubic", m);
+    if (m < 1024 || !t1 || !t || !ef || !eft || !cub) continue;
+    const double fixed_us = t1->p50, stream = t->p50 - t1->p50, rot = ef->p50 - t->p50, f8 = eft->p50 - ef->p50,
+                 taps = cub->p50 - eft->p50;
+    split.push_back({{"modes", m}, {"fixed_us", fixed_us}, {"mode_stream_and_phase_us", stream},
+                     {"rotation_weights_trilinear_float2_gather_us", rot}, {"torque_float8_instead_of_float2_us", f8},
+                     {"tricubic_64_taps_instead_of_8_us", taps}, {"eft_trilinear_p50_us", eft->p50},
+                     {"eft_tricubic_p50_us", cub->p50}});
+    std::cout << "  " << pad(std::to_string(m), 7) << pad(fixed(fixed_us, 0), 9) << pad(fixed(stream, 0), 9)
+              << pad(fixed(rot, 0), 9) << pad(fixed(f8, 0), 9) << pad(fixed(eft->p50, 0), 11) << pad(fixed(taps, 0), 10)
+              << pad(fixed(cub->p50, 0), 11) << "\n";
+  }
+  std::cout << "  (fixed: translation-only at m' = 1 - host phase tables, uploads, launch, read-back; stream: translation\n"
+               "   E+F above that - the per-mode arrays, table lookups and complex products; rot+2^3: 6-DOF E+F trilinear\n"
+               "   above translation - rotation, weights and 8 float2 taps; float8: E+F+T above E+F; 4^3 taps: tricubic\n"
+               "   above trilinear E+F+T)\n";
+
+  // ---- 5. targets
+  std::cout << "\n[5] targets\n";
+  nlohmann::json targets;
+  {
+    // Largest m' per 6-DOF variant whose p99 stays within 1 ms.
+    nlohmann::json reach = nlohmann::json::object();
+    for (const auto& spec : specs) {
+      std::size_t best = 0;
+      bool all_below = true;
+      for (std::size_t m : modes_list) {
+        const LatencyRow* r = find_lat(spec.key, m);
+        if (!r || m < 1024) continue;
+        if (r->p99 <= 1000.0) {
+          if (all_below) best = r->modes_used;
+        } else {
+          all_below = false;
+        }
+      }
+      reach[spec.key] = best;
+      std::cout << "  " << padr(spec.label, 24) << " largest m' (of those measured, contiguous from 1024) with p99 <= 1 ms: "
+                << (best ? std::to_string(best) : std::string("none")) << "\n";
+    }
+    targets["largest_modes_within_1ms_p99"] = reach;
+    nlohmann::json six = nlohmann::json::object();
+    for (const std::string key : {"6dof_eft_trilinear", "6dof_eft_tricubic"}) {
+      const LatencyRow* r = find_lat(key, 32768);
+      const bool met = r && r->p99 <= 1000.0;
+      six[key] = {{"p99_us_at_32768", r ? num(r->p99) : nlohmann::json(nullptr)}, {"met", met}};
+      std::cout << "  target 6-DOF E+F+T m' >= 32768 at p99 <= 1 ms (" << key << "): "
+                << (r ? "p99 " + fixed(r->p99, 0) + " us -> " + (met ? "MET" : "NOT MET") : std::string("not measured")) << "\n";
+    }
+    targets["six_dof_32768_p99_1ms"] = six;
+    nlohmann::json ratios = nlohmann::json::array();
+    std::cout << "  translation-only speed-up over 6-DOF E+F+T trilinear at the same m' (p50 ratio / p99 ratio; target >= 10x):\n";
+    for (std::size_t m : modes_list) {
+      const LatencyRow* a = find_lat("6dof_eft_trilinear", m);
+      const LatencyRow* b = find_lat("translation_ef", m);
+      const LatencyRow* c = find_lat("6dof_ef_trilinear", m);
+      if (!a || !b) continue;
+      const double rp50 = a->p50 / b->p50, rp99 = a->p99 / b->p99;
+      const double rc = c ? c->p50 / b->p50 : std::numeric_limits<double>::quiet_NaN();
+      // Kernel-only estimate: both minus the fixed cost of a query (m' = 1).
+      const LatencyRow* a1 = find_lat("6dof_eft_trilinear", 1);
+      const LatencyRow* b1 = find_lat("translation_ef", 1);
+      double rk = std::numeric_limits<double>::quiet_NaN();
+      if (a1 && b1 && m > 1 && b->p50 - b1->p50 > 0) rk = (a->p50 - a1->p50) / (b->p50 - b1->p50);
+      ratios.push_back({{"modes", m}, {"p50_ratio", num(rp50)}, {"p99_ratio", num(rp99)}, {"p50_ratio_vs_6dof_ef", num(rc)},
+                        {"marginal_ratio_above_fixed_cost", num(rk)}, {"met", rp50 >= 10.0 && rp99 >= 10.0}});
+      std::cout << "    m' " << pad(std::to_string(m), 7) << "  " << pad(fixed(rp50, 2), 7) << "x / " << pad(fixed(rp99, 2), 7)
+                << "x  " << ((rp50 >= 10.0 && rp99 >= 10.0) ? "MET" : "not met") << "   (vs 6-DOF E+F: " << fixed(rc, 2)
+                << "x; above the m'=1 fixed cost: " << (std::isfinite(rk) ? fixed(rk, 2) + "x" : std::string("-")) << ")\n";
+    }
+    targets["translation_speedup"] = ratios;
+    const LatencyRow* t4096 = find_lat("translation_ef", 4096);
+    std::cout << "  seed 000 (published, not measured here): translation only, m' = 4096, 1 kHz (1000 us per frame) on a"
+                 " NVIDIA Tesla K20c; here translation-only m' = 4096: "
+              << (t4096 ? "p50 " + fixed(t4096->p50, 1) + " us, p99 " + fixed(t4096->p99, 1) + " us" : std::string("-"))
+              << " on " << info.name << "\n";
+    targets["published_seed000"] = {{"variant", "translation only"},
+                                     {"modes", 4096},
+                                     {"rate_hz", 1000},
+                                     {"frame_us", 1000},
+                                     {"device", "NVIDIA Tesla K20c"},
+                                     {"source", "published, not measured here"}};
+  }
+
+  // ---- output
+  const std::string load_end = read_loadavg();
+  const double others_run = other_cores(cpu_start, cpu_sample());
+  double others_latency_max = 0;
+  for (const auto& r : latency) others_latency_max = std::max(others_latency_max, r.other_cores);
+  const double total_s = seconds_since(t_start);
+  std::cout << "\nload average at end: " << load_end << " (start: " << load_start << "), total " << fixed(total_s, 0)
+            << " s; other processes kept " << fixed(others_run, 2) << " cores busy on average (at most "
+            << fixed(others_latency_max, 2) << " during a latency point)\n";
+  const std::filesystem::path dir(args.out);
+  std::filesystem::create_directories(dir);
+  const std::string device_desc = info.name + " (" + info.platform_name + ", driver " + info.driver_version + ")";
+  write_csvs(dir, latency, throughput, device_desc);
+
+  nlohmann::json j;
+  j["benchmark"] = "bench_queries";
+  j["command_line"] = args.command_line;
+  j["date"] = date;
+  j["quick"] = args.quick;
+  j["total_seconds"] = total_s;
+  j["loadavg_start"] = load_start;
+  j["loadavg_end"] = load_end;
+  j["other_cores_run"] = others_run;
+  j["other_cores_latency_max"] = others_latency_max;
+  j["load_note"] = "/proc/loadavg; the benchmark itself keeps the device's worker threads busy, so the 1-minute load "
+                   "rises toward the number of cores during the run: judge other activity by loadavg_start and by the "
+                   "running/total process counts; other_cores = (machine busy CPU time - this process's CPU time) / wall "
+                   "time, from /proc/stat and /proc/self/stat";
+  j["nproc"] = std::thread::hardware_concurrency();
+  j["device"] = {{"name", info.name},         {"vendor", info.vendor},
+                 {"platform", info.platform_name}, {"platform_version", info.platform_version},
+                 {"device_version", info.device_version}, {"driver", info.driver_version},
+                 {"type", info.type},         {"compute_units", info.compute_units},
+                 {"global_memory_bytes", info.global_memory_bytes}};
+  j["scene"] = {{"file", args.scene},
+                {"name", scene.name},
+                {"fft_dims", {dims[0], dims[1], dims[2]}},
+                {"max_modes", total_modes},
+                {"spacing", spectra.spacing},
+                {"units", scene.units},
+                {"length", {spectra.length.x(), spectra.length.y(), spectra.length.z()}},
+                {"fields_from_cache", pair.fields1.from_cache && pair.fields2.from_cache},
+                {"pair_seconds", pair_s}};
+  j["method"] = {{"latency", "wall clock (steady_clock) around PoseQueryEngine::query(pose); " + std::to_string(warmup) +
+                                 " warm-up queries then " + std::to_string(repeats) +
+                                 " timed per point; poses along the scene trajectory with +-0.5 spacing and up to 0.5 deg "
+                                 "random perturbation (translation only: R = I); percentiles nearest-rank"},
+                 {"throughput", "query_batch wall clock per batch; at least 3 batches and " +
+                                    std::string(args.quick ? "0.2" : "1") + " s per point; median and best batch"},
+                 {"maps", "translational_energy_map(all modes) wall clock, includes program load, FFT plan bake, "
+                          "uploads, inverse FFT, read-back and host re-ordering"},
+                 {"roofline", "bytes = global loads requested per mode (no cache reuse), flops = adds/muls (fma = 2) "
+                              "per mode, from kernels/pose_query.cl; see perf/bench_queries.cpp cost_model"}};
+  nlohmann::json lj = nlohmann::json::array();
+  for (const auto& r : latency)
+    lj.push_back({{"variant", r.key},
+                  {"label", r.label},
+                  {"modes", r.modes},
+                  {"modes_used", r.modes_used},
+                  {"repeats", r.repeats},
+                  {"warmup", r.warmup},
+                  {"p50_us", r.p50},
+                  {"p99_us", r.p99},
+                  {"max_us", r.max},
+                  {"mean_us", r.mean},
+                  {"min_us", r.min},
+                  {"p10_us", r.p10},
+                  {"p90_us", r.p90},
+                  {"flagged", r.flagged},
+                  {"bytes_per_mode", r.cost.bytes},
+                  {"flops_per_mode", r.cost.flops},
+                  {"cube_bytes", r.fp.cube_bytes},
+                  {"cube_dims", r.fp.cube_dims},
+                  {"mode_bytes", r.fp.mode_bytes},
+                  {"table_bytes", r.fp.table_bytes},
+                  {"load_before", r.load_before},
+                  {"load_after", r.load_after},
+                  {"other_cores", r.other_cores},
+                  {"source", "measured"}});
+  lj.push_back({{"variant", "seed000_translation"},
+                {"label", "seed 000: translation only on a Tesla K20c"},
+                {"modes", 4096},
+                {"rate_hz", 1000},
+                {"frame_us", 1000},
+                {"source", "published, not measured here"}});
+  j["latency"] = lj;
+  j["poses"] = nlohmann::json::object();
+  for (const auto& [k, v] : poses_of) j["poses"][k] = {{"usable", v.size()}, {"dropped_outside_grid", rejected_of[k]}};
+  nlohmann::json tj = nlohmann::json::array();
+  for (const auto& t : throughput)
+    tj.push_back({{"variant", t.key}, {"modes", t.modes}, {"batch", t.batch}, {"batches", t.batches}, {"seconds", t.seconds},
+                  {"poses_per_s_best", t.poses_per_s}, {"poses_per_s_median", t.median_poses_per_s},
+                  {"skipped", t.skipped}, {"note", t.note}});
+  j["throughput"] = tj;
+  nlohmann::json mj = nlohmann::json::array();
+  for (const auto& m : maps)
+    mj.push_back({{"interpolation", m.interpolation}, {"fft_dims", m.dims}, {"cold_s", m.cold_s}, {"warm_s", m.warm_s},
+                  {"warm_median_s", m.warm_median_s}, {"rotations_per_s", m.rotations_per_s},
+                  {"translations_per_s", double(total_modes) * m.rotations_per_s}});
+  j["maps"] = mj;
+  nlohmann::json limj;
+  for (const auto& r : limits.bandwidth)
+    limj["bandwidth"].push_back({{"kernel", r.name}, {"best_gbs", r.best}, {"runs_gbs", r.runs}, {"detail", r.detail}});
+  for (const auto& r : limits.compute)
+    limj["compute"].push_back({{"kernel", r.name}, {"best_gflops", r.best}, {"runs_gflops", r.runs}, {"detail", r.detail}});
+  limj["buffer_mib"] = limits.buffer_mib;
+  limj["cached_read_gbs"] = limits.cached_gbs;
+  limj["cached_buffer_mib"] = limits.cached_mib;
+  limj["read_gbs"] = bw;
+  limj["best_gbs"] = limits.bandwidth_gbs;
+  limj["peak_gflops"] = peak;
+  j["device_limits"] = limj;
+  nlohmann::json rj = nlohmann::json::array();
+  for (const auto& r : roof)
+    rj.push_back({{"variant", r.key}, {"modes", r.modes}, {"bytes_per_mode", r.cost.bytes}, {"flops_per_mode", r.cost.flops},
+                  {"bytes_detail", r.cost.bytes_detail}, {"flops_detail", r.cost.flops_detail},
+                  {"intensity_flop_per_byte", r.cost.flops / r.cost.bytes}, {"cube_bytes", r.fp.cube_bytes},
+                  {"p50_us", r.p50_us}, {"single_gbs", r.single_gbs}, {"single_gflops", r.single_gflops},
+                  {"single_fraction_bw", r.single_gbs / bw}, {"single_fraction_cached_bw", r.single_gbs / limits.cached_gbs}, {"single_fraction_peak", r.single_gflops / peak},
+                  {"batch", r.batch}, {"batch_poses_per_s", r.batch_pps}, {"batch_gbs", r.batch_gbs},
+                  {"batch_gflops", r.batch_gflops}, {"batch_fraction_bw", r.batch_gbs / bw},
+                  {"batch_fraction_peak", r.batch_gflops / peak}});
+  j["roofline"] = rj;
+  j["time_split"] = split;
+  j["targets"] = targets;
+  j["sink"] = sink;  // keeps the results alive
+  {
+    std::ofstream f(dir / "queries.json");
+    f << j.dump(2) << "\n";
+    if (!f) throw snapfit::Error((dir / "queries.json").string() + ": cannot write");
+  }
+
+  // ---- charts
+  std::vector<std::string> charts;
+  const std::string dev_short = info.name.substr(0, 40);
+  for (const auto& spec : specs) {
+    snapfit::Chart c;
+    c.title = "query latency vs m': " + spec.label + " (" + dev_short + ")";
+    c.x_label = "retained modes m'";
+    c.y_label = "latency per query (us)";
+    c.log_x = c.log_y = true;
+    snapfit::Series p50, p99;
+    p50.label = "p50";
+    p99.label = "p99";
+    for (const auto& r : latency)
+      if (r.key == spec.key) {
+        p50.x.push_back(double(r.modes_used));
+        p50.y.push_back(r.p50);
+        p99.x.push_back(double(r.modes_used));
+        p99.y.push_back(r.p99);
+      }
+    c.series = {p50, p99};
+    c.hlines.push_back({1000.0, "1 ms"});
+    if (spec.variant.translation_only) c.markers.push_back({4096.0, 1000.0, "seed 000 K20c 1 kHz (published)"});
+    const std::string file = "latency_" + spec.key + ".png";
+    snapfit::write_chart_png((dir / file).string(), c);
+    charts.push_back(file);
+  }
+  {
+    snapfit::Chart c;
+    c.title = "query latency p99 vs m', all variants (" + dev_short + ")";
+    c.x_label = "retained modes m'";
+    c.y_label = "p99 latency per query (us)";
+    c.log_x = c.log_y = true;
+    for (const auto& spec : specs) {
+      snapfit::Series s;
+      s.label = spec.label;
+      for (const auto& r : latency)
+        if (r.key == spec.key) s.x.push_back(double(r.modes_used)), s.y.push_back(r.p99);
+      c.series.push_back(s);
+    }
+    c.hlines.push_back({1000.0, "1 ms"});
+    c.markers.push_back({4096.0, 1000.0, "seed 000 K20c (published)"});
+    snapfit::write_chart_png((dir / "latency_p99_all.png").string(), c);
+    charts.push_back("latency_p99_all.png");
+  }
+  {
+    snapfit::Chart c;
+    c.title = "batched throughput vs batch size (" + dev_short + ")";
+    c.x_label = "poses per batch";
+    c.y_label = "poses per second (median batch)";
+    c.log_x = c.log_y = true;
+    for (const auto& spec : specs)
+      for (std::size_t m : batch_modes) {
+        snapfit::Series s;
+        s.label = spec.label + ", m' " + std::to_string(m);
+        for (const auto& t : throughput)
+          if (t.key == spec.key && t.modes == std::min(m, total_modes) && !t.skipped)
+            s.x.push_back(double(t.batch)), s.y.push_back(t.median_poses_per_s);
+        if (!s.x.empty()) c.series.push_back(s);
+      }
+    c.hlines.push_back({1000.0, "1 kHz"});
+    snapfit::write_chart_png((dir / "throughput.png").string(), c);
+    charts.push_back("throughput.png");
+  }
+  {
+    snapfit::Chart c;
+    c.title = "roofline at m' = 32768 (measured limits; requested bytes)";
+    c.x_label = "arithmetic intensity (flop / byte requested)";
+    c.y_label = "GFLOP/s";
+    c.log_x = c.log_y = true;
+    snapfit::Series roofline;
+    roofline.label = "roof: min(" + fixed(peak, 0) + " GFLOP/s, " + fixed(bw, 1) + " GB/s x I)";
+    roofline.style = snapfit::Series::Style::line;
+    for (double x = 0.05; x <= 200.0; x *= 1.25) roofline.x.push_back(x), roofline.y.push_back(std::min(peak, bw * x));
+    c.series.push_back(roofline);
+    snapfit::Series single, batched;
+    single.label = "single query (p50)";
+    single.style = snapfit::Series::Style::points;
+    batched.label = "largest batch";
+    batched.style = snapfit::Series::Style::points;
+    for (const auto& r : roof) {
+      single.x.push_back(r.cost.flops / r.cost.bytes);
+      single.y.push_back(r.single_gflops);
+      if (r.batch_pps > 0) batched.x.push_back(r.cost.flops / r.cost.bytes), batched.y.push_back(r.batch_gflops);
+      c.markers.push_back({r.cost.flops / r.cost.bytes, std::max(r.single_gflops, r.batch_gflops), r.key});
+    }
+    c.series.push_back(single);
+    c.series.push_back(batched);
+    snapfit::write_chart_png((dir / "roofline.png").string(), c);
+    charts.push_back("roofline.png");
+  }
+  std::cout << "wrote " << (dir / "queries.csv").string() << ", throughput.csv, queries.json and";
+  for (const auto& c : charts) std::cout << " " << c;
+  std::cout << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(parse_args(argc, argv));
+  } catch (const snapfit::Error& e) {
+    std::cerr << "bench_queries: error: " << e.what() << "\n";
+    return 1;
+  } catch (const cl::Error& e) {
+    std::cerr << "bench_queries: OpenCL error: " << e.what() << " (" << e.err() << ")\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "bench_queries: error: " << e.what() << "\n";
+    return 1;
+  }
+}
