@@ -17,7 +17,7 @@ struct PoseQueryEngine::Impl {
   Eigen::Vector3d c1, c2, half1, half2, length;
   std::size_t mode_total = 0, mode_count = 0;
   std::size_t wg = 64, max_groups = 4;
-  cl::Buffer modes, weights, cube, poses, partials, mode_index, tables;
+  cl::Buffer weights, cube, poses, partials, mode_index, tables;
   std::vector<int> table_half;  // max |k| over all axes of modes [0, i]: the phase tables' reach
   std::size_t table_capacity = 0;
   // Part 2's spectra (host), the |w| of every mode in order, and the radius (in |w|)
@@ -54,9 +54,9 @@ struct PoseQueryEngine::Impl {
             for (int a = 0; a < 3; ++a) node[1 + a] = sq[a][k];
         }
     cube = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * data.size(), data.data());
-    kernel.setArg(2, cube);
-    kernel.setArg(3, cl_int4{{n[0], n[1], n[2], 0}});
-    kernel.setArg(4, cl_int4{{half[0], half[1], half[2], 0}});
+    kernel.setArg(1, cube);
+    kernel.setArg(2, cl_int4{{n[0], n[1], n[2], 0}});
+    kernel.setArg(3, cl_int4{{half[0], half[1], half[2], 0}});
     cube_radius = radius;
   }
 
@@ -98,6 +98,8 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
   m.length = spectra.length;
   const auto& dims = spectra.dims;
   const std::size_t total = dims[0] * dims[1] * dims[2];
+  for (std::size_t n : dims)
+    if (n > 65534) throw Error("FFT grid axis of " + std::to_string(n) + " points is beyond the query kernel's 16-bit mode indices");
 
   // Every node, by increasing |w| (the low-pass ball grows with m').
   std::vector<Eigen::Vector3f> w(total);
@@ -115,18 +117,16 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
 
   // dw = 1 / (L_x L_y L_z) (DESIGN.md), folded into the weights.
   const double dw = 1.0 / (spectra.length.x() * spectra.length.y() * spectra.length.z());
-  std::vector<cl_float4> mode_data(total);
-  std::vector<cl_int4> index_data(total);
+  std::vector<cl_short4> index_data(total);  // signed (kx, ky, kz): w_k = k / L in the kernel
   m.table_half.resize(total);
   int reach = 0;
   auto signed_k = [](std::size_t k, std::size_t n) { return k <= n / 2 ? int(k) : int(k) - int(n); };
   std::vector<Complex> weight_data(total);
   for (std::size_t i = 0; i < total; ++i) {
     const std::size_t k = order[i];
-    mode_data[i] = cl_float4{{w[k].x(), w[k].y(), w[k].z(), 0.0f}};
     const int kx = signed_k(k % dims[0], dims[0]), ky = signed_k((k / dims[0]) % dims[1], dims[1]),
               kz = signed_k(k / (dims[0] * dims[1]), dims[2]);
-    index_data[i] = cl_int4{{kx, ky, kz, 0}};
+    index_data[i] = cl_short4{{cl_short(kx), cl_short(ky), cl_short(kz), 0}};
     reach = std::max({reach, std::abs(kx), std::abs(ky), std::abs(kz)});
     m.table_half[i] = reach;
     Complex weight = spectra.part1.rho[k] * static_cast<float>(dw);
@@ -144,9 +144,8 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
   for (std::size_t i = 0; i < total; ++i) m.mode_radius[i] = std::sqrt(norm2[order[i]]);
 
   try {
-    m.modes = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * total, mode_data.data());
     m.weights = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * total, weight_data.data());
-    m.mode_index = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_int4) * total, index_data.data());
+    m.mode_index = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_short4) * total, index_data.data());
     m.dims = dims;
     if (!variant.translation_only) {
       m.s2 = spectra.part2.rho;
@@ -161,18 +160,17 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
     if (variant.translation_only) options += " -D TRANSLATION_ONLY";
     if (!variant.translation_only && variant.interpolation == Interpolation::tricubic) options += " -D TRICUBIC";
     m.kernel = cl::Kernel(build_program(ctx, "pose_query", kernel_source("spectrum_sample") + kernel_source("pose_query"), options, cache).program, "pose_query");
-    m.kernel.setArg(0, m.modes);
-    m.kernel.setArg(1, m.weights);
+    m.kernel.setArg(0, m.weights);
     if (variant.translation_only) {
       // No spectrum of part 2 is read: a one-node placeholder keeps the arguments valid.
       const Complex none[4] = {};
       m.cube = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof none, const_cast<Complex*>(none));
-      m.kernel.setArg(2, m.cube);
-      m.kernel.setArg(3, cl_int4{{1, 1, 1, 0}});
-      m.kernel.setArg(4, cl_int4{{0, 0, 0, 0}});
+      m.kernel.setArg(1, m.cube);
+      m.kernel.setArg(2, cl_int4{{1, 1, 1, 0}});
+      m.kernel.setArg(3, cl_int4{{0, 0, 0, 0}});
     }
-    m.kernel.setArg(5, cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
-    m.kernel.setArg(9, m.mode_index);
+    m.kernel.setArg(4, cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
+    m.kernel.setArg(8, m.mode_index);
     m.ensure_capacity(1, m.max_groups);
   } catch (const cl::Error& e) {
     throw Error("cannot set up pose queries on " + ctx.device.info.name + ": " + e.what() + " (error " +
@@ -243,12 +241,12 @@ std::vector<QueryResult> PoseQueryEngine::query_batch(const std::vector<Pose>& p
         m.tables = cl::Buffer(m.ctx.context, CL_MEM_READ_ONLY, sizeof(Complex) * m.table_capacity);
       }
       m.ctx.queue.enqueueWriteBuffer(m.tables, CL_FALSE, 0, sizeof(Complex) * tables.size(), tables.data());
-      m.kernel.setArg(6, m.poses);
-      m.kernel.setArg(7, static_cast<cl_int>(m.mode_count));
-      m.kernel.setArg(8, static_cast<cl_int>(groups_per_pose));
-      m.kernel.setArg(10, m.tables);
-      m.kernel.setArg(11, static_cast<cl_int>(half));
-      m.kernel.setArg(12, m.partials);
+      m.kernel.setArg(5, m.poses);
+      m.kernel.setArg(6, static_cast<cl_int>(m.mode_count));
+      m.kernel.setArg(7, static_cast<cl_int>(groups_per_pose));
+      m.kernel.setArg(9, m.tables);
+      m.kernel.setArg(10, static_cast<cl_int>(half));
+      m.kernel.setArg(11, m.partials);
       m.ctx.queue.enqueueNDRangeKernel(m.kernel, cl::NullRange, cl::NDRange(groups * m.wg), cl::NDRange(m.wg));
       std::vector<float> partial(8 * groups);
       m.ctx.queue.enqueueReadBuffer(m.partials, CL_TRUE, 0, sizeof(float) * partial.size(), partial.data());

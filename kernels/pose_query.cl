@@ -21,9 +21,9 @@ typedef float2 Sample;
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void pose_query(__global const float4* modes, __global const float2* weights, __global const Sample* cube,
+void pose_query(__global const float2* weights, __global const Sample* cube,
                 const int4 cube_dims, const int4 offset, const float4 length, __global const float* poses,
-                const int mode_count, const int groups_per_pose, __global const int4* mode_index,
+                const int mode_count, const int groups_per_pose, __global const short4* mode_index,
                 __global const float2* phase_tables, const int table_half, __global float* partials) {
   const int group = get_group_id(0);
   const int pose = group / groups_per_pose;
@@ -40,8 +40,8 @@ void pose_query(__global const float4* modes, __global const float2* weights, __
   float2 f = (float2)(0.0f);
   float3 force = (float3)(0.0f), torque = (float3)(0.0f);
   for (int m = slice * WG_SIZE + lid; m < mode_count; m += groups_per_pose * WG_SIZE) {
-    const float3 w = modes[m].xyz;
-    const int4 k = mode_index[m];
+    const int4 k = convert_int4(mode_index[m]);
+    const float3 w = convert_float3(k.xyz) / length.xyz;  // w_k = k / L
     float2 term = cmul(weights[m], cmul(tx[k.x], cmul(ty[k.y], tz[k.z])));
 #ifndef TRANSLATION_ONLY
     // w' = -R^T w (R^T's rows are R's columns).
