@@ -16,26 +16,16 @@
 #include "engine/error.h"
 #include "engine/triangle_bvh.h"
 #include "scenes/procedural/procedural_parts.h"
+#include "tests/test_meshes.h"
 
 using namespace snapfit;
 using Eigen::Vector3d;
 
 namespace {
 
-Mesh peg_mesh() { return make_procedural_part({"peg", {{"radius", 1}, {"length", 3}}, {}}); }
+Mesh peg_mesh() { return test::peg_mesh(1, 3); }
 
-// Unindexed random triangles in [-1, 1]^3 of size up to ~0.6.
-Mesh random_soup(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> centre(-1.0, 1.0), offset(-0.3, 0.3);
-  Mesh m;
-  for (int t = 0; t < n; ++t) {
-    const Vector3d c(centre(rng), centre(rng), centre(rng));
-    for (int k = 0; k < 3; ++k) m.vertices.push_back(c + Vector3d(offset(rng), offset(rng), offset(rng)));
-    m.triangles.emplace_back(3 * t, 3 * t + 1, 3 * t + 2);
-  }
-  return m;
-}
+Mesh random_soup(int n, unsigned seed) { return test::random_soup(n, seed, 1.0, 0.3); }
 
 Mesh single_triangle() {
   Mesh m;

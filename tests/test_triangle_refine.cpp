@@ -12,25 +12,16 @@
 #include "engine/error.h"
 #include "engine/triangle_refine.h"
 #include "scenes/procedural/procedural_parts.h"
+#include "tests/test_meshes.h"
 
 using namespace snapfit;
 using Eigen::Vector3d;
 
 namespace {
 
-Mesh peg_mesh() { return make_procedural_part({"peg", {{"radius", 1}, {"length", 3}}, {}}); }
+Mesh peg_mesh() { return test::peg_mesh(1, 3); }
 
-Mesh random_soup(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> centre(-2.0, 2.0), offset(-0.8, 0.8);
-  Mesh m;
-  for (int t = 0; t < n; ++t) {
-    const Vector3d c(centre(rng), centre(rng), centre(rng));
-    for (int k = 0; k < 3; ++k) m.vertices.push_back(c + Vector3d(offset(rng), offset(rng), offset(rng)));
-    m.triangles.emplace_back(3 * t, 3 * t + 1, 3 * t + 2);
-  }
-  return m;
-}
+Mesh random_soup(int n, unsigned seed) { return test::random_soup(n, seed, 2.0, 0.8); }
 
 // A long thin (needle) triangle and a zero-area one with a long edge.
 Mesh awkward_triangles() {
