@@ -49,6 +49,7 @@
 #include <thread>
 #include <vector>
 
+#include "perf/bench_common.h"
 #include "engine/compute_context.h"
 #include "engine/descriptors.h"
 #include "engine/device.h"
@@ -99,16 +100,11 @@ void usage(std::ostream& os) {
 
 Args parse_args(int argc, char** argv) {
   Args a;
-  for (int i = 0; i < argc; ++i) a.command_line += (i ? " " : "") + std::string(argv[i]);
+  a.command_line = snapfit::bench::command_line(argc, argv);
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
-    auto value = [&](const std::string& name) -> std::string {
-      const std::string prefix = name + "=";
-      if (s.rfind(prefix, 0) == 0) return s.substr(prefix.size());
-      if (i + 1 >= argc) throw snapfit::Error(name + ": needs a value");
-      return argv[++i];
-    };
-    auto is = [&](const std::string& name) { return s == name || s.rfind(name + "=", 0) == 0; };
+    auto value = [&](const std::string& name) { return snapfit::bench::option_value(argc, argv, i, name); };
+    auto is = [&](const std::string& name) { return snapfit::bench::is_option(s, name); };
     if (s == "--quick") {
       a.quick = true;
     } else if (s == "--plots-only") {
@@ -253,12 +249,7 @@ double process_cpu_seconds() {
   return u.ru_utime.tv_sec + u.ru_utime.tv_usec * 1e-6 + u.ru_stime.tv_sec + u.ru_stime.tv_usec * 1e-6;
 }
 
-double load_average() {
-  std::ifstream f("/proc/loadavg");
-  double l = -1;
-  f >> l;
-  return l;
-}
+double load_average() { return snapfit::bench::load1(); }
 
 struct Row {
   std::string case_name;
@@ -494,12 +485,7 @@ void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) 
   if (!f) throw snapfit::Error(path.string() + ": cannot write");
 }
 
-std::string now_iso() {
-  const std::time_t t = std::time(nullptr);
-  char buf[64];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S%z", std::localtime(&t));
-  return buf;
-}
+using snapfit::bench::now_iso;
 
 // ---------------------------------------------------------------- charts
 

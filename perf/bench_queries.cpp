@@ -62,6 +62,7 @@
 #include <vector>
 
 #include "engine/assembly_pair.h"
+#include "perf/bench_common.h"
 #include "engine/compute_context.h"
 #include "engine/device.h"
 #include "engine/error.h"
@@ -103,16 +104,11 @@ void usage(std::ostream& os) {
 
 Args parse_args(int argc, char** argv) {
   Args a;
-  for (int i = 0; i < argc; ++i) a.command_line += (i ? " " : "") + std::string(argv[i]);
+  a.command_line = snapfit::bench::command_line(argc, argv);
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
-    auto value = [&](const std::string& name) -> std::string {
-      const std::string prefix = name + "=";
-      if (s.rfind(prefix, 0) == 0) return s.substr(prefix.size());
-      if (i + 1 >= argc) throw snapfit::Error(name + ": needs a value");
-      return argv[++i];
-    };
-    auto is = [&](const std::string& name) { return s == name || s.rfind(name + "=", 0) == 0; };
+    auto value = [&](const std::string& name) { return snapfit::bench::option_value(argc, argv, i, name); };
+    auto is = [&](const std::string& name) { return snapfit::bench::is_option(s, name); };
     if (s == "--quick") {
       a.quick = true;
     } else if (s == "-h" || s == "--help") {
@@ -147,18 +143,8 @@ Args parse_args(int argc, char** argv) {
 
 // ---------------------------------------------------------------- small helpers
 
-std::string read_loadavg() {
-  std::ifstream f("/proc/loadavg");
-  std::string line;
-  std::getline(f, line);
-  return line;
-}
-double load1() {
-  std::istringstream in(read_loadavg());
-  double l = -1;
-  in >> l;
-  return l;
-}
+using snapfit::bench::load1;
+using snapfit::bench::read_loadavg;
 
 // CPU time used by the whole machine (non-idle, all cores) and by this process (all
 // its threads, the device's worker threads included), in core-seconds: their
@@ -233,12 +219,7 @@ struct QuietGuard {
   }
 };
 
-std::string now_iso() {
-  const std::time_t t = std::time(nullptr);
-  char buf[64];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S%z", std::localtime(&t));
-  return buf;
-}
+using snapfit::bench::now_iso;
 
 std::string fmt(double v, int prec = 3) {
   if (!std::isfinite(v)) return "-";
