@@ -365,6 +365,29 @@ void read_frame(const Ctx& c, const json& v, const std::string& path, Scene& s) 
                                          " ms (got " + fmt(s.frame_budget_ms) + ")");
 }
 
+HapticsParams read_haptics(const Ctx& c, const json& v, const std::string& path) {
+  check_fields(c, v, path,
+               {"mass_kg", "stiffness_n_per_m", "rot_stiffness_nm_per_rad", "damping_ratio", "max_force_n",
+                "max_torque_nm", "geometry_gain", "geometry_strength", "settle_s", "success_position",
+                "success_angle_deg"});
+  HapticsParams h;
+  if (const json* x = find(v, "mass_kg")) h.mass_kg = positive(c, *x, join(path, "mass_kg"));
+  if (const json* x = find(v, "stiffness_n_per_m")) h.stiffness_n_per_m = positive(c, *x, join(path, "stiffness_n_per_m"));
+  if (const json* x = find(v, "rot_stiffness_nm_per_rad"))
+    h.rot_stiffness_nm_per_rad = positive(c, *x, join(path, "rot_stiffness_nm_per_rad"));
+  if (const json* x = find(v, "damping_ratio")) h.damping_ratio = non_negative(c, *x, join(path, "damping_ratio"));
+  if (const json* x = find(v, "max_force_n")) h.max_force_n = positive(c, *x, join(path, "max_force_n"));
+  if (const json* x = find(v, "max_torque_nm")) h.max_torque_nm = non_negative(c, *x, join(path, "max_torque_nm"));
+  if (const json* x = find(v, "geometry_gain")) h.geometry_gain = non_negative(c, *x, join(path, "geometry_gain"));
+  if (const json* x = find(v, "geometry_strength"))
+    h.geometry_strength = non_negative(c, *x, join(path, "geometry_strength"));
+  if (const json* x = find(v, "settle_s")) h.settle_s = non_negative(c, *x, join(path, "settle_s"));
+  if (const json* x = find(v, "success_position")) h.success_position = positive(c, *x, join(path, "success_position"));
+  if (const json* x = find(v, "success_angle_deg"))
+    h.success_angle_deg = positive(c, *x, join(path, "success_angle_deg"));
+  return h;
+}
+
 Motion read_motion(const Ctx& c, const json& v, const std::string& path) {
   const std::string m = text(c, v, path);
   if (m == "translation") return Motion::translation;
@@ -429,7 +452,7 @@ Scene read_scene(const Ctx& c, const json& root) {
     fail(c, "snapfit_scene", "unsupported format version " + fmt(version->get<double>()) + " (this build reads 1)");
   check_fields(c, root, "",
                {"snapfit_scene", "name", "units", "part1", "part2", "assembled_pose", "descriptor", "grid",
-                "frame", "outputs", "motion", "trajectory"});
+                "frame", "outputs", "motion", "trajectory", "haptics"});
 
   Scene s;
   s.source_path = c.origin;
@@ -445,6 +468,7 @@ Scene read_scene(const Ctx& c, const json& root) {
   if (const json* o = find(root, "outputs")) s.outputs = read_outputs(c, *o, "outputs", s.motion);
   else s.outputs = Outputs{true, true, s.motion == Motion::six_dof};
   if (const json* t = find(root, "trajectory")) s.trajectory = read_trajectory(c, *t, "trajectory");
+  if (const json* h = find(root, "haptics")) s.haptics = read_haptics(c, *h, "haptics");
 
   if (s.motion == Motion::translation) {
     if (s.assembled_pose) check_fixed_orientation(c, s, *s.assembled_pose, "assembled_pose.rotation");
@@ -596,6 +620,20 @@ std::string scene_to_json(const Scene& s) {
     }
     j["trajectory"] = {{"keyframes", keys}};
   }
+  const HapticsParams& h = s.haptics;
+  ordered_json hj;
+  hj["mass_kg"] = h.mass_kg;
+  hj["stiffness_n_per_m"] = h.stiffness_n_per_m;
+  if (h.rot_stiffness_nm_per_rad) hj["rot_stiffness_nm_per_rad"] = *h.rot_stiffness_nm_per_rad;
+  hj["damping_ratio"] = h.damping_ratio;
+  hj["max_force_n"] = h.max_force_n;
+  hj["max_torque_nm"] = h.max_torque_nm;
+  if (h.geometry_gain) hj["geometry_gain"] = *h.geometry_gain;
+  hj["geometry_strength"] = h.geometry_strength;
+  hj["settle_s"] = h.settle_s;
+  if (h.success_position) hj["success_position"] = *h.success_position;
+  hj["success_angle_deg"] = h.success_angle_deg;
+  j["haptics"] = hj;
   std::string out;
   write_value(out, j, 0, "");
   return out + "\n";

@@ -70,6 +70,23 @@ struct Trajectory {
   std::vector<Keyframe> keyframes;  // strictly increasing times; empty = no script
 };
 
+// The haptic loop's parameters (scheduler/haptic_loop.h): the virtual coupling
+// (seed 002 eq. 1-2), the device's limits, the scale of the geometric wrench, and when
+// a scripted insertion counts as assembled. Every field is optional in the file.
+struct HapticsParams {
+  double mass_kg = 0.05;                    // the simulated part's mass
+  double stiffness_n_per_m = 800;           // coupling k_T
+  std::optional<double> rot_stiffness_nm_per_rad;  // coupling k_R; default k_T r_g^2 (r_g: part 2's radius of gyration)
+  double damping_ratio = 1.0;               // 1 = critically damped, b = 2 sqrt(k m)
+  double max_force_n = 10;                  // device limits
+  double max_torque_nm = 1;
+  std::optional<double> geometry_gain;      // N per engine force unit; default from geometry_strength
+  double geometry_strength = 2;             // default gain: the well's force ~ strength * k_T * spacing
+  double settle_s = 1.0;                    // loop time after the last keyframe
+  std::optional<double> success_position;   // scene units; default half the grid spacing
+  double success_angle_deg = 1.0;
+};
+
 struct Scene {
   std::string name;
   std::string source_path;   // the file it was read from ("" when built in code)
@@ -84,6 +101,7 @@ struct Scene {
   Outputs outputs;
   Motion motion = Motion::six_dof;
   Trajectory trajectory;
+  HapticsParams haptics;
 };
 
 // Reads and validates a scene file. Unknown fields, wrong types and invalid values

@@ -36,23 +36,6 @@ DescriptorOptions options() {
   return o;
 }
 
-// Sets SNAPFIT_CACHE_DIR to a fresh temporary folder; restores the old value after.
-struct CacheDirScope {
-  test::TempDir dir;
-  std::optional<std::string> previous;
-  CacheDirScope() {
-    if (const char* old = std::getenv("SNAPFIT_CACHE_DIR")) previous = old;
-    ::setenv("SNAPFIT_CACHE_DIR", dir.path.string().c_str(), 1);
-  }
-  ~CacheDirScope() {
-    if (previous)
-      ::setenv("SNAPFIT_CACHE_DIR", previous->c_str(), 1);
-    else
-      ::unsetenv("SNAPFIT_CACHE_DIR");
-  }
-  fs::path fields() const { return dir.path / "fields"; }
-};
-
 Mesh small_peg() { return make_procedural_part({"peg", {{"radius", 1}, {"length", 2}, {"segments", 8}}, {}}); }
 
 GridSpec coarse_grid(const Mesh& mesh, double spacing = 0.4) {
@@ -114,7 +97,7 @@ void check_complete(const PartFieldsResult& r, const GridSpec& grid) {
 }  // namespace
 
 TEST_CASE("field cache: miss writes one entry, then hits with bit-identical fields") {
-  CacheDirScope scope;
+  test::CacheDirScope scope;
   REQUIRE(cache_root() == scope.dir.path.string());
   const Mesh mesh = small_peg();
   const GridSpec grid = coarse_grid(mesh);
@@ -126,7 +109,7 @@ TEST_CASE("field cache: miss writes one entry, then hits with bit-identical fiel
   const PartFieldsResult first = fields_of(mesh, grid, params, notes);
   CHECK_FALSE(first.from_cache);
   check_complete(first, grid);
-  const auto written = files_in(scope.fields());
+  const auto written = files_in(scope.folder("fields"));
   REQUIRE(written.size() == 1);
   CHECK(written[0].extension() == ".bin");
   CHECK(written[0].string() == descriptor_cache_path(descriptor_cache_key(mesh, grid, params, options())));
@@ -141,7 +124,7 @@ TEST_CASE("field cache: miss writes one entry, then hits with bit-identical fiel
   CHECK(second.fields.grid.origin == grid.origin);
   CHECK(second.fields.grid.spacing == grid.spacing);
   CHECK(second.fields.params.sigma == params.sigma);
-  CHECK(files_in(scope.fields()).size() == 1);
+  CHECK(files_in(scope.folder("fields")).size() == 1);
   CHECK_MESSAGE(notes.lines.empty(), notes.all());
 
   // The affinity factors do not change the fields: still a hit, with the new params.
@@ -154,7 +137,7 @@ TEST_CASE("field cache: miss writes one entry, then hits with bit-identical fiel
 }
 
 TEST_CASE("field cache: every value-changing input makes a new key") {
-  CacheDirScope scope;
+  test::CacheDirScope scope;
   const Mesh mesh = small_peg();
   const GridSpec grid = coarse_grid(mesh);
   const DescriptorParams params;
@@ -166,7 +149,7 @@ TEST_CASE("field cache: every value-changing input makes a new key") {
   auto expect_miss_then_hit = [&](const Mesh& m, const GridSpec& g, const DescriptorParams& p) {
     const PartFieldsResult miss = fields_of(m, g, p, notes);
     CHECK_FALSE(miss.from_cache);
-    CHECK(files_in(scope.fields()).size() == ++entries);
+    CHECK(files_in(scope.folder("fields")).size() == ++entries);
     const PartFieldsResult hit = fields_of(m, g, p, notes);
     CHECK(hit.from_cache);
     CHECK(same_fields(miss.fields, hit.fields));
@@ -216,7 +199,7 @@ TEST_CASE("field cache: every value-changing input makes a new key") {
 }
 
 TEST_CASE("field cache: a corrupt or truncated entry is noted and recomputed, then hits again") {
-  CacheDirScope scope;
+  test::CacheDirScope scope;
   const Mesh mesh = small_peg();
   const GridSpec grid = coarse_grid(mesh);
   const DescriptorParams params;
@@ -257,25 +240,25 @@ TEST_CASE("field cache: a corrupt or truncated entry is noted and recomputed, th
   CHECK(hit.from_cache);
   CHECK(same_fields(base.fields, hit.fields));
   CHECK_MESSAGE(notes.lines.empty(), notes.all());
-  CHECK(files_in(scope.fields()).size() == 1);
+  CHECK(files_in(scope.folder("fields")).size() == 1);
 }
 
 TEST_CASE("field cache: an unwritable cache folder is a note, the fields are still right") {
-  CacheDirScope scope;
+  test::CacheDirScope scope;
   const Mesh mesh = small_peg();
   const GridSpec grid = coarse_grid(mesh);
   const DescriptorParams params;
   Notes notes;
   const PartFieldsResult reference = fields_of(mesh, grid, params, notes, false);
 
-  test::write_text(scope.fields().string(), "a regular file where the fields folder should be");
-  REQUIRE(fs::is_regular_file(scope.fields()));
+  test::write_text(scope.folder("fields").string(), "a regular file where the fields folder should be");
+  REQUIRE(fs::is_regular_file(scope.folder("fields")));
   const PartFieldsResult r = fields_of(mesh, grid, params, notes);
   CHECK_FALSE(r.from_cache);
   CHECK_MESSAGE(notes.any_contains("not cached"), notes.all());
   check_complete(r, grid);
   CHECK(same_fields(reference.fields, r.fields));
-  CHECK(fs::is_regular_file(scope.fields()));
+  CHECK(fs::is_regular_file(scope.folder("fields")));
   // Still no cache: the next call computes again (and notes again).
   notes.lines.clear();
   const PartFieldsResult again = fields_of(mesh, grid, params, notes);
@@ -285,7 +268,7 @@ TEST_CASE("field cache: an unwritable cache folder is a note, the fields are sti
 }
 
 TEST_CASE("field cache: use_cache = false never reads or writes") {
-  CacheDirScope scope;
+  test::CacheDirScope scope;
   const Mesh mesh = small_peg();
   const GridSpec grid = coarse_grid(mesh);
   const DescriptorParams params;
@@ -297,8 +280,8 @@ TEST_CASE("field cache: use_cache = false never reads or writes") {
   // With an entry present, it is still not read.
   const PartFieldsResult cached = fields_of(mesh, grid, params, notes, true);
   CHECK_FALSE(cached.from_cache);
-  REQUIRE(files_in(scope.fields()).size() == 1);
-  const auto path = files_in(scope.fields())[0];
+  REQUIRE(files_in(scope.folder("fields")).size() == 1);
+  const auto path = files_in(scope.folder("fields"))[0];
   std::vector<char> bad = test::read_bytes(path.string());
   bad.back() ^= 0x77;
   test::write_bytes(path.string(), bad);

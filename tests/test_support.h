@@ -1,7 +1,9 @@
 #pragma once
 // Small helpers shared by the test files: temporary folders and file bytes.
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -21,6 +23,24 @@ struct TempDir {
     std::filesystem::remove_all(path, ec);
   }
   std::string file(const std::string& name) const { return (path / name).string(); }
+};
+
+// Points SNAPFIT_CACHE_DIR (io/cache_file.h cache_root()) at a fresh temporary folder;
+// restores the old value after.
+struct CacheDirScope {
+  TempDir dir;
+  std::optional<std::string> previous;
+  CacheDirScope() {
+    if (const char* old = std::getenv("SNAPFIT_CACHE_DIR")) previous = old;
+    ::setenv("SNAPFIT_CACHE_DIR", dir.path.string().c_str(), 1);
+  }
+  ~CacheDirScope() {
+    if (previous)
+      ::setenv("SNAPFIT_CACHE_DIR", previous->c_str(), 1);
+    else
+      ::unsetenv("SNAPFIT_CACHE_DIR");
+  }
+  std::filesystem::path folder(const std::string& name) const { return dir.path / name; }
 };
 
 inline std::vector<char> read_bytes(const std::string& file) {

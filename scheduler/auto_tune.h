@@ -1,0 +1,71 @@
+#pragma once
+// Auto-tuning of m' (DESIGN.md "Auto-tuning"): measure the per-query time against m'
+// on a ladder of mode counts (many repetitions each; p99, not the mean), fit a cost
+// model, and pick the largest m' whose p99 fits the frame budget with a safety margin.
+//
+// The pick: the largest ladder level whose measured p99 AND model prediction are both
+// at most budget * (1 - margin); the measured value guards against a model that fits
+// badly, the model against one noisy measurement. Nothing beyond the largest measured
+// level is extrapolated. When even the smallest level does not fit, it is chosen and
+// `fits` is false.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace snapfit {
+
+struct TimingPoint {
+  std::size_t modes = 0;
+  double p50_ms = 0, p99_ms = 0, max_ms = 0;
+  std::size_t samples = 0;
+};
+
+// p99(m') ~ fixed_ms + per_mode_ms * m', least squares over the measured p99 values.
+struct CostModel {
+  double fixed_ms = 0;
+  double per_mode_ms = 0;
+  double predict_ms(std::size_t modes) const { return fixed_ms + per_mode_ms * static_cast<double>(modes); }
+};
+
+CostModel fit_cost_model(const std::vector<TimingPoint>& points);
+
+struct TuneOptions {
+  double budget_ms = 1.0;
+  double margin = 0.25;             // keep p99 at most (1 - margin) of the budget
+  std::size_t min_modes = 512;
+  double ladder_factor = 1.41421356;  // sqrt(2) between levels
+  std::size_t repetitions = 400;    // timed queries per level
+  std::size_t warmup = 20;          // untimed queries per level first
+  // The sweep stops after the first level whose p99 exceeds this multiple of the target.
+  double stop_factor = 1.5;
+  std::function<void(std::uint64_t done, std::uint64_t total)> progress;
+};
+
+struct TuningResult {
+  std::vector<TimingPoint> points;  // by increasing m'
+  CostModel model;
+  std::size_t chosen_modes = 0;
+  bool fits = false;                // the chosen m' meets the budget with margin
+  double budget_ms = 0, margin = 0;
+  std::string created;              // UTC date and time of the measurement
+  double target_ms() const { return budget_ms * (1.0 - margin); }
+};
+
+// m' levels from min_modes to max_modes, multiplying by `factor` (rounded to
+// multiples of 64), always ending at max_modes.
+std::vector<std::size_t> mode_ladder(std::size_t min_modes, std::size_t max_modes, double factor);
+
+// Choose from measured points (see the header comment). Throws snapfit::Error when empty.
+TuningResult pick_modes(std::vector<TimingPoint> points, double budget_ms, double margin);
+
+// Times `count` queries at m' = modes; returns each one's time in ms.
+using QueryTimer = std::function<std::vector<double>(std::size_t modes, std::size_t count)>;
+
+// Measures the ladder up to max_modes with `timer` and picks m'.
+TuningResult tune_modes(const QueryTimer& timer, std::size_t max_modes, const TuneOptions& options);
+
+// The ladder the haptic loop steps along: the measured levels up to the chosen m'.
+std::vector<std::size_t> loop_levels(const TuningResult& tuning);
+
+}  // namespace snapfit

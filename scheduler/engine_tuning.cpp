@@ -1,0 +1,73 @@
+#include "scheduler/engine_tuning.h"
+
+#include <chrono>
+#include <sstream>
+
+#include "engine/error.h"
+
+namespace snapfit {
+
+std::string variant_name(const QueryVariant& v) {
+  std::string name = v.translation_only ? "translation" : "6dof";
+  name += " energy";
+  if (v.force) name += " force";
+  if (v.torque) name += " torque";
+  if (!v.translation_only) name += v.interpolation == Interpolation::tricubic ? " tricubic" : " trilinear";
+  return name;
+}
+
+TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, const PairSpectra& spectra,
+                         double budget_ms, double margin) {
+  TuningKey key;
+  key.platform = device.platform_name + " " + device.platform_version;
+  key.device = device.name;
+  key.driver = device.driver_version;
+  key.variant = variant_name(variant);
+  std::ostringstream features;
+  features << "fft " << spectra.dims[0] << "x" << spectra.dims[1] << "x" << spectra.dims[2]
+           << " torque_spectra " << spectra.torque << " spacing " << spectra.spacing;
+  key.scene_features = features.str();
+  key.budget_ms = budget_ms;
+  key.margin = margin;
+  return key;
+}
+
+QueryTimer engine_query_timer(PoseQueryEngine& engine, std::vector<Pose> poses) {
+  if (poses.empty()) throw Error("auto-tuning: no poses to time queries at");
+  return [&engine, poses = std::move(poses), next = std::size_t(0)](std::size_t modes, std::size_t count) mutable {
+    engine.set_modes(modes);
+    std::vector<double> times;
+    times.reserve(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      engine.query(poses[next++ % poses.size()]);
+      times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    return times;
+  };
+}
+
+EngineTuning tune_engine(PoseQueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses,
+                         TuneOptions options, bool retune, const std::function<void(const std::string&)>& note) {
+  EngineTuning out;
+  out.path = tuning_file_path(key);
+  if (!retune)
+    if (std::optional<TuningResult> cached = load_tuning(key, note)) {
+      out.result = *cached;
+      out.from_file = true;
+      return out;
+    }
+  const std::size_t before = engine.modes();
+  options.budget_ms = key.budget_ms;
+  options.margin = key.margin;
+  out.result = tune_modes(engine_query_timer(engine, poses), engine.max_modes(), options);
+  engine.set_modes(before);
+  try {
+    save_tuning(key, out.result);
+  } catch (const Error& e) {
+    if (note) note(std::string("tuning not saved: ") + e.what());
+  }
+  return out;
+}
+
+}  // namespace snapfit

@@ -1,0 +1,37 @@
+#pragma once
+// Auto-tuning of a PoseQueryEngine on its device (scheduler/auto_tune.h), with the
+// result kept in the tuning file (scheduler/tuning_file.h) and reused while the key
+// (device, driver, kernel variant, scene features, budget, margin) is unchanged.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engine/device.h"
+#include "engine/pose_query.h"
+#include "engine/spectra.h"
+#include "scheduler/auto_tune.h"
+#include "scheduler/tuning_file.h"
+
+namespace snapfit {
+
+std::string variant_name(const QueryVariant& variant);
+
+TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, const PairSpectra& spectra,
+                         double budget_ms, double margin);
+
+// Times single queries of `engine` at the given poses (cycled), wall clock around each.
+QueryTimer engine_query_timer(PoseQueryEngine& engine, std::vector<Pose> poses);
+
+struct EngineTuning {
+  TuningResult result;
+  bool from_file = false;
+  std::string path;
+};
+
+// Loads the tuning for `key`, or (when absent, stale, corrupt, or `retune`) measures it
+// with `engine` at `poses` and saves it. A save failure is reported through `note` and
+// the fresh result is still returned.
+EngineTuning tune_engine(PoseQueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses,
+                         TuneOptions options, bool retune, const std::function<void(const std::string&)>& note);
+
+}  // namespace snapfit

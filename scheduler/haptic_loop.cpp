@@ -1,0 +1,193 @@
+#include "scheduler/haptic_loop.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <exception>
+#include <future>
+#include <thread>
+
+#include "engine/error.h"
+#include "scheduler/quantile.h"
+
+namespace snapfit {
+
+LoopClock steady_loop_clock() {
+  using Clock = std::chrono::steady_clock;
+  const auto origin = Clock::now();
+  LoopClock c;
+  c.now = [origin] { return std::chrono::duration<double>(Clock::now() - origin).count(); };
+  c.wait_until = [origin](double t) {
+    const auto deadline = origin + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t));
+    // Sleep through most of the wait (the OS wakes us late by up to ~0.1 ms), spin the rest.
+    const auto wake = deadline - std::chrono::microseconds(200);
+    if (Clock::now() < wake) std::this_thread::sleep_until(wake);
+    while (Clock::now() < deadline) std::this_thread::yield();
+  };
+  return c;
+}
+
+namespace {
+
+void check_config(const LoopConfig& c) {
+  if (!(std::isfinite(c.rate_hz) && c.rate_hz > 0)) throw Error("haptic loop: rate must be > 0 Hz");
+  if (!(std::isfinite(c.budget_ms) && c.budget_ms > 0)) throw Error("haptic loop: frame budget must be > 0 ms");
+  if (!(std::isfinite(c.geometry_gain) && c.geometry_gain >= 0)) throw Error("haptic loop: geometry gain must be >= 0");
+  if (!std::isfinite(c.duration_s)) throw Error("haptic loop: duration must be finite");
+  if (c.duration_s <= 0 && !c.stop) throw Error("haptic loop: no duration and no stop flag: it would never end");
+  if (c.modes.levels.empty()) throw Error("haptic loop: the m' ladder is empty");
+  if (!std::is_sorted(c.modes.levels.begin(), c.modes.levels.end()) || c.modes.levels.front() == 0)
+    throw Error("haptic loop: the m' ladder must be positive and increasing");
+}
+
+// Tracks misses and frame times and decides when m' steps down or up (see the header).
+class ModeGovernor {
+ public:
+  ModeGovernor(const ModePolicy& p, double budget_ms) : p_(p), budget_ms_(budget_ms), level_(p.levels.size() - 1) {}
+  std::size_t modes() const { return p_.levels[level_]; }
+
+  // Returns the new m' when it changes, 0 otherwise; `reason` says why.
+  std::size_t after_frame(std::size_t frame, double frame_ms, bool missed, std::string& reason) {
+    if (missed) misses_.push_back(frame);
+    while (!misses_.empty() && misses_.front() + p_.miss_window <= frame) misses_.pop_front();
+    recent_.push_back(frame_ms);
+    if (recent_.size() > p_.up_after_frames) recent_.pop_front();
+    ++since_change_;
+    if (missed) since_change_ = 0, recent_.clear();
+
+    if (misses_.size() >= p_.misses_to_step_down && level_ > 0) {
+      reason = std::to_string(misses_.size()) + " misses in the last " + std::to_string(p_.miss_window) + " frames";
+      return change(level_ - 1);
+    }
+    if (level_ + 1 < p_.levels.size() && since_change_ >= p_.up_after_frames && recent_.size() >= p_.up_after_frames) {
+      const double p99 = quantile(std::vector<double>(recent_.begin(), recent_.end()), 0.99);
+      const std::size_t next = p_.levels[level_ + 1];
+      const double ratio = p_.predicted_ms ? p_.predicted_ms(next) / std::max(1e-9, p_.predicted_ms(modes()))
+                                           : double(next) / double(modes());
+      if (p99 * ratio <= p_.up_headroom * budget_ms_) {
+        reason = "headroom: p99 " + std::to_string(p99) + " ms over the last " + std::to_string(recent_.size()) +
+                 " frames, predicted " + std::to_string(p99 * ratio) + " ms at the next level";
+        return change(level_ + 1);
+      }
+    }
+    return 0;
+  }
+
+ private:
+  std::size_t change(std::size_t level) {
+    level_ = level;
+    misses_.clear();
+    recent_.clear();
+    since_change_ = 0;
+    return modes();
+  }
+  const ModePolicy& p_;
+  double budget_ms_;
+  std::size_t level_;
+  std::deque<std::size_t> misses_;
+  std::deque<double> recent_;
+  std::size_t since_change_ = 0;
+};
+
+}  // namespace
+
+LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, const LoopConfig& config,
+                           const LoopClock& clock, BodyState part) {
+  check_config(config);
+  const double period = 1.0 / config.rate_hz;
+  const DeviceLimits limits = device.limits();
+  ModeGovernor governor(config.modes, config.budget_ms);
+  if (engine.set_modes) engine.set_modes(governor.modes());
+
+  LoopReport report;
+  report.rate_hz = config.rate_hz;
+  const std::size_t expected = config.duration_s > 0 ? static_cast<std::size_t>(config.duration_s * config.rate_hz) : 0;
+  report.frame_ms.reserve(expected);
+  if (config.keep_log) report.log.reserve(expected);
+
+  Wrench geometric;  // held over missed ticks
+  std::size_t tick = 0, frame = 0;
+  const double start = clock.now();
+  while (true) {
+    const double tick_time = tick * period;  // loop time of this tick
+    if (config.duration_s > 0 && tick_time >= config.duration_s - 1e-12) break;
+    if (config.stop && config.stop->load()) break;
+    clock.wait_until(start + tick_time);
+
+    // 1-2. Device pose, geometric wrench at the part's pose.
+    const BodyState handle = device.read(tick_time);
+    const QueryResult q = engine.evaluate(part.pose);
+    geometric = Wrench{};
+    if (q.flags == query_ok) {
+      geometric.force = config.geometry_gain * q.force;
+      geometric.torque = config.geometry_gain * config.coupling.metres_per_unit * q.torque;
+    } else {
+      ++report.flagged_frames;
+    }
+    // 3. One fixed step; 4. the coupling's reaction to the device.
+    step_body(part, handle, geometric, config.coupling, period);
+    const Wrench on_part = coupling_wrench(part, handle, config.coupling);
+    const Wrench sent = clamp_to_limits(Wrench{-on_part.force, -on_part.torque}, limits);
+    device.send(sent, tick_time);
+
+    const double end = clock.now() - start;
+    const double frame_ms = 1e3 * (end - tick_time);
+    const bool missed = end > tick_time + period;
+    report.frame_ms.push_back(frame_ms);
+    if (config.keep_log)
+      report.log.push_back(FrameRecord{tick_time, frame_ms, handle.pose, part.pose, q.energy, geometric, sent,
+                                       q.modes, q.flags, missed});
+    ++report.frames;
+    if (missed) ++report.misses;
+
+    // No catch-up: the next frame runs at the first tick still ahead; the part moves
+    // over the ticks that passed with the held wrench.
+    std::size_t next = tick + 1;
+    if (missed) {
+      next = static_cast<std::size_t>(std::floor(end / period)) + 1;
+      for (std::size_t t = tick + 1; t < next; ++t) {
+        if (config.duration_s > 0 && t * period >= config.duration_s - 1e-12) break;
+        step_body(part, device.read(t * period), geometric, config.coupling, period);
+        ++report.skipped_ticks;
+      }
+    }
+    std::string reason;
+    const std::size_t before = governor.modes();
+    if (const std::size_t m = governor.after_frame(frame, frame_ms, missed, reason)) {
+      report.mode_changes.push_back(ModeChange{tick_time, frame, before, m, reason});
+      if (engine.set_modes) engine.set_modes(m);
+    }
+    ++frame;
+    tick = next;
+  }
+  report.ticks = report.frames + report.skipped_ticks;
+  report.elapsed_s = clock.now() - start;
+  report.measured_rate_hz = report.elapsed_s > 0 ? report.frames / report.elapsed_s : 0;
+  report.final_part = part;
+  report.final_modes = governor.modes();
+  return report;
+}
+
+struct HapticLoopThread::State {
+  std::future<LoopReport> result;
+};
+
+HapticLoopThread::HapticLoopThread(HapticDevice& device, WrenchEvaluator engine, LoopConfig config, BodyState part,
+                                   LoopClock clock)
+    : state_(std::make_unique<State>()) {
+  config.stop = &stop_;
+  state_->result = std::async(std::launch::async, [&device, engine = std::move(engine), config, part,
+                                                   clock = std::move(clock)] {
+    return run_haptic_loop(device, engine, config, clock, part);
+  });
+}
+
+HapticLoopThread::~HapticLoopThread() {
+  stop_ = true;
+  if (state_ && state_->result.valid()) state_->result.wait();
+}
+
+LoopReport HapticLoopThread::join() { return state_->result.get(); }
+
+}  // namespace snapfit

@@ -1,0 +1,122 @@
+#pragma once
+// The fixed-rate haptic loop (1 kHz by default) on absolute deadlines. Each frame, at
+// tick i (time i / rate):
+//   1. read the device pose and velocity;
+//   2. ask the engine for the geometric energy, force and torque at the part's pose;
+//   3. integrate the part one step under the virtual coupling (implicit) and the
+//      geometric wrench scaled by `geometry_gain` (explicit), scheduler/virtual_coupling.h;
+//   4. send the coupling's reaction to the device, clamped to its limits.
+// A frame that ends after its deadline (tick i + 1) is a miss: the device kept the last
+// wrench meanwhile, and the ticks that passed are not replayed (no catch-up burst); the
+// part is integrated over them with the held geometric wrench (the physics stays on
+// the fixed step). When misses repeat (`misses_to_step_down` within `miss_window`
+// frames), m' steps down one level of the ladder at once; it steps up again, one level
+// at a time up to the tuned m', only after `up_after_frames` frames without a miss
+// whose p99 frame time, scaled by the cost ratio of the next level, fits
+// `up_headroom` of the budget. Every change is reported.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engine/pose_query.h"
+#include "scheduler/haptic_device.h"
+#include "scheduler/virtual_coupling.h"
+
+namespace snapfit {
+
+// Time source of the loop (seconds); the steady clock in use, a manual one in tests.
+struct LoopClock {
+  std::function<double()> now;
+  std::function<void(double)> wait_until;  // returns at or after the given time
+};
+
+// std::chrono::steady_clock; waits sleep until ~0.2 ms before the deadline, then spin.
+LoopClock steady_loop_clock();
+
+// The engine as the loop sees it: a query at a pose, and a way to change m'.
+struct WrenchEvaluator {
+  std::function<QueryResult(const Pose&)> evaluate;
+  std::function<void(std::size_t)> set_modes;
+};
+
+struct ModePolicy {
+  std::vector<std::size_t> levels;  // increasing m' values; the last one is the tuned m'
+  std::function<double(std::size_t)> predicted_ms;  // cost model for step-up; null: proportional to m'
+  std::size_t miss_window = 100;
+  std::size_t misses_to_step_down = 2;
+  std::size_t up_after_frames = 2000;
+  double up_headroom = 0.6;
+};
+
+struct LoopConfig {
+  double rate_hz = 1000;
+  double duration_s = 1;           // loop time to run; <= 0 runs until `stop` is set
+  double budget_ms = 1;            // the frame budget the policy measures headroom against
+  CouplingParams coupling;
+  double geometry_gain = 1;        // N per engine force unit (see scheduler/geometry_gain.h)
+  ModePolicy modes;
+  bool keep_log = true;            // one FrameRecord per frame
+  const std::atomic<bool>* stop = nullptr;
+};
+
+struct FrameRecord {
+  double time_s = 0;       // the frame's tick time
+  double frame_ms = 0;     // tick to wrench sent
+  Pose device, part;
+  double energy = 0;       // engine energy at the part's pose
+  Wrench geometric;        // scaled to N, N m
+  Wrench sent;             // to the device, after clamping
+  std::size_t modes = 0;
+  std::uint32_t flags = 0; // QueryFlags of the engine
+  bool missed = false;
+};
+
+struct ModeChange {
+  double time_s = 0;
+  std::size_t frame = 0;
+  std::size_t from = 0, to = 0;
+  std::string reason;
+};
+
+struct LoopReport {
+  double rate_hz = 0;            // the configured rate
+  double measured_rate_hz = 0;   // frames run / wall time of the loop
+  double elapsed_s = 0;
+  std::size_t ticks = 0;         // ticks that came due
+  std::size_t frames = 0;        // frames run (ticks - skipped)
+  std::size_t misses = 0;        // frames that ended after their deadline
+  std::size_t skipped_ticks = 0; // ticks not run because a frame overran them
+  std::size_t flagged_frames = 0;  // frames whose query returned flags (zero geometric wrench)
+  std::vector<double> frame_ms;  // every frame
+  std::vector<FrameRecord> log;  // when keep_log
+  std::vector<ModeChange> mode_changes;
+  BodyState final_part;
+  std::size_t final_modes = 0;
+  double miss_rate() const { return frames ? double(misses) / frames : 0; }
+};
+
+// Runs the loop on the calling thread until duration or stop. The evaluator is set to
+// the top level of the ladder first. Throws snapfit::Error for an invalid config.
+LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, const LoopConfig& config,
+                           const LoopClock& clock, BodyState part);
+
+// The same on its own thread (what a haptics program does); join() returns the report.
+class HapticLoopThread {
+ public:
+  HapticLoopThread(HapticDevice& device, WrenchEvaluator engine, LoopConfig config, BodyState part,
+                   LoopClock clock = steady_loop_clock());
+  ~HapticLoopThread();
+  HapticLoopThread(const HapticLoopThread&) = delete;
+  HapticLoopThread& operator=(const HapticLoopThread&) = delete;
+  void request_stop() { stop_ = true; }
+  LoopReport join();  // rethrows an exception from the loop
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+  std::atomic<bool> stop_{false};
+};
+
+}  // namespace snapfit

@@ -1,0 +1,39 @@
+#pragma once
+// From a scene's `haptics` section (io/scene.h HapticsParams) to what the haptic loop
+// needs: the virtual coupling, the device limits, the geometric gain, and the test of
+// whether a run ended assembled.
+#include "engine/pose.h"
+#include "io/mesh.h"
+#include "io/scene.h"
+#include "scheduler/haptic_device.h"
+#include "scheduler/virtual_coupling.h"
+
+namespace snapfit {
+
+// Isotropic inertia of part 2 about its reference point (frame origin),
+// I = (2/3) m <|q|^2> (a uniform solid's trace(J) / 3), and k_R = k_T r_g^2 with
+// r_g^2 = I / m unless the scene sets k_R; damping from the damping ratio.
+CouplingParams coupling_for(const Scene& scene, const Mesh& part2_mesh);
+
+DeviceLimits device_limits_for(const Scene& scene);
+
+// N per engine force unit. The scene's geometry_gain when set; otherwise chosen so the
+// geometric force scale |E_ref| / h of the energy well at the reference pose maps to
+// strength * k_T * h, i.e. the well pulls about as hard as the coupling stretched by
+// `strength` grid spacings. Throws snapfit::Error when E_ref is 0 or not finite.
+double geometry_gain_for(const Scene& scene, double spacing, double reference_energy);
+
+// The pose the gain is calibrated at: the assembled pose, else part 2's initial pose.
+Pose gain_reference_pose(const Scene& scene);
+
+struct PoseError {
+  double position = 0;   // scene units
+  double angle_deg = 0;
+  bool within(double position_tolerance, double angle_tolerance_deg) const {
+    return position <= position_tolerance && angle_deg <= angle_tolerance_deg;
+  }
+};
+
+PoseError pose_error(const Pose& actual, const Pose& target);
+
+}  // namespace snapfit

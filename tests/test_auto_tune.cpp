@@ -1,0 +1,192 @@
+// Auto-tuning of m' (scheduler/auto_tune.h) from injected timings with a known cost,
+// and the tuning file (scheduler/tuning_file.h): round trip, key changes, corruption.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "engine/error.h"
+#include "scheduler/auto_tune.h"
+#include "scheduler/tuning_file.h"
+#include "tests/test_support.h"
+
+using namespace snapfit;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A device whose query takes exactly fixed + per_mode * m' ms, except every
+// `spike_every`-th query, which takes `spike_ms`.
+QueryTimer linear_timer(double fixed, double per_mode, std::size_t spike_every = 0, double spike_ms = 0) {
+  return [=, n = std::size_t(0)](std::size_t modes, std::size_t count) mutable {
+    std::vector<double> t;
+    for (std::size_t i = 0; i < count; ++i, ++n)
+      t.push_back(spike_every && n % spike_every == spike_every - 1 ? spike_ms : fixed + per_mode * modes);
+    return t;
+  };
+}
+
+TuningKey sample_key() {
+  TuningKey k;
+  k.platform = "Portable Computing Language OpenCL 3.0 PoCL 3.1";
+  k.device = "cpu-test";
+  k.driver = "3.1";
+  k.variant = "6dof energy force torque tricubic";
+  k.scene_features = "fft 64x64x64 torque_spectra 1 spacing 0.6";
+  return k;
+}
+
+}  // namespace
+
+TEST_CASE("auto-tune: the m' ladder grows geometrically in multiples of 64 and ends at the maximum") {
+  const auto ladder = mode_ladder(512, 100000, std::sqrt(2.0));
+  REQUIRE(ladder.size() >= 8);
+  CHECK(ladder.front() == 512);
+  CHECK(ladder.back() == 100000);
+  for (std::size_t i = 1; i < ladder.size(); ++i) {
+    CHECK(ladder[i] > ladder[i - 1]);
+    if (i + 1 < ladder.size()) CHECK(ladder[i] % 64 == 0);
+  }
+  CHECK(mode_ladder(512, 300, 2.0) == std::vector<std::size_t>{300});
+  CHECK_THROWS_AS(mode_ladder(512, 0, 2.0), Error);
+}
+
+TEST_CASE("auto-tune: the least-squares cost model recovers a linear cost exactly") {
+  std::vector<TimingPoint> pts;
+  for (std::size_t m : {512, 1024, 4096, 16384}) pts.push_back({m, 0, 0.04 + 3e-5 * m, 0, 100});
+  const CostModel model = fit_cost_model(pts);
+  CHECK(model.fixed_ms == doctest::Approx(0.04).epsilon(1e-9));
+  CHECK(model.per_mode_ms == doctest::Approx(3e-5).epsilon(1e-9));
+}
+
+TEST_CASE("auto-tune: picks the largest m' whose p99 fits the budget with margin") {
+  TuneOptions opt;
+  opt.budget_ms = 1.0;
+  opt.margin = 0.25;
+  opt.repetitions = 200;
+  opt.warmup = 5;
+  const double fixed = 0.05, per_mode = 2e-5;  // fits up to (0.75 - 0.05) / 2e-5 = 35,000 modes
+  const TuningResult r = tune_modes(linear_timer(fixed, per_mode), 1 << 20, opt);
+  // The expected pick, worked out from the ladder independently of pick_modes.
+  std::size_t expected = 0;
+  for (std::size_t m : mode_ladder(opt.min_modes, 1 << 20, opt.ladder_factor))
+    if (fixed + per_mode * m <= 0.75) expected = m;
+  CHECK(r.chosen_modes == expected);
+  CHECK(r.chosen_modes <= 35000);
+  CHECK(r.fits);
+  CHECK(r.target_ms() == doctest::Approx(0.75));
+  // The sweep stopped once a level cost more than 1.5x the target.
+  CHECK(r.points.back().p99_ms > 1.5 * 0.75);
+  CHECK(r.points.back().modes < (1u << 20));
+  CHECK(r.model.per_mode_ms == doctest::Approx(per_mode).epsilon(1e-6));
+  // The loop's ladder ends at the chosen m'.
+  const auto levels = loop_levels(r);
+  CHECK(levels.back() == r.chosen_modes);
+  CHECK(std::is_sorted(levels.begin(), levels.end()));
+}
+
+TEST_CASE("auto-tune: p99, not the mean: 2% slow queries push the pick down") {
+  TuneOptions opt;
+  opt.repetitions = 500;
+  opt.warmup = 0;
+  // Every 50th query takes 0.9 ms: the mean barely moves, the p99 is 0.9 ms > 0.75.
+  const TuningResult r = tune_modes(linear_timer(0.05, 2e-5, 50, 0.9), 1 << 20, opt);
+  CHECK_FALSE(r.fits);
+  CHECK(r.chosen_modes == r.points.front().modes);
+  // 1 slow query in 500 (0.2%) is within the 1% the p99 ignores.
+  const TuningResult ok = tune_modes(linear_timer(0.05, 2e-5, 500, 0.9), 1 << 20, opt);
+  CHECK(ok.fits);
+  CHECK(ok.chosen_modes > 16384);
+}
+
+TEST_CASE("auto-tune: a budget that no level meets picks the smallest level and says so") {
+  TuneOptions opt;
+  opt.repetitions = 50;
+  const TuningResult r = tune_modes(linear_timer(2.0, 1e-5), 1 << 16, opt);
+  CHECK_FALSE(r.fits);
+  CHECK(r.chosen_modes == opt.min_modes);
+  CHECK_THROWS_AS(pick_modes({}, 1.0, 0.25), Error);
+  CHECK_THROWS_AS(pick_modes({{512, 0.1, 0.1, 0.1, 10}}, 1.0, 1.5), Error);
+}
+
+TEST_CASE("tuning file: round trip, reuse, and re-tune on a key change") {
+  test::CacheDirScope scope;
+  TuneOptions opt;
+  opt.repetitions = 50;
+  const TuningResult r = tune_modes(linear_timer(0.05, 2e-5), 1 << 18, opt);
+  const TuningKey key = sample_key();
+  CHECK_FALSE(load_tuning(key).has_value());
+  save_tuning(key, r);
+  CHECK(fs::exists(tuning_file_path(key)));
+  CHECK(fs::path(tuning_file_path(key)).parent_path() == scope.folder("tuning"));
+  const auto back = load_tuning(key);
+  REQUIRE(back.has_value());
+  CHECK(back->chosen_modes == r.chosen_modes);
+  CHECK(back->fits == r.fits);
+  CHECK(back->created == r.created);
+  REQUIRE(back->points.size() == r.points.size());
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    CHECK(back->points[i].modes == r.points[i].modes);
+    CHECK(back->points[i].p99_ms == r.points[i].p99_ms);
+  }
+  CHECK(back->model.per_mode_ms == r.model.per_mode_ms);
+
+  // Any field of the key names another file (or, on a hash collision, a stale one).
+  for (int field = 0; field < 7; ++field) {
+    TuningKey other = key;
+    switch (field) {
+      case 0: other.platform += "x"; break;
+      case 1: other.device += "x"; break;
+      case 2: other.driver = "3.2"; break;
+      case 3: other.variant = "6dof energy force torque trilinear"; break;
+      case 4: other.scene_features = "fft 96x64x64 torque_spectra 1 spacing 0.6"; break;
+      case 5: other.budget_ms = 0.5; break;
+      case 6: other.margin = 0.1; break;
+    }
+    CAPTURE(field);
+    CHECK(other.text() != key.text());
+    CHECK_FALSE(load_tuning(other).has_value());
+  }
+}
+
+TEST_CASE("tuning file: a corrupt, truncated or foreign file is reported and ignored, never trusted") {
+  test::CacheDirScope scope;
+  const TuningKey key = sample_key();
+  TuneOptions opt;
+  opt.repetitions = 20;
+  save_tuning(key, tune_modes(linear_timer(0.05, 2e-5), 1 << 16, opt));
+  const std::string path = tuning_file_path(key);
+  const std::vector<char> good = test::read_bytes(path);
+
+  std::vector<std::string> notes;
+  const auto note = [&](const std::string& m) { notes.push_back(m); };
+  std::vector<char> flipped = good;
+  flipped[flipped.size() - 5] ^= 0x20;
+  test::write_bytes(path, flipped);
+  CHECK_FALSE(load_tuning(key, note).has_value());
+  test::write_bytes(path, std::vector<char>(good.begin(), good.begin() + good.size() / 2));
+  CHECK_FALSE(load_tuning(key, note).has_value());
+  test::write_text(path, "not a cache file at all");
+  CHECK_FALSE(load_tuning(key, note).has_value());
+  REQUIRE(notes.size() == 3);
+  for (const std::string& n : notes) {
+    CHECK(n.find(path) != std::string::npos);
+    CHECK(n.find("re-tuning") != std::string::npos);
+  }
+  // Saving again repairs it.
+  save_tuning(key, tune_modes(linear_timer(0.05, 2e-5), 1 << 16, opt));
+  CHECK(load_tuning(key).has_value());
+  // Malformed JSON in a well-formed container is an error naming the problem.
+  CHECK_THROWS_WITH_AS(tuning_from_json("{\"points\": []}"), doctest::Contains("malformed"), Error);
+}
+
+TEST_CASE("tuning file: an unwritable cache folder is a clear error, not a crash") {
+  test::CacheDirScope scope;
+  test::write_text(scope.folder("tuning").string(), "a file where the tuning folder should be");
+  TuneOptions opt;
+  opt.repetitions = 10;
+  const TuningResult r = tune_modes(linear_timer(0.05, 2e-5), 1 << 14, opt);
+  CHECK_THROWS_AS(save_tuning(sample_key(), r), Error);
+  CHECK(fs::is_regular_file(scope.folder("tuning")));
+}

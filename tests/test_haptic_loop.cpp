@@ -1,0 +1,207 @@
+// The haptic loop (scheduler/haptic_loop.h) on a manual clock with injected frame
+// costs: rate, miss counting without catch-up, stepping m' down and up; then on the
+// real clock with a cheap evaluator; then a scripted device pulling the part home.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <map>
+
+#include "engine/error.h"
+#include "scheduler/haptic_loop.h"
+#include "scheduler/scripted_device.h"
+
+using namespace snapfit;
+using Eigen::Vector3d;
+
+namespace {
+
+// Loop time that only moves when the loop waits or the evaluator "computes".
+struct ManualClock {
+  double t = 0;
+  LoopClock clock() {
+    return LoopClock{[this] { return t; }, [this](double until) { t = std::max(t, until); }};
+  }
+};
+
+// A device that holds one pose.
+struct FixedDevice : HapticDevice {
+  BodyState state;
+  std::size_t sent = 0;
+  BodyState read(double) override { return state; }
+  void send(const Wrench&, double) override { ++sent; }
+  DeviceLimits limits() const override { return {}; }
+};
+
+// Costs ms per query: `base_ms_per_1k` per 1000 modes, plus `extra` at given query numbers.
+struct CostedEvaluator {
+  ManualClock* clock;
+  double base_ms_per_1k = 0.02;
+  std::map<std::size_t, double> extra;  // query index -> added ms
+  std::size_t modes = 0, calls = 0;
+  std::vector<std::size_t> set_calls;
+  WrenchEvaluator evaluator() {
+    return WrenchEvaluator{[this](const Pose&) {
+                             double ms = base_ms_per_1k * modes / 1000.0;
+                             if (auto it = extra.find(calls); it != extra.end()) ms += it->second;
+                             ++calls;
+                             clock->t += ms * 1e-3;
+                             QueryResult r;
+                             r.modes = modes;
+                             return r;
+                           },
+                           [this](std::size_t m) {
+                             modes = m;
+                             set_calls.push_back(m);
+                           }};
+  }
+};
+
+LoopConfig config(double duration_s) {
+  LoopConfig c;
+  c.rate_hz = 1000;
+  c.duration_s = duration_s;
+  c.budget_ms = 1.0;
+  c.coupling = make_coupling(1e-3, 0.05, 2e-6, 800, 0.05, 1.0);
+  c.geometry_gain = 0;
+  c.modes.levels = {4096, 8192, 16384};
+  c.modes.up_after_frames = 500;
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("haptic loop: a cheap evaluator keeps the rate, every tick runs, no misses") {
+  ManualClock clock;
+  FixedDevice device;
+  CostedEvaluator engine{&clock};
+  const LoopReport r = run_haptic_loop(device, engine.evaluator(), config(2.0), clock.clock(), BodyState{});
+  CHECK(r.ticks == 2000);
+  CHECK(r.frames == 2000);
+  CHECK(r.misses == 0);
+  CHECK(r.skipped_ticks == 0);
+  CHECK(device.sent == 2000);
+  CHECK(r.mode_changes.empty());
+  CHECK(engine.set_calls == std::vector<std::size_t>{16384});  // starts at the tuned m'
+  CHECK(r.measured_rate_hz == doctest::Approx(1000).epsilon(1e-3));
+  // Frame times: 16.384 x 0.02 ms per frame, to round-off.
+  for (double ms : r.frame_ms) CHECK(ms == doctest::Approx(0.32768).epsilon(1e-6));
+  REQUIRE(r.log.size() == 2000);
+  CHECK(r.log[1234].time_s == doctest::Approx(1.234));
+}
+
+TEST_CASE("haptic loop: an overrun is a miss, holds the last wrench and is not caught up with a burst") {
+  ManualClock clock;
+  FixedDevice device;
+  CostedEvaluator engine{&clock};
+  engine.extra[100] = 2.5;  // frame 100 takes ~2.8 ms: ends after ticks 101 and 102
+  const LoopReport r = run_haptic_loop(device, engine.evaluator(), config(1.0), clock.clock(), BodyState{});
+  CHECK(r.misses == 1);
+  CHECK(r.skipped_ticks == 2);
+  CHECK(r.frames == 998);
+  CHECK(r.ticks == 1000);
+  // The frame after the miss runs at tick 103 (the first tick still ahead), not at once.
+  CHECK(r.log[100].missed);
+  CHECK(r.log[101].time_s == doctest::Approx(0.103));
+  CHECK(r.log[101].frame_ms == doctest::Approx(0.32768).epsilon(1e-6));
+  CHECK(r.mode_changes.empty());  // one miss is not a repeat
+}
+
+TEST_CASE("haptic loop: repeated misses step m' down at once; headroom steps it back up, one level at a time") {
+  ManualClock clock;
+  FixedDevice device;
+  CostedEvaluator engine{&clock};
+  engine.extra[200] = 1.0;
+  engine.extra[240] = 1.0;  // second miss within 100 frames
+  const LoopReport r = run_haptic_loop(device, engine.evaluator(), config(3.0), clock.clock(), BodyState{});
+  CHECK(r.misses == 2);
+  REQUIRE(r.mode_changes.size() >= 2);
+  CHECK(r.mode_changes[0].from == 16384);
+  CHECK(r.mode_changes[0].to == 8192);
+  CHECK(r.mode_changes[0].frame == 240);  // right after the second miss
+  CHECK(r.mode_changes[0].reason.find("misses") != std::string::npos);
+  // 500 clean frames later, p99 0.164 ms x 2 fits 0.6 ms: back to 16384.
+  CHECK(r.mode_changes[1].from == 8192);
+  CHECK(r.mode_changes[1].to == 16384);
+  CHECK(r.mode_changes[1].frame >= 240 + 500);
+  CHECK(r.mode_changes[1].reason.find("headroom") != std::string::npos);
+  CHECK(r.mode_changes.size() == 2);  // never above the tuned m'
+  CHECK(r.final_modes == 16384);
+  CHECK(engine.set_calls == std::vector<std::size_t>{16384, 8192, 16384});
+}
+
+TEST_CASE("haptic loop: without headroom m' stays down") {
+  ManualClock clock;
+  FixedDevice device;
+  CostedEvaluator engine{&clock};
+  engine.base_ms_per_1k = 0.05;  // 0.41 ms at 8192: x2 = 0.82 ms > 0.6 ms of the budget
+  engine.extra[10] = 1.0;
+  engine.extra[20] = 1.0;
+  const LoopReport r = run_haptic_loop(device, engine.evaluator(), config(2.0), clock.clock(), BodyState{});
+  REQUIRE(r.mode_changes.size() == 1);
+  CHECK(r.mode_changes[0].to == 8192);
+  CHECK(r.final_modes == 8192);
+}
+
+TEST_CASE("haptic loop: invalid configurations are refused with a reason") {
+  ManualClock clock;
+  FixedDevice device;
+  CostedEvaluator engine{&clock};
+  LoopConfig c = config(1.0);
+  c.modes.levels.clear();
+  CHECK_THROWS_WITH_AS(run_haptic_loop(device, engine.evaluator(), c, clock.clock(), BodyState{}),
+                       doctest::Contains("ladder"), Error);
+  c = config(1.0);
+  c.rate_hz = NAN;
+  CHECK_THROWS_AS(run_haptic_loop(device, engine.evaluator(), c, clock.clock(), BodyState{}), Error);
+  c = config(0.0);
+  CHECK_THROWS_WITH_AS(run_haptic_loop(device, engine.evaluator(), c, clock.clock(), BodyState{}),
+                       doctest::Contains("never end"), Error);
+}
+
+TEST_CASE("haptic loop: on the real clock, on its own thread, a cheap evaluator keeps 1 kHz") {
+  FixedDevice device;
+  std::size_t calls = 0;
+  WrenchEvaluator cheap{[&calls](const Pose&) {
+                          ++calls;
+                          return QueryResult{};
+                        },
+                        nullptr};
+  HapticLoopThread loop(device, cheap, config(0.5), BodyState{});
+  const LoopReport r = loop.join();
+  // Absolute deadlines: exactly 500 ticks in 0.5 s. A loaded CI machine may delay a few
+  // wake-ups past a deadline; those are misses, and they stay rare.
+  CHECK(r.ticks == 500);
+  CHECK(r.frames + r.skipped_ticks == 500);
+  CHECK(r.misses <= 25);
+  CHECK(r.elapsed_s >= 0.499);
+  CHECK(r.elapsed_s < 0.6);
+  CHECK(calls == r.frames);
+}
+
+TEST_CASE("haptic loop: a scripted device pulls the part along its trajectory and holds it at the end") {
+  Trajectory script;
+  Keyframe a, b;
+  a.time_s = 0;
+  a.pose.translation = Vector3d(0, 0, 10);
+  b.time_s = 0.5;
+  b.pose.translation = Vector3d(2, 0, -5);
+  b.pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Vector3d::UnitX()));
+  script.keyframes = {a, b};
+  ScriptedDevice device(script, DeviceLimits{5.0, 0.5});
+  ManualClock clock;
+  CostedEvaluator engine{&clock};
+  BodyState part;
+  part.pose = a.pose;
+  const LoopReport r = run_haptic_loop(device, engine.evaluator(), config(1.5), clock.clock(), part);
+  CHECK((r.final_part.pose.translation - b.pose.translation).norm() < 1e-3);
+  CHECK(rotation_between(r.final_part.pose.rotation, b.pose.rotation).norm() < 1e-3);
+  // The device felt the coupling while the part lagged, never more than its limits.
+  double peak = 0;
+  for (const FrameRecord& f : r.log) {
+    CHECK(f.sent.force.norm() <= 5.0 + 1e-12);
+    CHECK(f.sent.torque.norm() <= 0.5 + 1e-12);
+    peak = std::max(peak, f.sent.force.norm());
+  }
+  CHECK(peak > 0.1);
+  CHECK(device.sent_count() == r.frames);
+}
