@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/parse_options.h"
 #include "engine/assembly_pair.h"
 #include "engine/error.h"
 #include "scheduler/progress.h"
@@ -81,10 +82,7 @@ void run_query(const QueryOptions& opt) {
     }
   }
   if (poses.empty()) poses.push_back(scene.part2.pose);  // the scene's initial pose
-  Interpolation interpolation;
-  if (opt.interpolation == "trilinear") interpolation = Interpolation::trilinear;
-  else if (opt.interpolation == "tricubic") interpolation = Interpolation::tricubic;
-  else throw Error("--interpolation: expected trilinear or tricubic (got '" + opt.interpolation + "')");
+  const Interpolation interpolation = parse_interpolation(opt.interpolation);
 
   const FftLibrary fft;
   const ComputeContext ctx = make_compute_context(select_device(device_spec_from(opt.device)));

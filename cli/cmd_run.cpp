@@ -1,10 +1,11 @@
-// `snapfit run SCENE`: the main job. Today it loads the scene, builds and validates
-// both parts in parallel, opens the OpenCL device, builds (or loads from the program
-// cache) and self-checks the kernels, prints the compute plan, computes (or loads from
-// the field cache) both parts' descriptor fields, and writes a report folder with the
-// part meshes, a PNG slice of each part's affinity and a JSON summary, then computes
-// (or loads) the spectra and evaluates energy, force and torque along the scene's
-// scripted trajectory (CSV + charts). The haptic loop (issue 5) adds its step here.
+// `snapfit run SCENE`: the main job. Loads the scene, builds and validates both parts in
+// parallel, opens the OpenCL device and self-checks it, prints the compute plan,
+// computes (or loads from the caches) both parts' descriptor fields and their spectra,
+// tunes m' for the frame budget on this device (or loads the tuning file), plays the
+// scene's scripted trajectory through the 1 kHz haptic loop in real time, and writes
+// a report folder: part meshes, affinity slices, the tuning sweep, the loop's per-frame
+// log and charts, and summary.json with frame-time statistics, m' changes and the
+// final pose error against the assembled pose.
 #include <algorithm>
 #include <chrono>
 #include <optional>
@@ -15,6 +16,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/haptic_report.h"
+#include "scheduler/assembly_session.h"
+#include "scheduler/engine_tuning.h"
+#include "scheduler/quantile.h"
 #include "cli/scene_summary.h"
 #include "engine/device_check.h"
 #include "engine/error.h"
@@ -36,8 +41,16 @@ struct RunOptions {
   std::string scene;
   std::string device;
   std::string out;
-  std::size_t modes = 32768;
+  std::optional<std::size_t> modes;  // fixed m' instead of the tuned one
+  double margin = 0.25;
+  bool retune = false;
 };
+
+// Poses the tuner times queries at: the scene's trajectory at 100 Hz, else part 2's pose.
+std::vector<Pose> tuning_poses(const Scene& scene) {
+  if (scene.trajectory.keyframes.empty()) return {scene.part2.pose};
+  return sample_trajectory(scene.trajectory, 100.0);
+}
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -46,15 +59,15 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 void run_main_job(const RunOptions& opt) {
   namespace fs = std::filesystem;
   const auto start = std::chrono::steady_clock::now();
-  std::cout << "[1/6] reading scene " << opt.scene << "\n";
+  std::cout << "[1/7] reading scene " << opt.scene << "\n";
   const Scene scene = load_scene(opt.scene);
 
-  std::cout << "[2/6] building and validating both parts (in parallel)\n";
+  std::cout << "[2/7] building and validating both parts (in parallel)\n";
   const PreparedParts parts = prepare_parts(scene);
   const ComputePlan plan = plan_computation(scene);
   print_scene_summary(std::cout, scene, parts, plan);
 
-  std::cout << "[3/6] opening the OpenCL device and checking it\n";
+  std::cout << "[3/7] opening the OpenCL device and checking it\n";
   const Device device = select_device(device_spec_from(opt.device));
   std::cout << "    device " << describe_device(device.info) << "\n";
   const ComputeContext ctx = make_compute_context(device);
@@ -65,7 +78,7 @@ void run_main_job(const RunOptions& opt) {
   if (!check.passed) throw Error("device " + device.info.name + " failed its self-check; choose another with --device");
 
   const ScenePartGrids grids = scene_part_grids(scene.grid, parts.part1.mesh, parts.part2.mesh);
-  std::cout << "[4/6] descriptor fields of both parts at spacing " << grids.spacing << " " << scene.units
+  std::cout << "[4/7] descriptor fields of both parts at spacing " << grids.spacing << " " << scene.units
             << " (from the field cache when present)\n";
   DescriptorOptions options;
   options.progress = pass_progress_bars();
@@ -80,9 +93,9 @@ void run_main_job(const RunOptions& opt) {
     print_fields_summary(std::cout, fields.back());
   }
 
-  // Spectra (cached) and the scripted trajectory through the per-pose engine.
+  // Spectra (cached) and the query engine.
   const bool torque = plan.torque_fields;
-  std::cout << "[5/6] spectra and energy, force" << (torque ? ", torque" : "") << " along the scripted trajectory\n";
+  std::cout << "[5/7] spectra (from the spectra cache when present) and the query engine\n";
   const FftLibrary fft;
   const SpectrumOptions spectrum_options;
   const std::string spectra_key = spectra_cache_key(fields[0].fields, fields[1].fields, torque, spectrum_options);
@@ -91,21 +104,60 @@ void run_main_job(const RunOptions& opt) {
     spectra = compute_pair_spectra(fft, ctx, fields[0].fields, fields[1].fields, torque, spectrum_options);
     save_cached_spectra(spectra_key, *spectra, note);
   }
-  std::cout << "    FFT grid " << spectra->dims[0] << " x " << spectra->dims[1] << " x " << spectra->dims[2] << "\n";
-  PoseQueryEngine engine(ctx, *spectra, query_variant_for(scene, Interpolation::tricubic));
-  engine.set_modes(opt.modes);
-  std::vector<Pose> trajectory;
-  std::vector<QueryResult> along;
-  const double sample_hz = 100.0;
+  const QueryVariant variant = query_variant_for(scene, Interpolation::tricubic);
+  PoseQueryEngine engine(ctx, *spectra, variant);
+  std::cout << "    FFT grid " << spectra->dims[0] << " x " << spectra->dims[1] << " x " << spectra->dims[2] << ", "
+            << engine.max_modes() << " modes, kernel variant: " << variant_name(variant) << "\n";
+
+  // m' for this device: the tuning file, else a measured sweep (scheduler/auto_tune.h).
+  std::cout << "[6/7] m' for a " << scene.frame_budget_ms << " ms frame on this device\n";
+  const TuningKey key = tuning_key_for(device.info, variant, *spectra, scene.frame_budget_ms, opt.margin);
+  TuningResult tuning;
+  if (opt.modes) {
+    tuning = pick_modes({TimingPoint{std::min(*opt.modes, engine.max_modes()), 0, 0, 0, 0}}, scene.frame_budget_ms,
+                        opt.margin);
+    std::cout << "    m' = " << tuning.chosen_modes << " (--modes; not tuned)\n";
+  } else {
+    const std::vector<Pose> poses = tuning_poses(scene);
+    TuneOptions tune_options;
+    std::unique_ptr<Progress> bar;
+    tune_options.progress = [&bar](std::uint64_t done, std::uint64_t total) {
+      if (!bar) bar = std::make_unique<Progress>("    tuning m'", total);
+      bar->advance(done - bar->done());
+    };
+    const EngineTuning tuned = tune_engine(engine, key, poses, tune_options, opt.retune, note);
+    if (bar) bar->finish();
+    std::cout << "    " << (tuned.from_file ? "from the tuning file " : "measured and saved to ") << tuned.path << "\n"
+              << tuning_table(tuned.result);
+    tuning = tuned.result;
+  }
+
+  // The scripted assembly through the haptic loop, in real time.
+  nlohmann::json loop_summary = nullptr;
+  std::optional<SessionResult> session;
   if (!scene.trajectory.keyframes.empty()) {
-    trajectory = sample_trajectory(scene.trajectory, sample_hz);
-    along = engine.query_batch(trajectory);
-    std::cout << "    " << trajectory.size() << " poses at " << sample_hz << " Hz, m' = " << engine.modes() << " modes, "
-              << along.front().seconds * 1e3 << " ms per pose in one batch\n";
+    const Trajectory& t = scene.trajectory;
+    const double seconds = t.keyframes.back().time_s - t.keyframes.front().time_s + scene.haptics.settle_s;
+    std::cout << "[7/7] haptic loop at " << scene.loop_rate_hz << " Hz playing the scripted trajectory ("
+              << seconds << " s of real time, m' = " << tuning.chosen_modes << ")\n";
+    session = run_scripted_assembly(scene, parts.part2.mesh, spectra->spacing, engine, tuning);
+    const LoopReport& loop = session->loop;
+    std::cout << "    " << loop.frames << " frames, measured " << loop.measured_rate_hz << " Hz; frame time p50 "
+              << quantile(loop.frame_ms, 0.5) << " ms, p99 " << quantile(loop.frame_ms, 0.99) << " ms, max "
+              << quantile(loop.frame_ms, 1.0) << " ms; " << loop.misses << " misses (" << 100 * loop.miss_rate()
+              << " %), " << loop.mode_changes.size() << " m' changes\n";
+    for (const ModeChange& c : loop.mode_changes)
+      std::cout << "      t = " << c.time_s << " s: m' " << c.from << " -> " << c.to << " (" << c.reason << ")\n";
+    std::cout << "    final pose error " << session->final_error.position << " " << scene.units << ", "
+              << session->final_error.angle_deg << " deg (tolerance " << session->position_tolerance << " "
+              << scene.units << ", " << session->angle_tolerance_deg << " deg): "
+              << (session->assembled ? "ASSEMBLED" : "NOT assembled") << "\n";
+  } else {
+    std::cout << "[7/7] the scene has no trajectory: no scripted assembly to run\n";
   }
 
   const fs::path out = opt.out.empty() ? fs::path("results") / fs::path(opt.scene).stem() : fs::path(opt.out);
-  std::cout << "[6/6] writing the report to " << out.string() << "\n";
+  std::cout << "writing the report to " << out.string() << "\n";
   fs::create_directories(out);
   write_stl(parts.part1.mesh, (out / "part1.stl").string());
   write_stl(parts.part2.mesh, (out / "part2.stl").string());
@@ -129,56 +181,10 @@ void run_main_job(const RunOptions& opt) {
                              {"max_density_bound", max_bound},
                              {"affinity_png", png}});
   }
-  // Energy, force and torque along the trajectory: CSV and charts.
-  nlohmann::json trajectory_summary = nullptr;
-  if (!trajectory.empty()) {
-    std::string csv = "time_s,x,y,z,qw,qx,qy,qz,energy,fx,fy,fz,tx,ty,tz,flags\n";
-    Series energy{"energy", {}, {}, Series::Style::line}, force{"|force|", {}, {}, Series::Style::line},
-        torque_norm{"|torque|", {}, {}, Series::Style::line};
-    std::size_t best = 0;
-    for (std::size_t i = 0; i < trajectory.size(); ++i) {
-      const double t = scene.trajectory.keyframes.front().time_s + i / sample_hz;
-      const Pose& p = trajectory[i];
-      const QueryResult& r = along[i];
-      std::ostringstream row;
-      row.precision(9);
-      row << t << "," << p.translation.x() << "," << p.translation.y() << "," << p.translation.z() << ","
-          << p.rotation.w() << "," << p.rotation.x() << "," << p.rotation.y() << "," << p.rotation.z() << "," << r.energy
-          << "," << r.force.x() << "," << r.force.y() << "," << r.force.z() << "," << r.torque.x() << ","
-          << r.torque.y() << "," << r.torque.z() << "," << r.flags << "\n";
-      csv += row.str();
-      if (r.flags) continue;
-      energy.x.push_back(t);
-      energy.y.push_back(r.energy);
-      force.x.push_back(t);
-      force.y.push_back(r.force.norm());
-      torque_norm.x.push_back(t);
-      torque_norm.y.push_back(r.torque.norm());
-      if (r.energy < along[best].energy || along[best].flags) best = i;
-    }
-    write_file_atomically((out / "trajectory.csv").string(), [&](std::FILE* f) {
-      return std::fwrite(csv.data(), 1, csv.size(), f) == csv.size() ? std::string() : std::string("short write");
-    });
-    Chart e_chart{"Geometric energy along the scripted trajectory (" + scene.name + ")", "time (s)", "energy", false,
-                  false, {energy}, {}, {}};
-    write_chart_png((out / "energy.png").string(), e_chart);
-    Chart ft_chart{"Force and torque magnitude along the trajectory", "time (s)", "magnitude", false, false,
-                   {force}, {}, {}};
-    if (torque) ft_chart.series.push_back(torque_norm);
-    write_chart_png((out / "force_torque.png").string(), ft_chart);
-    const QueryResult& last = along.back();
-    trajectory_summary = {{"poses", trajectory.size()},
-                          {"sample_hz", sample_hz},
-                          {"modes", engine.modes()},
-                          {"ms_per_pose_batched", along.front().seconds * 1e3},
-                          {"lowest_energy", along[best].energy},
-                          {"lowest_energy_time_s", scene.trajectory.keyframes.front().time_s + best / sample_hz},
-                          {"final_energy", last.energy},
-                          {"final_force", {last.force.x(), last.force.y(), last.force.z()}},
-                          {"final_torque", {last.torque.x(), last.torque.y(), last.torque.z()}}};
-    std::cout << "    lowest energy " << along[best].energy << " at t = " << best / sample_hz << " s; at the end E = "
-              << last.energy << ", |F| = " << last.force.norm() << ", |T| = " << last.torque.norm() << "\n";
-  }
+  nlohmann::json tuning_summary = nlohmann::json::parse(tuning_to_json(tuning));
+  tuning_summary["key"] = key.text();
+  if (session) loop_summary = write_haptic_report(out, scene, *session, tuning);
+  else write_chart_png((out / "tuning.png").string(), tuning_chart(tuning, device.info.name));
 
   nlohmann::json summary = {
       {"scene", scene.name},
@@ -192,13 +198,14 @@ void run_main_job(const RunOptions& opt) {
       {"plan", plan.lines},
       {"spacing", grids.spacing},
       {"fields", field_summary},
-      {"trajectory", trajectory_summary},
+      {"tuning", tuning_summary},
+      {"haptic_loop", loop_summary},
       {"seconds", seconds_since(start)},
   };
   std::ofstream(out / "summary.json") << summary.dump(2) << "\n";
   std::cout << "done in " << seconds_since(start) << " s: " << (out / "summary.json").string()
-            << ", part1.stl, part2.stl, part1_affinity_y0.png, part2_affinity_y0.png"
-            << (trajectory.empty() ? "" : ", trajectory.csv, energy.png, force_torque.png") << "\n";
+            << ", part1.stl, part2.stl, part1_affinity_y0.png, part2_affinity_y0.png, tuning.png"
+            << (session ? ", loop.csv, frame_times.png, energy.png, force_torque.png, pose_error.png" : "") << "\n";
 }
 
 }  // namespace
@@ -209,7 +216,10 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("scene", opt->scene, "Scene file (JSON, see scenes/README.md)")->required();
   cmd->add_option("--device", opt->device, "OpenCL device: index, platform:device, cpu|gpu|accelerator, or a name substring (default: $SNAPFIT_DEVICE, else PoCL's CPU device)");
   cmd->add_option("--out", opt->out, "Report folder (default: results/<scene name>)");
-  cmd->add_option("--modes", opt->modes, "m': Fourier modes per query along the trajectory");
+  cmd->add_option("--modes", opt->modes, "m': a fixed number of Fourier modes instead of the tuned one");
+  cmd->add_option("--margin", opt->margin, "Tuning safety margin: p99 at most (1 - margin) of the frame budget")
+      ->check(CLI::Range(0.0, 0.95));
+  cmd->add_flag("--retune", opt->retune, "Measure m' again even when the tuning file matches");
   cmd->callback([opt] { run_main_job(*opt); });
 }
 

@@ -11,5 +11,6 @@ void add_run_command(CLI::App& app);
 void add_fields_command(CLI::App& app);
 void add_query_command(CLI::App& app);
 void add_map_command(CLI::App& app);
+void add_tune_command(CLI::App& app);
 
 }  // namespace snapfit::cli

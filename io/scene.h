@@ -81,9 +81,9 @@ struct HapticsParams {
   double max_force_n = 10;                  // device limits
   double max_torque_nm = 1;
   std::optional<double> geometry_gain;      // N per engine force unit; default from geometry_strength
-  double geometry_strength = 2;             // default gain: the well's force ~ strength * k_T * spacing
+  double geometry_strength = 2;             // default gain: see scheduler/haptic_setup.h geometry_gain_for
   double settle_s = 1.0;                    // loop time after the last keyframe
-  std::optional<double> success_position;   // scene units; default half the grid spacing
+  std::optional<double> success_position;   // scene units; default one grid spacing (the descriptors' resolution)
   double success_angle_deg = 1.0;
 };
 

@@ -6,6 +6,7 @@
 #include <deque>
 #include <exception>
 #include <future>
+#include <memory>
 #include <thread>
 
 #include "engine/error.h"
@@ -26,6 +27,11 @@ LoopClock steady_loop_clock() {
     while (Clock::now() < deadline) std::this_thread::yield();
   };
   return c;
+}
+
+LoopClock simulated_loop_clock() {
+  auto t = std::make_shared<double>(0.0);
+  return LoopClock{[t] { return *t; }, [t](double until) { *t = std::max(*t, until); }};
 }
 
 namespace {

@@ -35,6 +35,10 @@ struct LoopClock {
 // std::chrono::steady_clock; waits sleep until ~0.2 ms before the deadline, then spin.
 LoopClock steady_loop_clock();
 
+// Simulated time: it moves only when the loop waits, so every frame takes no time and
+// the run is deterministic (offline runs and tests of the physics; no timing meaning).
+LoopClock simulated_loop_clock();
+
 // The engine as the loop sees it: a query at a pose, and a way to change m'.
 struct WrenchEvaluator {
   std::function<QueryResult(const Pose&)> evaluate;

@@ -20,18 +20,27 @@ DeviceLimits device_limits_for(const Scene& scene) {
   return DeviceLimits{scene.haptics.max_force_n, scene.haptics.max_torque_nm};
 }
 
-double geometry_gain_for(const Scene& scene, double spacing, double reference_energy) {
+double geometry_gain_for(const Scene& scene, double spacing, double force_scale) {
   const HapticsParams& h = scene.haptics;
   if (h.geometry_gain) return *h.geometry_gain;
-  if (!(std::isfinite(reference_energy) && reference_energy != 0))
-    throw Error("haptics: the energy at the reference pose is " + std::to_string(reference_energy) +
+  if (!(std::isfinite(force_scale) && force_scale > 0))
+    throw Error("haptics: the geometric force near the reference pose is " + std::to_string(force_scale) +
                 ", so no geometric gain can be derived from it; set haptics.geometry_gain in the scene");
-  const double u = metres_per_unit(scene.units);
-  const double force_scale = std::abs(reference_energy) / spacing;  // engine force units
-  return h.geometry_strength * h.stiffness_n_per_m * spacing * u / force_scale;
+  return h.geometry_strength * h.stiffness_n_per_m * spacing * metres_per_unit(scene.units) / force_scale;
 }
 
 Pose gain_reference_pose(const Scene& scene) { return scene.assembled_pose.value_or(scene.part2.pose); }
+
+std::vector<Pose> gain_probe_poses(const Scene& scene, double spacing) {
+  std::vector<Pose> poses;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double sign : {-1.0, 1.0}) {
+      Pose p = gain_reference_pose(scene);
+      p.translation[axis] += sign * 2.0 * spacing;
+      poses.push_back(p);
+    }
+  return poses;
+}
 
 PoseError pose_error(const Pose& actual, const Pose& target) {
   PoseError e;

@@ -2,6 +2,8 @@
 // From a scene's `haptics` section (io/scene.h HapticsParams) to what the haptic loop
 // needs: the virtual coupling, the device limits, the geometric gain, and the test of
 // whether a run ended assembled.
+#include <vector>
+
 #include "engine/pose.h"
 #include "io/mesh.h"
 #include "io/scene.h"
@@ -17,14 +19,20 @@ CouplingParams coupling_for(const Scene& scene, const Mesh& part2_mesh);
 
 DeviceLimits device_limits_for(const Scene& scene);
 
-// N per engine force unit. The scene's geometry_gain when set; otherwise chosen so the
-// geometric force scale |E_ref| / h of the energy well at the reference pose maps to
-// strength * k_T * h, i.e. the well pulls about as hard as the coupling stretched by
-// `strength` grid spacings. Throws snapfit::Error when E_ref is 0 or not finite.
-double geometry_gain_for(const Scene& scene, double spacing, double reference_energy);
+// N per engine force unit. The scene's geometry_gain when set; otherwise chosen so that
+// `force_scale` (engine units) maps to strength * k_T * h: with the force scale measured
+// 2 grid spacings off the reference pose (gain_probe_poses), the geometric stiffness of
+// the fit is then about strength / 2 times the coupling's, so the fit pulls the part
+// home and resists collisions about as firmly as the coupling holds it, at any scale
+// or m'. Throws snapfit::Error when the force scale is 0 or not finite.
+double geometry_gain_for(const Scene& scene, double spacing, double force_scale);
 
 // The pose the gain is calibrated at: the assembled pose, else part 2's initial pose.
 Pose gain_reference_pose(const Scene& scene);
+
+// The reference pose moved by +-2 h along each axis of part 1's frame (6 poses); the
+// force scale is the largest engine force magnitude among them.
+std::vector<Pose> gain_probe_poses(const Scene& scene, double spacing);
 
 struct PoseError {
   double position = 0;   // scene units

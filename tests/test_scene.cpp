@@ -120,6 +120,18 @@ void check_same_scene(const Scene& a, const Scene& b) {
     CHECK(a.trajectory.keyframes[i].time_s == b.trajectory.keyframes[i].time_s);
     CHECK(same_pose(a.trajectory.keyframes[i].pose, b.trajectory.keyframes[i].pose));
   }
+  const HapticsParams &ha = a.haptics, &hb = b.haptics;
+  CHECK(ha.mass_kg == hb.mass_kg);
+  CHECK(ha.stiffness_n_per_m == hb.stiffness_n_per_m);
+  CHECK(ha.rot_stiffness_nm_per_rad == hb.rot_stiffness_nm_per_rad);
+  CHECK(ha.damping_ratio == hb.damping_ratio);
+  CHECK(ha.max_force_n == hb.max_force_n);
+  CHECK(ha.max_torque_nm == hb.max_torque_nm);
+  CHECK(ha.geometry_gain == hb.geometry_gain);
+  CHECK(ha.geometry_strength == hb.geometry_strength);
+  CHECK(ha.settle_s == hb.settle_s);
+  CHECK(ha.success_position == hb.success_position);
+  CHECK(ha.success_angle_deg == hb.success_angle_deg);
 }
 
 std::vector<fs::path> shipped_scenes() {
@@ -131,6 +143,26 @@ std::vector<fs::path> shipped_scenes() {
 }
 
 }  // namespace
+
+TEST_CASE("scene: haptics fields round-trip and unknown ones are refused") {
+  json j = base_scene();
+  j["haptics"] = {{"mass_kg", 0.2}, {"stiffness_n_per_m", 1500}, {"rot_stiffness_nm_per_rad", 0.3},
+                  {"damping_ratio", 0.7}, {"max_force_n", 3.3}, {"max_torque_nm", 0}, {"geometry_gain", 2e-4},
+                  {"settle_s", 0.5}, {"success_position", 0.25}, {"success_angle_deg", 2}};
+  const Scene s = parse_scene(j.dump(), "test.json");
+  CHECK(s.haptics.mass_kg == 0.2);
+  CHECK(s.haptics.rot_stiffness_nm_per_rad == 0.3);
+  CHECK(s.haptics.max_torque_nm == 0);
+  CHECK(s.haptics.geometry_gain == 2e-4);
+  CHECK(s.haptics.success_position == 0.25);
+  check_same_scene(s, parse_scene(scene_to_json(s), "copy.json"));
+  j["haptics"]["stifness_n_per_m"] = 1;
+  CHECK_ERROR(j, "test.json: haptics.stifness_n_per_m: unknown field");
+  const Scene d = parse_scene(base_scene().dump(), "test.json");
+  CHECK(d.haptics.mass_kg == 0.05);
+  CHECK(!d.haptics.geometry_gain);
+  CHECK(!d.haptics.success_position);
+}
 
 TEST_CASE("scene: every shipped scene parses and round-trips") {
   const auto files = shipped_scenes();
@@ -312,6 +344,13 @@ TEST_CASE("scene: out-of-range values") {
       {"/frame/budget_ms", 2, "frame.budget_ms: must not exceed the loop period"},
       {"/grid/spacing", 0, "grid.spacing: must be > 0"},
       {"/grid/padding", -1, "grid.padding: must be >= 0 (got -1)"},
+      {"/haptics/mass_kg", 0, "haptics.mass_kg: must be > 0 (got 0)"},
+      {"/haptics/stiffness_n_per_m", -800, "haptics.stiffness_n_per_m: must be > 0"},
+      {"/haptics/damping_ratio", -1, "haptics.damping_ratio: must be >= 0"},
+      {"/haptics/geometry_gain", -1e-4, "haptics.geometry_gain: must be >= 0"},
+      {"/haptics/max_force_n", 0, "haptics.max_force_n: must be > 0"},
+      {"/haptics/success_angle_deg", 0, "haptics.success_angle_deg: must be > 0"},
+      {"/haptics/settle_s", "1", "haptics.settle_s: expected a number"},
   };
   for (const Case& c : cases) {
     json j = base_scene();

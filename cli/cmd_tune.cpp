@@ -1,0 +1,84 @@
+// `snapfit tune SCENE [--budget MS]`: measures per-query time against m' on the chosen
+// device for the scene's query variant (scheduler/auto_tune.h), prints the table, saves
+// the tuning file that `snapfit run` reuses, and writes a chart of the sweep.
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "cli/commands.h"
+#include "cli/haptic_report.h"
+#include "cli/parse_options.h"
+#include "engine/assembly_pair.h"
+#include "engine/device.h"
+#include "engine/error.h"
+#include "scheduler/engine_tuning.h"
+#include "scheduler/progress.h"
+#include "scheduler/trajectory.h"
+
+namespace snapfit::cli {
+namespace {
+
+struct TuneCommandOptions {
+  std::string scene;
+  std::string device;
+  std::optional<double> budget_ms;
+  double margin = 0.25;
+  std::size_t repetitions = 400;
+  std::string interpolation = "tricubic";
+  std::string png;
+};
+
+void run_tune(const TuneCommandOptions& opt) {
+  const Scene scene = load_scene(opt.scene);
+  const double budget = opt.budget_ms.value_or(scene.frame_budget_ms);
+  if (!(budget > 0)) throw Error("--budget: must be > 0 ms");
+  const Device device = select_device(device_spec_from(opt.device));
+  std::cout << "device " << describe_device(device.info) << "\n";
+  const FftLibrary fft;
+  const ComputeContext ctx = make_compute_context(device);
+  PairOptions pair_options;
+  pair_options.descriptors.progress = pass_progress_bars();
+  const AssemblyPair pair = build_assembly_pair(scene, ctx, fft, pair_options);
+  const QueryVariant variant = query_variant_for(scene, parse_interpolation(opt.interpolation));
+  PoseQueryEngine engine(ctx, pair.spectra, variant);
+  std::cout << "variant " << variant_name(variant) << ", " << engine.max_modes() << " modes available, budget "
+            << budget << " ms, margin " << opt.margin * 100 << " %\n";
+
+  const std::vector<Pose> poses = scene.trajectory.keyframes.empty()
+                                      ? std::vector<Pose>{scene.part2.pose}
+                                      : sample_trajectory(scene.trajectory, 100.0);
+  TuneOptions tune;
+  tune.repetitions = opt.repetitions;
+  std::unique_ptr<Progress> bar;
+  tune.progress = [&bar](std::uint64_t done, std::uint64_t total) {
+    if (!bar) bar = std::make_unique<Progress>("tuning m'", total);
+    bar->advance(done - bar->done());
+  };
+  const TuningKey key = tuning_key_for(device.info, variant, pair.spectra, budget, opt.margin);
+  const EngineTuning tuned = tune_engine(engine, key, poses, tune, true,
+                                         [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; });
+  if (bar) bar->finish();
+  std::cout << tuning_table(tuned.result) << "saved to " << tuned.path << "\n";
+  if (!opt.png.empty()) {
+    write_chart_png(opt.png, tuning_chart(tuned.result, device.info.name));
+    std::cout << "chart " << opt.png << "\n";
+  }
+}
+
+}  // namespace
+
+void add_tune_command(CLI::App& app) {
+  auto opt = std::make_shared<TuneCommandOptions>();
+  CLI::App* cmd = app.add_subcommand("tune", "Measure query time against m' and pick m' for the frame budget (saved per device)");
+  cmd->add_option("scene", opt->scene, "Scene file (JSON)")->required();
+  cmd->add_option("--budget", opt->budget_ms, "Frame budget in ms (default: the scene's frame.budget_ms)");
+  cmd->add_option("--margin", opt->margin, "Safety margin: p99 at most (1 - margin) of the budget")
+      ->check(CLI::Range(0.0, 0.95));
+  cmd->add_option("--repetitions", opt->repetitions, "Timed queries per m' level")->check(CLI::PositiveNumber);
+  cmd->add_option("--interpolation", opt->interpolation, "trilinear or tricubic (what `snapfit run` uses: tricubic)");
+  cmd->add_option("--device", opt->device, "OpenCL device (see `snapfit devices`)");
+  cmd->add_option("--png", opt->png, "Write a chart of the sweep");
+  cmd->callback([opt] { run_tune(*opt); });
+}
+
+}  // namespace snapfit::cli

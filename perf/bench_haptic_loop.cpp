@@ -1,0 +1,114 @@
+// The haptic loop benchmark (issue 5): the auto-tuned m' held in the 1 kHz loop for a
+// long run on this machine. The scene's scripted trajectory is played back and forth
+// by a ScriptedDevice for --seconds (default 60) of real time through the same code as
+// `snapfit run` (scheduler/assembly_session.h). Reported: measured rate, frame-time
+// p50/p99/max and histogram, misses and miss rate (target <= 0.1 %), every m' change,
+// and the tuned m' next to seed 000's 4096 on a Tesla K20c (published, not measured).
+//
+//   ./build/perf/bench_haptic_loop [--scene scenes/default.json] [--seconds 60]
+//                                  [--retune] [--quick] [--out results/bench_haptic_loop]
+// --quick: 3 s of loop (CI proves it runs; no timing is checked).
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "engine/assembly_pair.h"
+#include "engine/device.h"
+#include "io/plot.h"
+#include "perf/bench_common.h"
+#include "scheduler/assembly_session.h"
+#include "scheduler/engine_tuning.h"
+#include "scheduler/quantile.h"
+#include "scheduler/trajectory.h"
+
+using namespace snapfit;
+namespace fs = std::filesystem;
+
+int main(int argc, char** argv) try {
+  std::string scene_path = "scenes/default.json", out_dir = "results/bench_haptic_loop";
+  double seconds = 60;
+  bool retune = false, quick = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (bench::is_option(a, "--scene")) scene_path = bench::option_value(argc, argv, i, "--scene");
+    else if (bench::is_option(a, "--seconds")) seconds = std::stod(bench::option_value(argc, argv, i, "--seconds"));
+    else if (bench::is_option(a, "--out")) out_dir = bench::option_value(argc, argv, i, "--out");
+    else if (a == "--retune") retune = true;
+    else if (a == "--quick") quick = true;
+    else throw Error("unknown option " + a + " (see the comment at the top of perf/bench_haptic_loop.cpp)");
+  }
+  if (quick) seconds = 3;
+  if (!(seconds > 0)) throw Error("--seconds: must be > 0");
+  const std::string load_start = bench::read_loadavg();
+
+  const Scene scene = load_scene(scene_path);
+  const Device device = select_device(device_spec_from(""));
+  std::cout << "device " << describe_device(device.info) << "\n";
+  const FftLibrary fft;
+  const ComputeContext ctx = make_compute_context(device);
+  const AssemblyPair pair = build_assembly_pair(scene, ctx, fft);
+  const QueryVariant variant = query_variant_for(scene, Interpolation::tricubic);
+  PoseQueryEngine engine(ctx, pair.spectra, variant);
+  const double margin = 0.25;
+  const TuningKey key = tuning_key_for(device.info, variant, pair.spectra, scene.frame_budget_ms, margin);
+  const EngineTuning tuned = tune_engine(engine, key, sample_trajectory(scene.trajectory, 100.0), TuneOptions{},
+                                         retune, [](const std::string& m) { std::cerr << m << "\n"; });
+  std::cout << "tuned m' = " << tuned.result.chosen_modes << (tuned.from_file ? " (tuning file)" : " (measured)")
+            << ", model p99 " << tuned.result.model.predict_ms(tuned.result.chosen_modes) << " ms\n"
+            << "running the loop for " << seconds << " s at " << scene.loop_rate_hz << " Hz...\n";
+
+  SessionOptions session;
+  session.duration_s = seconds;
+  session.loop_back = true;
+  session.keep_log = false;
+  const SessionResult run = run_scripted_assembly(scene, pair.parts.part2.mesh, pair.spectra.spacing, engine,
+                                                  tuned.result, session);
+  const LoopReport& loop = run.loop;
+  const std::string load_end = bench::read_loadavg();
+
+  const double p50 = quantile(loop.frame_ms, 0.5), p99 = quantile(loop.frame_ms, 0.99),
+               max = quantile(loop.frame_ms, 1.0);
+  std::cout << "frames " << loop.frames << " in " << loop.elapsed_s << " s: " << loop.measured_rate_hz
+            << " Hz; frame ms p50 " << p50 << ", p99 " << p99 << ", max " << max << "; misses " << loop.misses
+            << " (" << 100 * loop.miss_rate() << " %, target <= 0.1 %), skipped ticks " << loop.skipped_ticks << "\n"
+            << "m' tuned " << tuned.result.chosen_modes << ", final " << loop.final_modes << ", "
+            << loop.mode_changes.size() << " changes; seed 000 (published, K20c, translation only): 4096\n"
+            << "load average: start " << load_start << ", end " << load_end << "\n";
+
+  fs::create_directories(out_dir);
+  nlohmann::json changes = nlohmann::json::array();
+  for (const ModeChange& c : loop.mode_changes)
+    changes.push_back({{"time_s", c.time_s}, {"from", c.from}, {"to", c.to}, {"reason", c.reason}});
+  const nlohmann::json report = {
+      {"command", bench::command_line(argc, argv)},
+      {"date", bench::now_iso()},
+      {"device", device.info.name},
+      {"driver", device.info.driver_version},
+      {"scene", scene_path},
+      {"variant", variant_name(variant)},
+      {"seconds", seconds},
+      {"rate_hz", loop.rate_hz},
+      {"measured_rate_hz", loop.measured_rate_hz},
+      {"frames", loop.frames},
+      {"misses", loop.misses},
+      {"miss_rate", loop.miss_rate()},
+      {"skipped_ticks", loop.skipped_ticks},
+      {"frame_ms", {{"p50", p50}, {"p99", p99}, {"max", max}}},
+      {"tuned_modes", tuned.result.chosen_modes},
+      {"tuning_from_file", tuned.from_file},
+      {"final_modes", loop.final_modes},
+      {"mode_changes", changes},
+      {"seed000_published_modes", 4096},
+      {"load_average", {{"start", load_start}, {"end", load_end}}}};
+  std::ofstream(fs::path(out_dir) / "haptic_loop.json") << report.dump(2) << "\n";
+  Chart hist = histogram_chart("Haptic loop frame time, " + std::to_string(loop.frames) + " frames, m' = " +
+                                   std::to_string(tuned.result.chosen_modes),
+                               "frame time (ms)", loop.frame_ms, 80, true);
+  write_chart_png((fs::path(out_dir) / "frame_times.png").string(), hist);
+  std::cout << "wrote " << out_dir << "/haptic_loop.json and frame_times.png\n";
+  return 0;
+} catch (const std::exception& e) {
+  std::cerr << "bench_haptic_loop: error: " << e.what() << "\n";
+  return 1;
+}

@@ -1,0 +1,43 @@
+#pragma once
+// A scripted assembly session: the scene's trajectory played by a ScriptedDevice into
+// the haptic loop, with the engine at the tuned m', the coupling and gain from the
+// scene's `haptics` section, and the final pose compared with the assembled pose.
+// `snapfit run` and perf/bench_haptic_loop use it.
+#include <optional>
+
+#include "engine/pose_query.h"
+#include "io/mesh.h"
+#include "io/scene.h"
+#include "scheduler/auto_tune.h"
+#include "scheduler/haptic_loop.h"
+#include "scheduler/haptic_setup.h"
+
+namespace snapfit {
+
+struct SessionOptions {
+  std::optional<double> duration_s;  // default: the trajectory's length + haptics.settle_s
+  bool loop_back = false;            // replay the trajectory back and forth (long runs)
+  bool keep_log = true;
+  bool simulated_time = false;       // scheduler/haptic_loop.h simulated_loop_clock (deterministic)
+};
+
+struct SessionResult {
+  LoopReport loop;
+  CouplingParams coupling;
+  DeviceLimits limits;
+  double geometry_gain = 0;
+  double force_scale = 0;          // largest engine force at the gain's probe poses
+  Pose target;                     // the assembled pose (else the last keyframe)
+  PoseError final_error;
+  double position_tolerance = 0;   // scene units
+  double angle_tolerance_deg = 0;
+  bool assembled = false;          // final_error within the tolerances
+};
+
+// Runs the loop on its own thread on the steady clock and waits for it. Throws
+// snapfit::Error when the scene has no trajectory or its haptics cannot be set up.
+SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, double spacing,
+                                    PoseQueryEngine& engine, const TuningResult& tuning,
+                                    const SessionOptions& options = {});
+
+}  // namespace snapfit
