@@ -18,6 +18,7 @@
 #include "cli/commands.h"
 #include "cli/haptic_report.h"
 #include "scheduler/assembly_session.h"
+#include "scheduler/device_choice.h"
 #include "scheduler/engine_tuning.h"
 #include "scheduler/quantile.h"
 #include "cli/scene_summary.h"
@@ -111,25 +112,58 @@ void run_main_job(const RunOptions& opt) {
 
   // m' for this device: the tuning file, else a measured sweep (scheduler/auto_tune.h).
   std::cout << "[6/7] m' for a " << scene.frame_budget_ms << " ms frame on this device\n";
-  const TuningKey key = tuning_key_for(device.info, variant, *spectra, scene.frame_budget_ms, opt.margin);
+  TuningKey key = tuning_key_for(device.info, variant, *spectra, scene.frame_budget_ms, opt.margin);
   TuningResult tuning;
+  PoseQueryEngine* loop_engine = &engine;
+  // Other devices, when the user did not pick one: the loop goes to the lowest tuned latency.
+  std::vector<std::unique_ptr<ComputeContext>> other_contexts;
+  std::vector<std::unique_ptr<PoseQueryEngine>> other_engines;
   if (opt.modes) {
     tuning = pick_modes({TimingPoint{std::min(*opt.modes, engine.max_modes()), 0, 0, 0, 0}}, scene.frame_budget_ms,
                         opt.margin);
     std::cout << "    m' = " << tuning.chosen_modes << " (--modes; not tuned)\n";
   } else {
     const std::vector<Pose> poses = tuning_poses(scene);
-    TuneOptions tune_options;
-    std::unique_ptr<Progress> bar;
-    tune_options.progress = [&bar](std::uint64_t done, std::uint64_t total) {
-      if (!bar) bar = std::make_unique<Progress>("    tuning m'", total);
-      bar->advance(done - bar->done());
+    const auto tune_on = [&](PoseQueryEngine& e, const TuningKey& k) {
+      TuneOptions tune_options;
+      std::unique_ptr<Progress> bar;
+      tune_options.progress = [&bar](std::uint64_t done, std::uint64_t total) {
+        if (!bar) bar = std::make_unique<Progress>("    tuning m'", total);
+        bar->advance(done - bar->done());
+      };
+      const EngineTuning tuned = tune_engine(e, k, poses, tune_options, opt.retune, note);
+      if (bar) bar->finish();
+      std::cout << "    " << (tuned.from_file ? "from the tuning file " : "measured and saved to ") << tuned.path
+                << "\n" << tuning_table(tuned.result);
+      return tuned.result;
     };
-    const EngineTuning tuned = tune_engine(engine, key, poses, tune_options, opt.retune, note);
-    if (bar) bar->finish();
-    std::cout << "    " << (tuned.from_file ? "from the tuning file " : "measured and saved to ") << tuned.path << "\n"
-              << tuning_table(tuned.result);
-    tuning = tuned.result;
+    std::vector<TuningResult> tunings{tune_on(engine, key)};
+    std::vector<TuningKey> keys{key};
+    std::vector<std::string> names{device.info.name};
+    if (device_spec_from(opt.device).empty())
+      for (const Device& other : enumerate_devices()) {
+        if (other.info.index == device.info.index) continue;
+        try {
+          auto other_ctx = std::make_unique<ComputeContext>(make_compute_context(other));
+          if (!run_device_check(*other_ctx, false).passed) continue;
+          std::cout << "    also tuning " << describe_device(other.info) << "\n";
+          auto other_engine = std::make_unique<PoseQueryEngine>(*other_ctx, *spectra, variant);
+          keys.push_back(tuning_key_for(other.info, variant, *spectra, scene.frame_budget_ms, opt.margin));
+          tunings.push_back(tune_on(*other_engine, keys.back()));
+          names.push_back(other.info.name);
+          other_contexts.push_back(std::move(other_ctx));
+          other_engines.push_back(std::move(other_engine));
+        } catch (const Error& e) {
+          note("device " + other.info.name + " left out of the loop choice: " + e.what());
+        }
+      }
+    const std::size_t pick = lowest_latency(tunings);
+    if (tunings.size() > 1)
+      std::cout << "    the loop runs on " << names[pick] << " (lowest tuned latency of " << tunings.size()
+                << " devices)\n";
+    if (pick > 0) loop_engine = other_engines[pick - 1].get();
+    tuning = tunings[pick];
+    key = keys[pick];
   }
 
   // The scripted assembly through the haptic loop, in real time.
@@ -140,7 +174,7 @@ void run_main_job(const RunOptions& opt) {
     const double seconds = t.keyframes.back().time_s - t.keyframes.front().time_s + scene.haptics.settle_s;
     std::cout << "[7/7] haptic loop at " << scene.loop_rate_hz << " Hz playing the scripted trajectory ("
               << seconds << " s of real time, m' = " << tuning.chosen_modes << ")\n";
-    session = run_scripted_assembly(scene, parts.part2.mesh, spectra->spacing, engine, tuning);
+    session = run_scripted_assembly(scene, parts.part2.mesh, spectra->spacing, *loop_engine, tuning);
     const LoopReport& loop = session->loop;
     std::cout << "    " << loop.frames << " frames, measured " << loop.measured_rate_hz << " Hz; frame time p50 "
               << quantile(loop.frame_ms, 0.5) << " ms, p99 " << quantile(loop.frame_ms, 0.99) << " ms, max "

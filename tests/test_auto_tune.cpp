@@ -8,6 +8,7 @@
 
 #include "engine/error.h"
 #include "scheduler/auto_tune.h"
+#include "scheduler/device_choice.h"
 #include "scheduler/tuning_file.h"
 #include "tests/test_support.h"
 
@@ -189,4 +190,18 @@ TEST_CASE("tuning file: an unwritable cache folder is a clear error, not a crash
   const TuningResult r = tune_modes(linear_timer(0.05, 2e-5), 1 << 14, opt);
   CHECK_THROWS_AS(save_tuning(sample_key(), r), Error);
   CHECK(fs::is_regular_file(scope.folder("tuning")));
+}
+
+TEST_CASE("device choice: the loop goes to the device with the lowest tuned latency") {
+  TuneOptions opt;
+  opt.repetitions = 50;
+  const TuningResult cpu = tune_modes(linear_timer(0.05, 2e-5), 1 << 18, opt);
+  const TuningResult gpu = tune_modes(linear_timer(0.03, 1e-6), 1 << 18, opt);
+  const TuningResult slow = tune_modes(linear_timer(0.9, 1e-5), 1 << 18, opt);
+  CHECK(lowest_latency({cpu, gpu}) == 1);
+  CHECK(lowest_latency({gpu, cpu}) == 0);
+  CHECK(lowest_latency({slow, cpu, gpu}) == 2);
+  CHECK(lowest_latency({slow, cpu}) == 1);  // fitting beats not fitting
+  CHECK(lowest_latency({cpu}) == 0);
+  CHECK_THROWS_AS(lowest_latency({}), Error);
 }
