@@ -7,6 +7,7 @@
 #include <exception>
 #include <future>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include "engine/error.h"
@@ -35,6 +36,11 @@ LoopClock simulated_loop_clock() {
 }
 
 namespace {
+
+bool finite_state(const BodyState& s) {
+  return s.pose.is_finite() && s.velocity.allFinite() && s.angular_velocity.allFinite() &&
+         std::abs(s.pose.rotation.norm() - 1.0) < 1e-3;
+}
 
 void check_config(const LoopConfig& c) {
   if (!(std::isfinite(c.rate_hz) && c.rate_hz > 0)) throw Error("haptic loop: rate must be > 0 Hz");
@@ -113,6 +119,7 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
   if (config.keep_log) report.log.reserve(expected);
 
   Wrench geometric;  // held over missed ticks
+  std::optional<BodyState> last_good_handle;
   std::size_t tick = 0, frame = 0;
   const double start = clock.now();
   while (true) {
@@ -121,8 +128,14 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     if (config.stop && config.stop->load()) break;
     clock.wait_until(start + tick_time);
 
-    // 1-2. Device pose, geometric wrench at the part's pose.
-    const BodyState handle = device.read(tick_time);
+    // 1-2. Device pose, geometric wrench at the part's pose. A non-finite reading is
+    // replaced by the last good one: a NaN must not reach the simulation or the hand.
+    BodyState handle = device.read(tick_time);
+    if (!finite_state(handle)) {
+      ++report.bad_device_reads;
+      handle = last_good_handle ? *last_good_handle : part;
+    }
+    last_good_handle = handle;
     const QueryResult q = engine.evaluate(part.pose);
     geometric = Wrench{};
     if (q.flags == query_ok) {
@@ -133,6 +146,10 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     }
     // 3. One fixed step; 4. the coupling's reaction to the device.
     step_body(part, handle, geometric, config.coupling, period);
+    if (!finite_state(part)) {  // cannot happen with finite inputs; never propagate it
+      ++report.part_resets;
+      part = handle;
+    }
     const Wrench on_part = coupling_wrench(part, handle, config.coupling);
     const Wrench sent = clamp_to_limits(Wrench{-on_part.force, -on_part.torque}, limits);
     device.send(sent, tick_time);

@@ -93,6 +93,8 @@ struct LoopReport {
   std::size_t misses = 0;        // frames that ended after their deadline
   std::size_t skipped_ticks = 0; // ticks not run because a frame overran them
   std::size_t flagged_frames = 0;  // frames whose query returned flags (zero geometric wrench)
+  std::size_t bad_device_reads = 0;  // non-finite device states, replaced by the last good one
+  std::size_t part_resets = 0;     // non-finite part states, reset to the device state
   std::vector<double> frame_ms;  // every frame
   std::vector<FrameRecord> log;  // when keep_log
   std::vector<ModeChange> mode_changes;

@@ -206,3 +206,27 @@ TEST_CASE("haptic loop: a scripted device pulls the part along its trajectory an
   CHECK(peak > 0.1);
   CHECK(device.sent_count() == r.frames);
 }
+
+TEST_CASE("haptic loop: NaN device readings are replaced by the last good one and never reach the device") {
+  struct GlitchyDevice : FixedDevice {
+    std::size_t reads = 0;
+    BodyState read(double t) override {
+      BodyState s = FixedDevice::read(t);
+      if (++reads % 7 == 0) s.pose.translation.x() = NAN;
+      if (reads % 11 == 0) s.velocity.y() = INFINITY;
+      if (reads % 13 == 0) s.pose.rotation.coeffs() *= 0;  // not a rotation
+      return s;
+    }
+    Wrench last;
+    void send(const Wrench& w, double) override { last = w, ++sent, all_finite = all_finite && w.force.allFinite() && w.torque.allFinite(); }
+    bool all_finite = true;
+  } device;
+  device.state.pose.translation = Vector3d(3, 0, 0);
+  ManualClock clock;
+  CostedEvaluator engine{&clock};
+  const LoopReport r = run_haptic_loop(device, engine.evaluator(), config(1.0), clock.clock(), BodyState{});
+  CHECK(r.bad_device_reads > 100);
+  CHECK(r.part_resets == 0);
+  CHECK(device.all_finite);
+  CHECK((r.final_part.pose.translation - Vector3d(3, 0, 0)).norm() < 1e-3);
+}
