@@ -1,0 +1,34 @@
+#pragma once
+// A host, double-precision evaluation of the per-pose sum of engine/pose_query.h (seed
+// 000 eq. 10-12) from the same spectra: every retained mode accumulated in double, the
+// spectra of part 2 interpolated in double with the same schemes. No OpenCL. It is the
+// reference for accuracy reports (perf/bench_accuracy: all modes, no truncation) and
+// for checking the device kernel's float accumulation at the same m'.
+#include <cstddef>
+#include <vector>
+
+#include "engine/pose_query.h"
+#include "engine/spectra.h"
+
+namespace snapfit {
+
+struct ReferenceOptions {
+  Interpolation interpolation = Interpolation::tricubic;
+  std::size_t modes = 0;  // m': the modes of smallest |w| (mode_order); 0 = every mode
+  bool force = true;
+  bool torque = true;     // needs spectra with torque terms
+};
+
+// Every FFT node (index x + nx (y + ny z)) by increasing |w|, ties in index order: the
+// order in which PoseQueryEngine retains modes.
+std::vector<std::size_t> mode_order(const PairSpectra& spectra);
+
+// The result for part 2 at `pose` in part 1's frame, with the engine's frames, signs
+// and flags (query_outside_grid, query_bad_pose). `order` may be passed to avoid
+// re-sorting (it must be mode_order(spectra)). Parallel over modes on TBB, with a
+// deterministic reduction. Throws snapfit::Error when torque is asked of spectra
+// without torque terms.
+QueryResult reference_query(const PairSpectra& spectra, const Pose& pose, const ReferenceOptions& options = {},
+                            const std::vector<std::size_t>* order = nullptr);
+
+}  // namespace snapfit

@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Runs every benchmark in perf/ into one results folder, with the machine, the load
+# average and the time each took, so the numbers in the README can be reproduced:
+#
+#   perf/run_benchmarks.sh [--quick] [--out DIR] [--build DIR] [--only NAME[,NAME...]]
+#
+# Full mode is for a quiet machine (about 20 minutes on 2 cores); --quick runs each
+# benchmark's small mode (CI runs it once to prove everything runs; timings are not
+# checked). Each benchmark writes CSV, JSON and PNG into DIR/<name>/ and its console
+# output into DIR/<name>.log; DIR/index.md lists what ran, how long it took and the
+# load average before and after.
+set -euo pipefail
+
+quick=0
+out=results/bench
+build=build
+only=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --quick) quick=1 ;;
+    --out) out="$2"; shift ;;
+    --out=*) out="${1#--out=}" ;;
+    --build) build="$2"; shift ;;
+    --build=*) build="${1#--build=}" ;;
+    --only) only="$2"; shift ;;
+    --only=*) only="${1#--only=}" ;;
+    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+    *) echo "run_benchmarks.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+
+benches=(bench_descriptors bench_queries bench_haptic_loop bench_fft bench_peers bench_accuracy)
+mkdir -p "$out"
+index="$out/index.md"
+{
+  echo "# snapfit benchmarks ($([ $quick = 1 ] && echo quick || echo full))"
+  echo
+  echo "- date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
+  echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(free -g | awk '/Mem:/ {print $2}') GiB"
+  echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  echo
+  echo "| benchmark | status | seconds | load before | load after | output |"
+  echo "|---|---|---|---|---|---|"
+} > "$index"
+
+failed=0
+for b in "${benches[@]}"; do
+  if [ -n "$only" ] && [[ ",$only," != *",$b,"* ]]; then continue; fi
+  exe="$build/perf/$b"
+  if [ ! -x "$exe" ]; then
+    echo "| $b | not built | | | | |" >> "$index"
+    echo "run_benchmarks.sh: $exe is missing (build the project first)" >&2
+    failed=1
+    continue
+  fi
+  args=(--out "$out/$b")
+  [ $quick = 1 ] && args+=(--quick)
+  load_before=$(cut -d' ' -f1-3 /proc/loadavg)
+  echo "== $b ${args[*]}"
+  start=$(date +%s%N)
+  if "$exe" "${args[@]}" > >(tee "$out/$b.log") 2>&1; then status=ok; else status="FAILED ($?)"; failed=1; fi
+  seconds=$(awk -v a="$start" -v b="$(date +%s%N)" 'BEGIN { printf "%.1f", (b - a) / 1e9 }')
+  load_after=$(cut -d' ' -f1-3 /proc/loadavg)
+  printf '| %s | %s | %s | %s | %s | [%s/](%s/) |\n' "$b" "$status" "$seconds" "$load_before" "$load_after" "$b" "$b" >> "$index"
+done
+echo "wrote $index"
+exit $failed
