@@ -1,0 +1,269 @@
+// Error against run time (issue 6, the core report): for a scene, a reference energy,
+// force and torque at poses along its trajectory, computed without truncation in double
+// precision (engine/reference_query.h: every mode of the most oversampled spectra,
+// tricubic, double accumulation; validated exactly against a brute-force
+// physical-domain sum by tests/test_reference_query.cpp), then for every setting the
+// engine offers — m', interpolation (trilinear, tricubic), oversampling (zero padding
+// 1.5, 2, 3), float (the OpenCL kernel) or double (the host reference at the same m') —
+// the relative error of E, F and T against the time per query. Relative error over the
+// poses: sqrt(sum |x - ref|^2) / sqrt(sum |ref|^2). Charts: error against time (log-log)
+// per quantity with the Pareto front and the point the auto-tuner picked for the scene's
+// frame budget on this device (its tuning file, or a fresh tuning).
+//
+//   ./build/perf/bench_accuracy [--scene scenes/default.json] [--quick] [--out DIR]
+// --quick: oversampling 2 only (reference included), 3 poses, m' <= 16384, fewer repeats.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "engine/assembly_pair.h"
+#include "engine/device.h"
+#include "engine/reference_query.h"
+#include "io/plot.h"
+#include "io/spectra_cache.h"
+#include "perf/bench_common.h"
+#include "scheduler/engine_tuning.h"
+#include "scheduler/quantile.h"
+#include "scheduler/trajectory.h"
+
+using namespace snapfit;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Row {
+  double oversampling = 0;
+  std::string interpolation, precision;
+  std::size_t modes = 0;
+  double ms = 0;  // p50 per query
+  double err_energy = 0, err_force = 0, err_torque = 0;
+};
+
+struct ErrorSums {
+  double d[3] = {0, 0, 0}, r[3] = {0, 0, 0};
+  void add(const QueryResult& x, const QueryResult& ref) {
+    d[0] += std::pow(x.energy - ref.energy, 2), r[0] += ref.energy * ref.energy;
+    d[1] += (x.force - ref.force).squaredNorm(), r[1] += ref.force.squaredNorm();
+    d[2] += (x.torque - ref.torque).squaredNorm(), r[2] += ref.torque.squaredNorm();
+  }
+  double rel(int i) const { return r[i] > 0 ? std::sqrt(d[i] / r[i]) : 0; }
+};
+
+// Points not dominated in (time, error): the lower-left envelope, by increasing time.
+std::vector<const Row*> pareto(const std::vector<Row>& rows, double Row::*err) {
+  std::vector<const Row*> sorted;
+  for (const Row& r : rows) sorted.push_back(&r);
+  std::sort(sorted.begin(), sorted.end(), [](const Row* a, const Row* b) { return a->ms < b->ms; });
+  std::vector<const Row*> front;
+  double best = INFINITY;
+  for (const Row* r : sorted)
+    if (r->*err < best) best = r->*err, front.push_back(r);
+  return front;
+}
+
+std::string oversampling_label(double os) {
+  std::ostringstream s;
+  s << os;
+  return s.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+  std::string scene_path = "scenes/default.json", out_dir = "results/bench_accuracy";
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (bench::is_option(a, "--scene")) scene_path = bench::option_value(argc, argv, i, "--scene");
+    else if (bench::is_option(a, "--out")) out_dir = bench::option_value(argc, argv, i, "--out");
+    else if (a == "--quick") quick = true;
+    else throw Error("unknown option " + a + " (see the comment at the top of perf/bench_accuracy.cpp)");
+  }
+  const std::string load_start = bench::read_loadavg();
+  const Scene scene = load_scene(scene_path);
+  if (scene.trajectory.keyframes.empty()) throw Error(scene_path + ": needs a trajectory for its poses");
+  const Device device = select_device(device_spec_from(""));
+  std::cout << "device " << describe_device(device.info) << "\n";
+  const FftLibrary fft;
+  const ComputeContext ctx = make_compute_context(device);
+  const AssemblyPair pair = build_assembly_pair(scene, ctx, fft);
+  const bool torque = pair.spectra.torque;
+  const QueryVariant scene_variant = query_variant_for(scene, Interpolation::tricubic);
+
+  // Poses: along the trajectory, every 0.5 s (3 of them with --quick), all in the grid.
+  std::vector<Pose> poses;
+  const Trajectory& t = scene.trajectory;
+  for (double s = t.keyframes.front().time_s + 0.5; s <= t.keyframes.back().time_s + 1e-9; s += quick ? 1.5 : 0.5)
+    poses.push_back(trajectory_pose(t, s));
+  const std::vector<double> oversamplings = quick ? std::vector<double>{2.0} : std::vector<double>{1.5, 2.0, 3.0};
+  const std::size_t max_ladder = quick ? 16384 : 262144;
+  const int repeats = quick ? 30 : 200;
+
+  // Spectra per oversampling (from the spectra cache when present).
+  std::map<double, PairSpectra> spectra;
+  for (double os : oversamplings) {
+    SpectrumOptions options;
+    options.oversampling = os;
+    const std::string key = spectra_cache_key(pair.fields1.fields, pair.fields2.fields, torque, options);
+    std::optional<PairSpectra> s = load_cached_spectra(key, nullptr);
+    if (!s) {
+      std::cout << "spectra at oversampling " << os << "...\n";
+      s = compute_pair_spectra(fft, ctx, pair.fields1.fields, pair.fields2.fields, torque, options);
+      save_cached_spectra(key, *s, nullptr);
+    }
+    std::cout << "oversampling " << os << ": FFT grid " << s->dims[0] << " x " << s->dims[1] << " x " << s->dims[2] << "\n";
+    spectra.emplace(os, std::move(*s));
+  }
+
+  // The reference: the most oversampled spectra, every mode, tricubic, double.
+  const PairSpectra& ref_spectra = spectra.at(oversamplings.back());
+  const std::vector<std::size_t> ref_order = mode_order(ref_spectra);
+  ReferenceOptions ref_options;
+  ref_options.force = scene.outputs.force;
+  ref_options.torque = torque;
+  std::vector<QueryResult> reference;
+  const auto ref_start = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    reference.push_back(reference_query(ref_spectra, poses[i], ref_options, &ref_order));
+    if (reference.back().flags) throw Error("reference pose " + std::to_string(i) + " is outside the grid");
+    std::cout << "reference " << i + 1 << "/" << poses.size() << ": E = " << reference.back().energy << " ("
+              << reference.back().seconds << " s, " << reference.back().modes << " modes)\n";
+  }
+  const double ref_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ref_start).count();
+
+  // The auto-tuner's point for the scene's budget (tricubic, oversampling 2, float).
+  PoseQueryEngine tuned_engine(ctx, pair.spectra, scene_variant);
+  const TuningKey key = tuning_key_for(device.info, scene_variant, pair.spectra, scene.frame_budget_ms, 0.25);
+  TuneOptions tune;
+  if (quick) tune.repetitions = 100;
+  const EngineTuning tuned = tune_engine(tuned_engine, key, sample_trajectory(t, 100.0), tune, false, nullptr);
+  std::cout << "auto-tuner: m' = " << tuned.result.chosen_modes << (tuned.from_file ? " (tuning file)" : " (measured)")
+            << "\n";
+
+  std::vector<Row> rows;
+  for (double os : oversamplings) {
+    const PairSpectra& s = spectra.at(os);
+    const std::vector<std::size_t> order = mode_order(s);
+    for (Interpolation scheme : {Interpolation::trilinear, Interpolation::tricubic}) {
+      const std::string scheme_name = scheme == Interpolation::tricubic ? "tricubic" : "trilinear";
+      QueryVariant variant = scene_variant;
+      variant.interpolation = scheme;
+      PoseQueryEngine engine(ctx, s, variant);
+      std::vector<std::size_t> ladder;
+      for (std::size_t m = 1024; m <= std::min(max_ladder, engine.max_modes()); m *= 2) ladder.push_back(m);
+      if (os == 2.0 && scheme == Interpolation::tricubic) {  // the tuned point, measured like the others
+        ladder.push_back(tuned.result.chosen_modes);
+        std::sort(ladder.begin(), ladder.end());
+        ladder.erase(std::unique(ladder.begin(), ladder.end()), ladder.end());
+      }
+      for (std::size_t m : ladder) {
+        engine.set_modes(m);
+        // float: the device kernel.
+        Row f{os, scheme_name, "float", m};
+        ErrorSums fe;
+        for (std::size_t i = 0; i < poses.size(); ++i) fe.add(engine.query(poses[i]), reference[i]);
+        std::vector<double> times;
+        for (int k = 0; k < repeats; ++k) {
+          const auto t0 = std::chrono::steady_clock::now();
+          engine.query(poses[k % poses.size()]);
+          times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        }
+        f.ms = quantile(times, 0.5);
+        f.err_energy = fe.rel(0), f.err_force = fe.rel(1), f.err_torque = fe.rel(2);
+        rows.push_back(f);
+        // double: the host reference evaluator at the same m' (skipped where it is slow).
+        Row d{os, scheme_name, "double", m};
+        ErrorSums de;
+        std::vector<double> dtimes;
+        ReferenceOptions o = ref_options;
+        o.interpolation = scheme;
+        o.modes = m;
+        for (std::size_t i = 0; i < poses.size(); ++i) {
+          const QueryResult r = reference_query(s, poses[i], o, &order);
+          de.add(r, reference[i]);
+          dtimes.push_back(1e3 * r.seconds);
+        }
+        d.ms = quantile(dtimes, 0.5);
+        d.err_energy = de.rel(0), d.err_force = de.rel(1), d.err_torque = de.rel(2);
+        rows.push_back(d);
+        std::printf("os %.1f %-9s m' %7zu  float %8.3f ms  E %.2e F %.2e T %.2e | double %8.3f ms  E %.2e\n", os,
+                    scheme_name.c_str(), m, f.ms, f.err_energy, f.err_force, f.err_torque, d.ms, d.err_energy);
+      }
+    }
+  }
+
+  fs::create_directories(out_dir);
+  std::ostringstream csv;
+  csv << "oversampling,interpolation,precision,modes,ms_p50,err_energy,err_force,err_torque\n";
+  nlohmann::json jrows = nlohmann::json::array();
+  for (const Row& r : rows) {
+    csv << r.oversampling << ',' << r.interpolation << ',' << r.precision << ',' << r.modes << ',' << r.ms << ','
+        << r.err_energy << ',' << r.err_force << ',' << r.err_torque << '\n';
+    jrows.push_back({{"oversampling", r.oversampling}, {"interpolation", r.interpolation}, {"precision", r.precision},
+                     {"modes", r.modes}, {"ms_p50", r.ms}, {"err_energy", r.err_energy}, {"err_force", r.err_force},
+                     {"err_torque", r.err_torque}});
+  }
+  std::ofstream(fs::path(out_dir) / "accuracy.csv") << csv.str();
+
+  const std::array<std::pair<const char*, double Row::*>, 3> quantities = {
+      {{"energy", &Row::err_energy}, {"force", &Row::err_force}, {"torque", &Row::err_torque}}};
+  nlohmann::json fronts;
+  for (const auto& [name, err] : quantities) {
+    if (std::string(name) == "torque" && !torque) continue;
+    Chart c{std::string("Relative ") + name + " error against time per query (" + device.info.name + ")",
+            "ms per query (p50)", std::string("relative ") + name + " error", true, true, {}, {}, {}};
+    for (double os : oversamplings)
+      for (const char* scheme : {"trilinear", "tricubic"})
+        for (const char* precision : {"float", "double"}) {
+          Series s{std::string(scheme) + " " + precision + " x" + oversampling_label(os), {}, {},
+                   Series::Style::line_points};
+          for (const Row& r : rows)
+            if (r.oversampling == os && r.interpolation == scheme && r.precision == precision && r.*err > 0)
+              s.x.push_back(r.ms), s.y.push_back(r.*err);
+          if (!s.x.empty()) c.series.push_back(s);
+        }
+    Series front{"Pareto front", {}, {}, Series::Style::line};
+    front.color = {0, 0, 0};
+    nlohmann::json jf = nlohmann::json::array();
+    for (const Row* r : pareto(rows, err)) {
+      if (!(r->*err > 0)) continue;
+      front.x.push_back(r->ms), front.y.push_back(r->*err);
+      jf.push_back({{"oversampling", r->oversampling}, {"interpolation", r->interpolation},
+                    {"precision", r->precision}, {"modes", r->modes}, {"ms_p50", r->ms}, {"error", r->*err}});
+    }
+    c.series.push_back(front);
+    fronts[name] = jf;
+    for (const Row& r : rows)
+      if (r.oversampling == 2.0 && r.interpolation == "tricubic" && r.precision == "float" &&
+          r.modes == tuned.result.chosen_modes)
+        c.markers.push_back(Marker{r.ms, r.*err, "auto-tuner, 1 ms budget"});
+    c.hlines.push_back(HLine{1e-2, "1%"});
+    c.width = 1000, c.height = 650;
+    write_chart_png((fs::path(out_dir) / (std::string("error_") + name + ".png")).string(), c);
+  }
+  const nlohmann::json report = {{"command", bench::command_line(argc, argv)},
+                                 {"date", bench::now_iso()},
+                                 {"device", device.info.name},
+                                 {"scene", scene_path},
+                                 {"poses", poses.size()},
+                                 {"reference", {{"oversampling", oversamplings.back()}, {"interpolation", "tricubic"},
+                                                {"precision", "double"}, {"modes", reference.front().modes},
+                                                {"seconds_total", ref_seconds}}},
+                                 {"tuned_modes", tuned.result.chosen_modes},
+                                 {"rows", jrows},
+                                 {"pareto", fronts},
+                                 {"load_average", {{"start", load_start}, {"end", bench::read_loadavg()}}}};
+  std::ofstream(fs::path(out_dir) / "accuracy.json") << report.dump(2) << "\n";
+  std::cout << "wrote " << out_dir << "/accuracy.csv, accuracy.json, error_energy.png, error_force.png"
+            << (torque ? ", error_torque.png" : "") << "\n";
+  return 0;
+} catch (const std::exception& e) {
+  std::cerr << "bench_accuracy: error: " << e.what() << "\n";
+  return 1;
+}
