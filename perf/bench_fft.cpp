@@ -329,6 +329,7 @@ struct TransformRow {
   double p50_s = 0, min_s = 0, gflops_p50 = 0, gflops_min = 0;
   double max_rel_diff = 0;         // against FFTW double
   double load_before = 0, load_after = 0;
+  double other_cores = 0;  // cores other processes kept busy while this row was timed
 };
 
 void finish_row(TransformRow& r) {
@@ -369,6 +370,7 @@ std::vector<TransformRow> bench_transforms(const snapfit::FftLibrary& lib, const
       r.dims = d;
       r.plan_s = plan_s;
       r.load_before = snapfit::bench::load1();
+      const auto cpu0 = snapfit::bench::cpu_sample();
       for (int i = 0; i < warmup; ++i) fft.transform(dir, in, out);
       for (int i = 0; i < repeats; ++i) {
         const auto t = Clock::now();
@@ -376,6 +378,7 @@ std::vector<TransformRow> bench_transforms(const snapfit::FftLibrary& lib, const
         r.times_s.push_back(seconds_since(t));
       }
       r.load_after = snapfit::bench::load1();
+      r.other_cores = snapfit::bench::other_cores(cpu0, snapfit::bench::cpu_sample());
       std::vector<cf> y(n);
       ctx.queue.enqueueReadBuffer(out, CL_TRUE, 0, bytes, y.data());
       r.max_rel_diff = max_rel_diff(y, *refs[k]);
@@ -404,9 +407,11 @@ std::vector<TransformRow> bench_transforms(const snapfit::FftLibrary& lib, const
         if (timed) r.times_s.push_back(seconds_since(t));
       };
       r.load_before = snapfit::bench::load1();
+      const auto cpu0 = snapfit::bench::cpu_sample();
       for (int i = 0; i < warmup; ++i) once(false);
       for (int i = 0; i < repeats; ++i) once(true);
       r.load_after = snapfit::bench::load1();
+      r.other_cores = snapfit::bench::other_cores(cpu0, snapfit::bench::cpu_sample());
       std::vector<cf> y(n);
       ctx.queue.enqueueReadBuffer(dst, CL_TRUE, 0, bytes, y.data());
       r.max_rel_diff = max_rel_diff(y, *refs[k]);
@@ -426,6 +431,7 @@ std::vector<TransformRow> bench_transforms(const snapfit::FftLibrary& lib, const
       r.dims = d;
       r.plan_s = plans.plan_s;
       r.load_before = snapfit::bench::load1();
+      const auto cpu0 = snapfit::bench::cpu_sample();
       for (int i = 0; i < warmup; ++i) fftwf_execute(p);
       for (int i = 0; i < repeats; ++i) {
         const auto t = Clock::now();
@@ -433,6 +439,7 @@ std::vector<TransformRow> bench_transforms(const snapfit::FftLibrary& lib, const
         r.times_s.push_back(seconds_since(t));
       }
       r.load_after = snapfit::bench::load1();
+      r.other_cores = snapfit::bench::other_cores(cpu0, snapfit::bench::cpu_sample());
       r.max_rel_diff = max_rel_diff(plans.output(), *refs[k]);
       finish_row(r);
       rows.push_back(r);
@@ -478,6 +485,7 @@ struct MapRow {
   double rotations_per_s = 0, median_s = 0, product_median_s = 0, readback_median_s = 0, fft_median_s = 0;
   double max_rel_diff = std::numeric_limits<double>::quiet_NaN();  // against FFTW double of the same product
   double load_before = 0, load_after = 0;
+  double other_cores = 0;
 };
 
 std::vector<MapRow> bench_maps(const snapfit::FftLibrary& lib, const snapfit::ComputeContext& ctx, const Dims& d,
@@ -502,6 +510,7 @@ std::vector<MapRow> bench_maps(const snapfit::FftLibrary& lib, const snapfit::Co
     r.library = "full_map";
     r.dims = d;
     r.load_before = snapfit::bench::load1();
+      const auto cpu0 = snapfit::bench::cpu_sample();
     for (int i = 0; i <= warm_real; ++i) {
       const auto t = Clock::now();
       const auto map =
@@ -514,6 +523,7 @@ std::vector<MapRow> bench_maps(const snapfit::FftLibrary& lib, const snapfit::Co
         r.total_s.push_back(sec);
     }
     r.load_after = snapfit::bench::load1();
+      r.other_cores = snapfit::bench::other_cores(cpu0, snapfit::bench::cpu_sample());
     r.median_s = median(r.total_s);
     r.rotations_per_s = 1.0 / r.median_s;
     rows.push_back(r);
@@ -585,9 +595,11 @@ std::vector<MapRow> bench_maps(const snapfit::FftLibrary& lib, const snapfit::Co
       r.total_s.push_back(std::chrono::duration<double>(t3 - t0).count());
     };
     r.load_before = snapfit::bench::load1();
+      const auto cpu0 = snapfit::bench::cpu_sample();
     rotation(rots[0], false);  // warm-up
     for (int i = 0; i < rotations; ++i) rotation(rots[std::size_t(i)], true);
     r.load_after = snapfit::bench::load1();
+      r.other_cores = snapfit::bench::other_cores(cpu0, snapfit::bench::cpu_sample());
     rotation(R_check, false);
     std::vector<cf> y(n);
     if (name == "fftw")
@@ -627,25 +639,25 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
   {
     std::ofstream f(dir / "fft.csv");
     f << "library,direction,nx,ny,nz,points,plan_s,repeats,p50_ms,min_ms,gflops_p50,gflops_min,max_rel_diff_vs_fftw_"
-         "double,load_before,load_after\n";
+         "double,load_before,load_after,other_cores\n";
     for (const auto& r : tr)
       f << r.library << ',' << r.direction << ',' << r.dims[0] << ',' << r.dims[1] << ',' << r.dims[2] << ','
         << count_of(r.dims) << ',' << r.plan_s << ',' << r.times_s.size() << ',' << r.p50_s * 1e3 << ','
         << r.min_s * 1e3 << ',' << r.gflops_p50 << ',' << r.gflops_min << ',' << r.max_rel_diff << ','
-        << r.load_before << ',' << r.load_after << '\n';
+        << r.load_before << ',' << r.load_after << ',' << r.other_cores << '\n';
     if (!f) throw snapfit::Error((dir / "fft.csv").string() + ": cannot write");
   }
   {
     std::ofstream f(dir / "maps.csv");
     f << "path,nx,ny,nz,points,plan_s,cold_s,rotations,median_ms,product_ms,readback_ms,fft_ms,rotations_per_s,max_rel_"
-         "diff_vs_fftw_double,load_before,load_after\n";
+         "diff_vs_fftw_double,load_before,load_after,other_cores\n";
     for (const auto& r : maps)
       f << r.library << ',' << r.dims[0] << ',' << r.dims[1] << ',' << r.dims[2] << ',' << count_of(r.dims) << ','
         << r.plan_s << ',' << (std::isfinite(r.cold_s) ? std::to_string(r.cold_s) : "") << ',' << r.total_s.size()
         << ',' << r.median_s * 1e3 << ',' << r.product_median_s * 1e3 << ',' << r.readback_median_s * 1e3 << ','
         << r.fft_median_s * 1e3 << ',' << r.rotations_per_s << ','
         << (std::isfinite(r.max_rel_diff) ? std::to_string(r.max_rel_diff) : "") << ',' << r.load_before << ','
-        << r.load_after << '\n';
+        << r.load_after << ',' << r.other_cores << '\n';
     if (!f) throw snapfit::Error((dir / "maps.csv").string() + ": cannot write");
   }
   nlohmann::json j = meta;
@@ -668,7 +680,8 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
                   {"gflops_min", r.gflops_min},
                   {"max_rel_diff_vs_fftw_double", num(r.max_rel_diff)},
                   {"load_before", r.load_before},
-                  {"load_after", r.load_after}});
+                  {"load_after", r.load_after},
+                  {"other_cores", r.other_cores}});
   j["transforms"] = tj;
   nlohmann::json mj = nlohmann::json::array();
   for (const auto& r : maps)
@@ -685,7 +698,8 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
                   {"rotations_per_s", r.rotations_per_s},
                   {"max_rel_diff_vs_fftw_double", num(r.max_rel_diff)},
                   {"load_before", r.load_before},
-                  {"load_after", r.load_after}});
+                  {"load_after", r.load_after},
+                  {"other_cores", r.other_cores}});
   j["maps"] = mj;
   {
     std::ofstream f(dir / "fft.json");
@@ -773,14 +787,14 @@ int run(const Args& args) {
   std::cout << "\n[1] 3D complex-to-complex transforms, single precision: " << repeats << " timed after " << warmup
             << " warm-up\n";
   std::cout << "  " << padr("size", 12) << padr("library", 8) << padr("dir", 9) << pad("plan s", 8)
-            << pad("p50 ms", 10) << pad("min ms", 10) << pad("GFLOP/s", 9) << pad("rel diff", 11) << "\n";
+            << pad("p50 ms", 10) << pad("min ms", 10) << pad("GFLOP/s", 9) << pad("rel diff", 11) << pad("others", 8) << "\n";
   std::vector<TransformRow> transforms;
   for (const Dims& d : sizes) {
     auto rows = bench_transforms(lib, ctx, d, warmup, repeats, 20261122u);
     for (const auto& r : rows) {
       std::cout << "  " << padr(dims_text(d), 12) << padr(r.library, 8) << padr(r.direction, 9)
                 << pad(fixed(r.plan_s, 2), 8) << pad(fixed(r.p50_s * 1e3, 2), 10) << pad(fixed(r.min_s * 1e3, 2), 10)
-                << pad(fixed(r.gflops_p50, 2), 9) << pad(sci(r.max_rel_diff), 11) << "\n"
+                << pad(fixed(r.gflops_p50, 2), 9) << pad(sci(r.max_rel_diff), 11) << pad(fixed(r.other_cores, 2), 8) << "\n"
                 << std::flush;
       transforms.push_back(r);
     }
@@ -790,7 +804,7 @@ int run(const Args& args) {
   std::cout << "\n[2] full translational maps: one rotation = spectrum_product kernel + inverse 3D FFT; " << map_rotations
             << " timed rotations per library (median); real path " << map_warm_real << " warm calls after a cold one\n";
   std::cout << "  " << padr("size", 12) << padr("path", 10) << pad("plan s", 8) << pad("rot/s", 9) << pad("ms", 9)
-            << pad("product", 9) << pad("readback", 9) << pad("fft", 9) << pad("rel diff", 11) << "\n";
+            << pad("product", 9) << pad("readback", 9) << pad("fft", 9) << pad("rel diff", 11) << pad("others", 8) << "\n";
   std::vector<MapRow> maps;
   for (const Dims& d : map_sizes) {
     auto rows = bench_maps(lib, ctx, d, map_rotations, map_warm_real, 4242u);
@@ -800,7 +814,7 @@ int run(const Args& args) {
                 << pad(r.library == "full_map" ? "-" : fixed(r.product_median_s * 1e3, 1), 9)
                 << pad(r.library == "fftw" ? fixed(r.readback_median_s * 1e3, 1) : "-", 9)
                 << pad(r.library == "full_map" ? "-" : fixed(r.fft_median_s * 1e3, 1), 9)
-                << pad(sci(r.max_rel_diff), 11)
+                << pad(sci(r.max_rel_diff), 11) << pad(fixed(r.other_cores, 2), 8)
                 << (r.library == "full_map" ? "  (cold " + fixed(r.cold_s, 2) + " s: program, plan bake, uploads)" : "")
                 << "\n"
                 << std::flush;
