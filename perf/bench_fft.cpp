@@ -35,9 +35,10 @@
 //                the median of M timed rotations (default 20, --quick 3), each with a
 //                different seeded random rotation; the product kernel runs on the device for
 //                all three; FFTW also needs the product read back to the host (timed in its
-//                rotation). Also the real code path, engine/full_map.h
-//                translational_energy_map (all modes): cold (first call) and warm; it
-//                uploads both spectra, bakes a clFFT plan, runs product + inverse FFT, reads
+//                rotation); the three take turns rotation by rotation (interleaved), so
+//                that load from other processes weighs on all alike. Also the real code
+//                path, engine/full_map.h translational_energy_map (all modes): cold (first
+//                call) and warm; it uploads both spectra, bakes a clFFT plan, runs product + inverse FFT, reads
 //                back and re-orders the map on the host, every call. Agreement: the maps of
 //                each library for one rotation against FFTW double of the same product.
 // Output in DIR (default results/bench_fft): fft.csv, maps.csv, fft.json and PNG charts
@@ -568,41 +569,54 @@ std::vector<MapRow> bench_maps(const snapfit::FftLibrary& lib, const snapfit::Co
   cl::Buffer vk_in(ctx.context, CL_MEM_READ_WRITE, bytes);
   VkfftPlan vk(ctx, d, result, product);  // inverse: product -> result
   FftwPlans fw(d, FFTW_MEASURE);
-  for (const std::string name : {"clfft", "vkfft", "fftw"}) {
-    MapRow r;
-    r.library = name;
+  // The three libraries take turns rotation by rotation, so that other processes on this
+  // shared machine weigh on all three alike.
+  const std::vector<std::string> names = {"clfft", "vkfft", "fftw"};
+  std::vector<MapRow> lib_rows(names.size());
+  auto rotation = [&](std::size_t k, const Eigen::Matrix3d& R, bool timed) {
+    const std::string& name = names[k];
+    MapRow& r = lib_rows[k];
+    const auto t0 = Clock::now();
+    run_product(R);
+    const auto t1 = Clock::now();
+    auto t2 = t1;
+    if (name == "clfft") {
+      clfft.transform(snapfit::FftDirection::inverse, product, result);
+    } else if (name == "vkfft") {
+      vk.run(1);
+    } else {
+      ctx.queue.enqueueReadBuffer(product, CL_TRUE, 0, bytes, fw.in);
+      t2 = Clock::now();
+      fftwf_execute(fw.inverse);
+    }
+    const auto t3 = Clock::now();
+    if (!timed) return;
+    r.product_s.push_back(std::chrono::duration<double>(t1 - t0).count());
+    r.readback_s.push_back(std::chrono::duration<double>(t2 - t1).count());
+    r.fft_s.push_back(std::chrono::duration<double>(t3 - t2).count());
+    r.total_s.push_back(std::chrono::duration<double>(t3 - t0).count());
+  };
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    MapRow& r = lib_rows[k];
+    r.library = names[k];
     r.dims = d;
-    r.plan_s = name == "clfft" ? clfft_plan_s : name == "vkfft" ? vk.plan_s : fw.plan_s;
-    auto rotation = [&](const Eigen::Matrix3d& R, bool timed) {
-      const auto t0 = Clock::now();
-      run_product(R);
-      const auto t1 = Clock::now();
-      auto t2 = t1;
-      if (name == "clfft") {
-        clfft.transform(snapfit::FftDirection::inverse, product, result);
-      } else if (name == "vkfft") {
-        vk.run(1);
-      } else {
-        ctx.queue.enqueueReadBuffer(product, CL_TRUE, 0, bytes, fw.in);
-        t2 = Clock::now();
-        fftwf_execute(fw.inverse);
-      }
-      const auto t3 = Clock::now();
-      if (!timed) return;
-      r.product_s.push_back(std::chrono::duration<double>(t1 - t0).count());
-      r.readback_s.push_back(std::chrono::duration<double>(t2 - t1).count());
-      r.fft_s.push_back(std::chrono::duration<double>(t3 - t2).count());
-      r.total_s.push_back(std::chrono::duration<double>(t3 - t0).count());
-    };
-    r.load_before = snapfit::bench::load1();
-      const auto cpu0 = snapfit::bench::cpu_sample();
-    rotation(rots[0], false);  // warm-up
-    for (int i = 0; i < rotations; ++i) rotation(rots[std::size_t(i)], true);
-    r.load_after = snapfit::bench::load1();
-      r.other_cores = snapfit::bench::other_cores(cpu0, snapfit::bench::cpu_sample());
-    rotation(R_check, false);
+    r.plan_s = names[k] == "clfft" ? clfft_plan_s : names[k] == "vkfft" ? vk.plan_s : fw.plan_s;
+    rotation(k, rots[0], false);  // warm-up
+  }
+  const double load_before = snapfit::bench::load1();
+  const auto cpu0 = snapfit::bench::cpu_sample();
+  for (int i = 0; i < rotations; ++i)
+    for (std::size_t k = 0; k < names.size(); ++k) rotation(k, rots[std::size_t(i)], true);
+  const double load_after = snapfit::bench::load1();
+  const double others = snapfit::bench::other_cores(cpu0, snapfit::bench::cpu_sample());
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    MapRow& r = lib_rows[k];
+    r.load_before = load_before;
+    r.load_after = load_after;
+    r.other_cores = others;
+    rotation(k, R_check, false);
     std::vector<cf> y(n);
-    if (name == "fftw")
+    if (names[k] == "fftw")
       std::memcpy(static_cast<void*>(y.data()), fw.out, bytes);
     else
       ctx.queue.enqueueReadBuffer(result, CL_TRUE, 0, bytes, y.data());
