@@ -1,0 +1,817 @@
+// snapfit against exact mesh collision (FCL, Debian libfcl-dev) on the same part pair
+// at the same poses: query time against triangle count, and how often snapfit's
+// collision verdict agrees with FCL's, against m'.
+//
+//   bench_peers [--quick] [--device SPEC] [--scene FILE] [--out DIR] [--poses N] [--no-cache]
+//
+// Part pair: the scene's two parts (default scenes/default.json: the peg and the hole
+// block, zero clearance, built by io/scene.h + scheduler/prepare_parts.h), then refined by
+// longest-edge bisection (engine/triangle_refine.h; the surface and its orientation are
+// unchanged, only the triangles get smaller) to about 1e3 (the scene's own meshes when
+// they have about that many), 1e4, 1e5 and 1e6 triangles for both parts together
+// (--quick: 1e3 and 1e4). One radius for both parts, adjusted until the count is within
+// 30% of the target.
+// Poses: N (default 400, --quick 60) times evenly spread over the scene's trajectory
+// (scheduler/trajectory.h), each perturbed by up to +-0.5 (scene units) per axis and up
+// to 2 degrees about a random axis (seeded); poses that snapfit flags as outside its
+// padded box are dropped for both. Part 2's pose is relative to part 1 (part 1 at the
+// identity), as in engine/pose_query.h: x -> R x + t.
+// Per triangle count:
+//   FCL     BVHModel<OBBRSSd> build time per part (beginModel/addSubModel/endModel);
+//           fcl::collide (1 contact, no contact data) and fcl::distance (exact: rel_err =
+//           abs_err = 0, no nearest points) per pose, wall clock of one call after setting
+//           part 2's transform; p50 / p99 over the poses. Distance queries stop after a time
+//           budget per level (30 s, --quick 3 s); the count done is reported.
+//   snapfit the same steps as engine/assembly_pair.h build_assembly_pair on the indicator
+//           version of the scene (descriptor kind "indicator", as scenes/collision_only.json;
+//           6-DOF with energy, force and torque, so torque spectra too): the scene's meshes
+//           go through build_assembly_pair itself, refined ones through the same calls
+//           (scene_part_grids, part_fields, compute_pair_spectra). Precompute time (fields,
+//           from the field cache when present: flagged; --no-cache recomputes) and spectra
+//           time. Then PoseQueryEngine per-query latency, each pose once after 20 warm-up
+//           queries, p50 / p99, at m' = 4096 and 32768, for the default scene's variant
+//           (6-DOF energy + force + torque, tricubic) and for the verdict variant (6-DOF
+//           energy + force, tricubic). The grid, and so the query cost, depends on the
+//           scene's spacing and the parts' boxes only, not on the triangles.
+// Collision verdict: with indicator fields the affinities are i*w1 and i*w2, so
+// f = -integral w1 w2 dV and the energy E = -Re f is the overlap volume (scene units^3),
+// low-passed to the m' retained modes. snapfit says "collision" when E > tau; tau =
+// 0.5 h^3 (half a grid cell, h the grid spacing): the sampled indicators cannot resolve
+// an overlap smaller than the volume one grid point stands for. Agreement with
+// fcl::collide at m' = 1024 .. 32768 per level, with the confusion counts, and a sweep of
+// tau in {0.1, 0.25, ..., 64} h^3 at every m' (the truncated overlap rings: free poses get
+// |E| well above half a cell at small m'), with the tau that agrees best per m'.
+// --quick doubles the grid spacing (8x fewer grid points, so a cold run stays near a minute):
+// its figures are not the default scene's.
+// Output in DIR (default results/bench_peers): peers.csv (per level), agreement.csv (per
+// level, m' and tau), poses.csv (per pose at the first level: pose, FCL verdict and
+// distance, snapfit energy per m'), peers.json (everything, with device, load averages,
+// command line, date) and PNG charts query_time.png (log-log), build_time.png,
+// agreement.png.
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "engine/assembly_pair.h"
+#include "engine/compute_context.h"
+#include "engine/device.h"
+#include "engine/error.h"
+#include "engine/fft3d.h"
+#include "engine/part_fields.h"
+#include "engine/pose_query.h"
+#include "engine/spectra.h"
+#include "engine/triangle_refine.h"
+#include "io/plot.h"
+#include "io/scene.h"
+#include "perf/bench_common.h"
+#include "scheduler/prepare_parts.h"
+#include "scheduler/progress.h"
+#include "scheduler/trajectory.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using snapfit::Mesh;
+using snapfit::Pose;
+using snapfit::PoseQueryEngine;
+using snapfit::QueryVariant;
+
+// ---------------------------------------------------------------- command line
+
+struct Args {
+  bool quick = false;
+  bool use_cache = true;
+  std::string device;
+  std::string scene = "scenes/default.json";
+  std::string out = "results/bench_peers";
+  int poses = 0;  // 0: 400, or 60 with --quick
+  std::string command_line;
+};
+
+void usage(std::ostream& os) {
+  os << "usage: bench_peers [--quick] [--device SPEC] [--scene FILE] [--out DIR] [--poses N] [--no-cache]\n"
+        "  --quick         1e3 and 1e4 triangles, 60 poses, 3 m' values, grid spacing doubled (about a minute)\n"
+        "  --device SPEC   OpenCL device: index, P:D, cpu|gpu|accelerator or a name substring\n"
+        "                  (default: $SNAPFIT_DEVICE, else PoCL's CPU device)\n"
+        "  --scene FILE    scene (default scenes/default.json)\n"
+        "  --out DIR       output folder (default results/bench_peers)\n"
+        "  --poses N       poses along the trajectory (default 400, --quick 60)\n"
+        "  --no-cache      recompute the descriptor fields (cold precompute times)\n";
+}
+
+Args parse_args(int argc, char** argv) {
+  Args a;
+  a.command_line = snapfit::bench::command_line(argc, argv);
+  for (int i = 1; i < argc; ++i) {
+    const std::string s = argv[i];
+    auto value = [&](const std::string& name) { return snapfit::bench::option_value(argc, argv, i, name); };
+    auto is = [&](const std::string& name) { return snapfit::bench::is_option(s, name); };
+    if (s == "--quick") {
+      a.quick = true;
+    } else if (s == "--no-cache") {
+      a.use_cache = false;
+    } else if (s == "-h" || s == "--help") {
+      usage(std::cout);
+      std::exit(0);
+    } else if (is("--device")) {
+      a.device = value("--device");
+    } else if (is("--scene")) {
+      a.scene = value("--scene");
+      if (a.scene.empty()) throw snapfit::Error("--scene: must not be empty");
+    } else if (is("--out")) {
+      a.out = value("--out");
+      if (a.out.empty()) throw snapfit::Error("--out: must not be empty");
+    } else if (is("--poses")) {
+      const std::string v = value("--poses");
+      std::size_t used = 0;
+      long n = 0;
+      try {
+        n = std::stol(v, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != v.size() || n < 2 || n > 1000000)
+        throw snapfit::Error("--poses: expected an integer >= 2 (got '" + v + "')");
+      a.poses = static_cast<int>(n);
+    } else {
+      throw snapfit::Error("unknown argument '" + s + "' (see --help)");
+    }
+  }
+  return a;
+}
+
+// ---------------------------------------------------------------- small helpers
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string fixed(double v, int prec = 1) {
+  if (!std::isfinite(v)) return "-";
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(prec) << v;
+  return os.str();
+}
+std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s : std::string(w - s.size(), ' ') + s; }
+std::string padr(const std::string& s, std::size_t w) { return s.size() >= w ? s : s + std::string(w - s.size(), ' '); }
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
+  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
+}
+
+double surface_area(const Mesh& m) {
+  double a = 0;
+  for (const auto& t : m.triangles)
+    a += 0.5 * (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
+  return a;
+}
+
+// ---------------------------------------------------------------- poses
+
+std::vector<Pose> make_poses(const snapfit::Scene& scene, std::size_t count, unsigned seed) {
+  snapfit::Trajectory traj = scene.trajectory;
+  if (traj.keyframes.empty()) {
+    traj.keyframes.push_back({0.0, scene.part2.pose});
+    if (scene.assembled_pose) traj.keyframes.push_back({1.0, *scene.assembled_pose});
+  }
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double t0 = traj.keyframes.front().time_s, t1 = traj.keyframes.back().time_s;
+  std::vector<Pose> poses;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double t = t0 + (t1 - t0) * (count > 1 ? double(i) / double(count - 1) : 0.0);
+    Pose p = snapfit::trajectory_pose(traj, t);
+    p.translation += 0.5 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    Eigen::Vector3d axis(u(rng), u(rng), u(rng));
+    if (axis.norm() < 1e-6) axis = Eigen::Vector3d::UnitZ();
+    const double angle = 2.0 * M_PI / 180.0 * std::abs(u(rng));
+    p.rotation = (Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis.normalized())) * p.rotation).normalized();
+    poses.push_back(p);
+  }
+  return poses;
+}
+
+// ---------------------------------------------------------------- refinement
+
+struct Level {
+  std::string label;        // "1e3" ...
+  std::size_t target = 0;   // triangles of both parts together
+  Mesh part1, part2;
+  double radius = 0;        // refinement radius (0: the scene's meshes)
+  double refine_s = 0;
+  std::size_t triangles() const { return part1.triangles.size() + part2.triangles.size(); }
+};
+
+Level make_level(const snapfit::PreparedParts& parts, std::size_t target, const std::string& label) {
+  Level L;
+  L.label = label;
+  L.target = target;
+  const std::size_t base = parts.part1.mesh.triangles.size() + parts.part2.mesh.triangles.size();
+  const auto t0 = Clock::now();
+  if (double(base) >= 0.7 * double(target)) {  // the scene's own meshes are close enough (or finer)
+    L.part1 = parts.part1.mesh;
+    L.part2 = parts.part2.mesh;
+  } else {
+    const double area = surface_area(parts.part1.mesh) + surface_area(parts.part2.mesh);
+    double r = std::sqrt(area / double(target));  // a piece within radius r has area ~ r^2
+    for (int it = 0; it < 8; ++it) {
+      L.part1 = snapfit::refine_triangles(parts.part1.mesh, r, 40000000);
+      L.part2 = snapfit::refine_triangles(parts.part2.mesh, r, 40000000);
+      L.radius = r;
+      const double ratio = double(L.triangles()) / double(target);
+      if (ratio > 1.0 / 1.3 && ratio < 1.3) break;
+      r *= std::sqrt(ratio) * (ratio > 1 ? 1.03 : 0.97);  // count ~ 1 / r^2; nudge past bisection steps
+    }
+  }
+  L.refine_s = seconds_since(t0);
+  return L;
+}
+
+// ---------------------------------------------------------------- FCL
+
+using FclModel = fcl::BVHModel<fcl::OBBRSSd>;
+
+std::shared_ptr<FclModel> fcl_model(const Mesh& m, double& seconds) {
+  const auto t0 = Clock::now();
+  std::vector<fcl::Vector3d> v(m.vertices.begin(), m.vertices.end());
+  std::vector<fcl::Triangle> t;
+  t.reserve(m.triangles.size());
+  for (const auto& tri : m.triangles) t.emplace_back(std::size_t(tri[0]), std::size_t(tri[1]), std::size_t(tri[2]));
+  auto model = std::make_shared<FclModel>();
+  if (model->beginModel(int(t.size()), int(v.size())) != fcl::BVH_OK || model->addSubModel(v, t) != fcl::BVH_OK ||
+      model->endModel() != fcl::BVH_OK)
+    throw snapfit::Error("FCL: cannot build the BVH model (" + std::to_string(t.size()) + " triangles)");
+  seconds = seconds_since(t0);
+  return model;
+}
+
+fcl::Transform3d fcl_transform(const Pose& p) {
+  fcl::Transform3d tf = fcl::Transform3d::Identity();
+  tf.linear() = p.rotation.toRotationMatrix();
+  tf.translation() = p.translation;
+  return tf;
+}
+
+// ---------------------------------------------------------------- per level results
+
+struct Stat {
+  double p50 = std::numeric_limits<double>::quiet_NaN(), p99 = p50, max = p50;
+  std::size_t n = 0;
+};
+Stat stat_us(const std::vector<double>& s) {
+  Stat r;
+  std::vector<double> us;
+  for (double v : s) us.push_back(v * 1e6);
+  r.n = us.size();
+  if (us.empty()) return r;
+  r.p50 = percentile(us, 0.5);
+  r.p99 = percentile(us, 0.99);
+  r.max = *std::max_element(us.begin(), us.end());
+  return r;
+}
+
+struct SnapLatency {
+  std::string variant;  // eft_tricubic | ef_tricubic
+  std::size_t modes = 0;
+  Stat stat;
+};
+
+struct LevelResult {
+  std::string label;
+  std::size_t target = 0, tri1 = 0, tri2 = 0;
+  double radius = 0, refine_s = 0;
+  double fcl_build1_s = 0, fcl_build2_s = 0;
+  Stat collide, distance;
+  std::size_t distance_skipped = 0;
+  std::vector<int> fcl_collides;       // per pose
+  std::vector<double> fcl_distance;    // per pose (NaN: not run)
+  double fields_s = 0, spectra_s = 0;
+  bool fields_cached = false;
+  std::array<std::size_t, 3> fft_dims{};
+  std::vector<SnapLatency> snap;
+  std::map<std::size_t, std::vector<double>> energy;  // verdict variant, per m', per pose
+  double other_cores_fcl = 0, other_cores_snap = 0;
+  double load_before = 0, load_after = 0;
+};
+
+struct AgreementRow {
+  std::string level;
+  std::size_t triangles = 0, modes = 0;
+  double tau_voxels = 0, tau = 0;
+  std::size_t agree = 0, both_collide = 0, both_free = 0, snap_only = 0, fcl_only = 0, poses = 0;
+  std::size_t snap_only_within_h = 0;  // of snap_only: FCL distance known and at most one grid spacing
+  double fraction() const { return poses ? double(agree) / double(poses) : 0.0; }
+};
+
+// ---------------------------------------------------------------- the run
+
+int run(const Args& args) {
+  const std::string load_start = snapfit::bench::read_loadavg();
+  const auto cpu_start = snapfit::bench::cpu_sample();
+  const std::string date = snapfit::bench::now_iso();
+  const auto t_start = Clock::now();
+  std::cout << "bench_peers: " << args.command_line << "\n  date " << date << ", load average at start: " << load_start
+            << "\n";
+
+  const std::vector<std::pair<std::string, std::size_t>> targets =
+      args.quick ? std::vector<std::pair<std::string, std::size_t>>{{"1e3", 1000}, {"1e4", 10000}}
+                 : std::vector<std::pair<std::string, std::size_t>>{
+                       {"1e3", 1000}, {"1e4", 10000}, {"1e5", 100000}, {"1e6", 1000000}};
+  const std::size_t pose_count = args.poses > 0 ? std::size_t(args.poses) : (args.quick ? 60 : 400);
+  const std::vector<std::size_t> timing_modes = {4096, 32768};
+  const std::vector<std::size_t> verdict_modes =
+      args.quick ? std::vector<std::size_t>{1024, 4096, 32768}
+                 : std::vector<std::size_t>{1024, 2048, 4096, 8192, 16384, 32768};
+  const std::vector<double> tau_voxels = {0.1, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0};
+  const double tau_main = 0.5;
+  const double distance_budget_s = args.quick ? 3.0 : 30.0;
+  const int warmup = 20;
+
+  // ---- device, scene, parts
+  const snapfit::FftLibrary fft;
+  const snapfit::ComputeContext ctx =
+      snapfit::make_compute_context(snapfit::select_device(snapfit::device_spec_from(args.device)));
+  const auto& info = ctx.device.info;
+  std::cout << "  device: " << snapfit::describe_device(info) << ", driver " << info.driver_version << "\n";
+  const snapfit::Scene base_scene = snapfit::load_scene(args.scene);
+  snapfit::Scene scene = base_scene;  // its indicator version (scenes/collision_only.json style), 6-DOF
+  scene.name = base_scene.name + " (indicator)";
+  scene.descriptor.kind = snapfit::DescriptorKind::indicator;
+  scene.motion = snapfit::Motion::six_dof;
+  scene.outputs = snapfit::Outputs{true, true, true};
+  if (args.quick) {  // CI proves the program runs: a grid twice as coarse (8x fewer points) keeps it short
+    if (scene.grid.spacing) scene.grid.spacing = 2.0 * *scene.grid.spacing;
+    if (scene.grid.resolution) scene.grid.resolution = std::max(8, *scene.grid.resolution / 2);
+    std::cout << "  --quick: grid spacing doubled (figures are not the default scene's)\n";
+  }
+  const snapfit::PreparedParts parts = snapfit::prepare_parts(scene);
+  std::cout << "  scene " << args.scene << " (" << base_scene.name << "): " << base_scene.part1.name << " "
+            << parts.part1.mesh.triangles.size() << " triangles, " << base_scene.part2.name << " "
+            << parts.part2.mesh.triangles.size() << " triangles; descriptor switched to the indicator\n";
+  const QueryVariant eft{true, true, false, snapfit::Interpolation::tricubic};  // the default scene's variant
+  const QueryVariant ef{true, false, false, snapfit::Interpolation::tricubic};  // the verdict's
+  if (!(snapfit::query_variant_for(base_scene).torque))
+    std::cout << "  note: the scene itself does not ask for torque; E+F+T is timed anyway (the default scene's)\n";
+
+  const std::vector<Pose> all_poses = make_poses(scene, pose_count, 20261122u);
+  std::vector<Pose> poses;  // filled at the first level (those snapfit accepts)
+  std::size_t dropped = 0;
+
+  snapfit::PairOptions popt;
+  popt.use_cache = args.use_cache;
+  popt.descriptors.progress = snapfit::pass_progress_bars(std::cerr);
+  popt.note = [](const std::string& m) { std::cerr << "  snapfit: " << m << "\n"; };
+
+  std::vector<LevelResult> levels;
+  double spacing = 0;
+  for (const auto& [label, target] : targets) {
+    LevelResult R;
+    R.label = label;
+    R.target = target;
+    std::cout << "\n[level " << label << "] refining..." << std::flush;
+    Level L = make_level(parts, target, label);
+    R.tri1 = L.part1.triangles.size();
+    R.tri2 = L.part2.triangles.size();
+    R.radius = L.radius;
+    R.refine_s = L.refine_s;
+    std::cout << " " << R.tri1 << " + " << R.tri2 << " = " << L.triangles() << " triangles"
+              << (L.radius > 0 ? " (split to radius " + fixed(L.radius, 3) + ", " + fixed(L.refine_s, 1) + " s)"
+                               : " (the scene's meshes)")
+              << "\n";
+    R.load_before = snapfit::bench::load1();
+
+    // ---- snapfit: pair (fields + spectra) and engines
+    const auto cs0 = snapfit::bench::cpu_sample();
+    snapfit::PairSpectra spectra;
+    {
+      const auto t0 = Clock::now();
+      if (L.radius == 0) {
+        const snapfit::AssemblyPair pair = snapfit::build_assembly_pair(scene, ctx, fft, popt);
+        R.fields_cached = pair.fields1.from_cache && pair.fields2.from_cache;
+        R.fields_s = seconds_since(t0) - pair.spectra.seconds;
+        spectra = pair.spectra;
+        R.spectra_s = pair.spectra.seconds;  // 0 when loaded from the spectra cache
+      } else {
+        const snapfit::ScenePartGrids grids = snapfit::scene_part_grids(scene.grid, L.part1, L.part2);
+        const auto f1 = snapfit::part_fields(ctx, L.part1, grids.part1, scene.descriptor, popt.descriptors,
+                                             args.use_cache, popt.note);
+        const auto f2 = snapfit::part_fields(ctx, L.part2, grids.part2, scene.descriptor, popt.descriptors,
+                                             args.use_cache, popt.note);
+        R.fields_cached = f1.from_cache && f2.from_cache;
+        R.fields_s = seconds_since(t0);
+        const auto t1 = Clock::now();
+        spectra = snapfit::compute_pair_spectra(fft, ctx, f1.fields, f2.fields, true, snapfit::SpectrumOptions{});
+        R.spectra_s = seconds_since(t1);
+      }
+    }
+    R.fft_dims = spectra.dims;
+    spacing = spectra.spacing;
+    std::cout << "  snapfit precompute: fields " << fixed(R.fields_s, 1) << " s"
+              << (R.fields_cached ? " (from the field cache)" : " (computed)") << ", spectra " << fixed(R.spectra_s, 1)
+              << " s, FFT grid " << spectra.dims[0] << "x" << spectra.dims[1] << "x" << spectra.dims[2] << ", h "
+              << spectra.spacing << "\n"
+              << std::flush;
+    PoseQueryEngine engine_eft(ctx, spectra, eft), engine_ef(ctx, spectra, ef);
+    if (poses.empty()) {
+      engine_ef.set_modes(1024);
+      const auto res = engine_ef.query_batch(all_poses);
+      for (std::size_t i = 0; i < all_poses.size(); ++i)
+        if (res[i].flags == snapfit::query_ok)
+          poses.push_back(all_poses[i]);
+        else
+          ++dropped;
+      if (poses.empty()) throw snapfit::Error("no pose inside snapfit's padded box");
+      std::cout << "  poses: " << poses.size() << " (" << dropped << " of " << all_poses.size()
+                << " outside snapfit's padded box dropped)\n";
+    }
+    double sink = 0;
+    for (std::size_t m : timing_modes)
+      for (auto* e : {&engine_eft, &engine_ef}) {
+        e->set_modes(m);
+        for (int i = 0; i < warmup; ++i) sink += e->query(poses[std::size_t(i) % poses.size()]).energy;
+        std::vector<double> s;
+        std::vector<double> energies;
+        for (const Pose& p : poses) {
+          const auto t = Clock::now();
+          const auto q = e->query(p);
+          s.push_back(seconds_since(t));
+          sink += q.energy;
+        }
+        R.snap.push_back({e == &engine_eft ? "eft_tricubic" : "ef_tricubic", e->modes(), stat_us(s)});
+      }
+    for (std::size_t m : verdict_modes) {
+      engine_ef.set_modes(m);
+      std::vector<double> E;
+      for (const auto& q : engine_ef.query_batch(poses)) E.push_back(q.flags == snapfit::query_ok ? q.energy : NAN);
+      R.energy[m] = E;
+    }
+    R.other_cores_snap = snapfit::bench::other_cores(cs0, snapfit::bench::cpu_sample());
+    for (const auto& s : R.snap)
+      std::cout << "  snapfit " << padr(s.variant == "eft_tricubic" ? "6-DOF E+F+T tricubic" : "6-DOF E+F tricubic", 21)
+                << " m' " << pad(std::to_string(s.modes), 6) << "  p50 " << pad(fixed(s.stat.p50, 1), 8) << " us  p99 "
+                << pad(fixed(s.stat.p99, 1), 8) << " us\n";
+    if (sink == 12345.678) std::cout << "";
+
+    // ---- FCL
+    const auto cf0 = snapfit::bench::cpu_sample();
+    auto m1 = fcl_model(L.part1, R.fcl_build1_s);
+    auto m2 = fcl_model(L.part2, R.fcl_build2_s);
+    std::cout << "  FCL BVH build (OBBRSS): " << fixed(R.fcl_build1_s, 2) << " s + " << fixed(R.fcl_build2_s, 2)
+              << " s\n"
+              << std::flush;
+    fcl::CollisionObjectd o1(m1, fcl::Transform3d::Identity()), o2(m2, fcl::Transform3d::Identity());
+    {
+      fcl::CollisionRequestd req(1, false);
+      std::vector<double> s;
+      for (const Pose& p : poses) {
+        const auto t = Clock::now();
+        o2.setTransform(fcl_transform(p));
+        o2.computeAABB();
+        fcl::CollisionResultd res;
+        fcl::collide(&o1, &o2, req, res);
+        s.push_back(seconds_since(t));
+        R.fcl_collides.push_back(res.isCollision() ? 1 : 0);
+      }
+      R.collide = stat_us(s);
+    }
+    {
+      fcl::DistanceRequestd req;
+      req.enable_nearest_points = false;
+      req.rel_err = 0;
+      req.abs_err = 0;
+      std::vector<double> s;
+      const auto t_budget = Clock::now();
+      R.fcl_distance.assign(poses.size(), NAN);
+      for (std::size_t i = 0; i < poses.size(); ++i) {
+        if (seconds_since(t_budget) > distance_budget_s) {
+          R.distance_skipped = poses.size() - i;
+          break;
+        }
+        const auto t = Clock::now();
+        o2.setTransform(fcl_transform(poses[i]));
+        o2.computeAABB();
+        fcl::DistanceResultd res;
+        fcl::distance(&o1, &o2, req, res);
+        s.push_back(seconds_since(t));
+        R.fcl_distance[i] = res.min_distance;
+      }
+      R.distance = stat_us(s);
+    }
+    R.other_cores_fcl = snapfit::bench::other_cores(cf0, snapfit::bench::cpu_sample());
+    R.load_after = snapfit::bench::load1();
+    std::size_t colliding = 0;
+    for (int c : R.fcl_collides) colliding += std::size_t(c);
+    std::cout << "  FCL collide   p50 " << pad(fixed(R.collide.p50, 1), 10) << " us  p99 " << pad(fixed(R.collide.p99, 1), 10)
+              << " us  (" << colliding << " of " << poses.size() << " poses collide)\n"
+              << "  FCL distance  p50 " << pad(fixed(R.distance.p50, 1), 10) << " us  p99 "
+              << pad(fixed(R.distance.p99, 1), 10) << " us  (" << R.distance.n << " poses"
+              << (R.distance_skipped ? ", " + std::to_string(R.distance_skipped) + " left out by the time budget" : "")
+              << ")\n"
+              << "  other processes used " << fixed(R.other_cores_snap, 2) << " cores (snapfit part), "
+              << fixed(R.other_cores_fcl, 2) << " cores (FCL part)\n"
+              << std::flush;
+    levels.push_back(std::move(R));
+  }
+
+  // ---- agreement
+  const double voxel = spacing * spacing * spacing;
+  std::vector<AgreementRow> agreement;
+  for (const auto& R : levels)
+    for (std::size_t m : verdict_modes)
+      for (double tv : tau_voxels) {
+        AgreementRow a;
+        a.level = R.label;
+        a.triangles = R.tri1 + R.tri2;
+        a.modes = m;
+        a.tau_voxels = tv;
+        a.tau = tv * voxel;
+        const auto& E = R.energy.at(m);
+        for (std::size_t i = 0; i < E.size(); ++i) {
+          if (!std::isfinite(E[i])) continue;
+          const bool s = E[i] > a.tau, f = R.fcl_collides[i] != 0;
+          ++a.poses;
+          if (s == f) ++a.agree;
+          if (s && f) ++a.both_collide;
+          if (!s && !f) ++a.both_free;
+          if (s && !f) ++a.snap_only;
+          if (s && !f && std::isfinite(R.fcl_distance[i]) && R.fcl_distance[i] <= spacing) ++a.snap_only_within_h;
+          if (!s && f) ++a.fcl_only;
+        }
+        agreement.push_back(a);
+      }
+  // FCL's verdicts should not change with refinement (the surface is the same).
+  std::size_t fcl_changes = 0;
+  for (std::size_t l = 1; l < levels.size(); ++l)
+    for (std::size_t i = 0; i < poses.size(); ++i) fcl_changes += levels[l].fcl_collides[i] != levels[0].fcl_collides[i];
+
+  // ---- table
+  std::cout << "\nquery time per pose (us), p50 / p99; FCL BVH build and snapfit precompute (s)\n";
+  std::cout << "  " << padr("triangles", 10) << pad("FCL build", 10) << pad("collide", 20) << pad("distance", 22)
+            << pad("snap m'4096", 18) << pad("snap m'32768", 18) << pad("snap pre", 10) << "\n";
+  for (const auto& R : levels) {
+    auto find = [&](std::size_t m) -> const Stat* {
+      for (const auto& s : R.snap)
+        if (s.variant == "eft_tricubic" && s.modes == m) return &s.stat;
+      return nullptr;
+    };
+    const Stat* a = find(4096);
+    const Stat* b = find(32768);
+    std::cout << "  " << padr(std::to_string(R.tri1 + R.tri2), 10) << pad(fixed(R.fcl_build1_s + R.fcl_build2_s, 2), 10)
+              << pad(fixed(R.collide.p50, 1) + " / " + fixed(R.collide.p99, 1), 20)
+              << pad(fixed(R.distance.p50, 1) + " / " + fixed(R.distance.p99, 1), 22)
+              << pad(a ? fixed(a->p50, 0) + " / " + fixed(a->p99, 0) : "-", 18)
+              << pad(b ? fixed(b->p50, 0) + " / " + fixed(b->p99, 0) : "-", 18)
+              << pad(fixed(R.fields_s + R.spectra_s, 1) + (R.fields_cached ? "c" : ""), 10) << "\n";
+  }
+  std::cout << "  (snapfit: 6-DOF E+F+T tricubic, the default scene's variant; 'c': fields from the cache)\n";
+  std::cout << "\nverdict agreement with fcl::collide, tau = " << tau_main << " h^3 = " << fixed(tau_main * voxel, 4)
+            << " (h = " << spacing << "), per m' [both collide / both free / snapfit only / FCL only]\n";
+  for (const auto& a : agreement)
+    if (a.tau_voxels == tau_main)
+      std::cout << "  " << padr(a.level, 5) << " m' " << pad(std::to_string(a.modes), 6) << "  "
+                << pad(fixed(100.0 * a.fraction(), 1), 6) << " %  [" << a.both_collide << " / " << a.both_free << " / "
+                << a.snap_only << " / " << a.fcl_only << "] of " << a.poses << "; snapfit-only with FCL distance <= h: "
+                << a.snap_only_within_h << "\n";
+  std::cout << "  best tau of the sweep per m' (first level):";
+  for (std::size_t m : verdict_modes) {
+    const AgreementRow* best = nullptr;
+    for (const auto& a : agreement)
+      if (a.level == levels.front().label && a.modes == m && (!best || a.agree > best->agree)) best = &a;
+    if (best)
+      std::cout << "  m' " << m << ": " << best->tau_voxels << " h^3 -> " << fixed(100.0 * best->fraction(), 1) << " %;";
+  }
+  std::cout << "\n  FCL verdict changes across refinement levels: " << fcl_changes << "\n";
+
+  // ---- outputs
+  const std::string load_end = snapfit::bench::read_loadavg();
+  const double others_run = snapfit::bench::other_cores(cpu_start, snapfit::bench::cpu_sample());
+  const double total_s = seconds_since(t_start);
+  const std::filesystem::path dir(args.out);
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream f(dir / "peers.csv");
+    f << "level,triangles,triangles_part1,triangles_part2,refine_radius,refine_s,fcl_build_s,fcl_build_part1_s,fcl_"
+         "build_part2_s,fcl_collide_p50_us,fcl_collide_p99_us,fcl_collide_n,fcl_distance_p50_us,fcl_distance_p99_us,"
+         "fcl_distance_n,fcl_distance_skipped,snap_fields_s,snap_fields_cached,snap_spectra_s,snap_eft_4096_p50_us,"
+         "snap_eft_4096_p99_us,snap_eft_32768_p50_us,snap_eft_32768_p99_us,snap_ef_4096_p50_us,snap_ef_4096_p99_us,"
+         "snap_ef_32768_p50_us,snap_ef_32768_p99_us,other_cores_snap,other_cores_fcl,load_before,load_after\n";
+    for (const auto& R : levels) {
+      f << R.label << ',' << R.tri1 + R.tri2 << ',' << R.tri1 << ',' << R.tri2 << ',' << R.radius << ',' << R.refine_s
+        << ',' << R.fcl_build1_s + R.fcl_build2_s << ',' << R.fcl_build1_s << ',' << R.fcl_build2_s << ','
+        << R.collide.p50 << ',' << R.collide.p99 << ',' << R.collide.n << ',' << R.distance.p50 << ','
+        << R.distance.p99 << ',' << R.distance.n << ',' << R.distance_skipped << ',' << R.fields_s << ','
+        << R.fields_cached << ',' << R.spectra_s;
+      for (const std::string v : {"eft_tricubic", "ef_tricubic"})
+        for (std::size_t m : timing_modes)
+          for (const auto& s : R.snap)
+            if (s.variant == v && s.modes == m) f << ',' << s.stat.p50 << ',' << s.stat.p99;
+      f << ',' << R.other_cores_snap << ',' << R.other_cores_fcl << ',' << R.load_before << ',' << R.load_after << '\n';
+    }
+    if (!f) throw snapfit::Error((dir / "peers.csv").string() + ": cannot write");
+  }
+  {
+    std::ofstream f(dir / "agreement.csv");
+    f << "level,triangles,modes,tau_voxels,tau,poses,agree,fraction,both_collide,both_free,snapfit_only,fcl_only,snapfit_only_fcl_distance_within_h\n";
+    for (const auto& a : agreement)
+      f << a.level << ',' << a.triangles << ',' << a.modes << ',' << a.tau_voxels << ',' << a.tau << ',' << a.poses
+        << ',' << a.agree << ',' << a.fraction() << ',' << a.both_collide << ',' << a.both_free << ',' << a.snap_only
+        << ',' << a.fcl_only << ',' << a.snap_only_within_h << '\n';
+    if (!f) throw snapfit::Error((dir / "agreement.csv").string() + ": cannot write");
+  }
+  {
+    std::ofstream f(dir / "poses.csv");
+    f << "index,tx,ty,tz,qw,qx,qy,qz,fcl_collide,fcl_distance";
+    for (std::size_t m : verdict_modes) f << ",energy_m" << m;
+    f << "\n";
+    const auto& R = levels.front();
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      const auto& p = poses[i];
+      f << i << ',' << p.translation.x() << ',' << p.translation.y() << ',' << p.translation.z() << ','
+        << p.rotation.w() << ',' << p.rotation.x() << ',' << p.rotation.y() << ',' << p.rotation.z() << ','
+        << R.fcl_collides[i] << ',' << (std::isfinite(R.fcl_distance[i]) ? std::to_string(R.fcl_distance[i]) : "");
+      for (std::size_t m : verdict_modes) f << ',' << R.energy.at(m)[i];
+      f << "\n";
+    }
+    if (!f) throw snapfit::Error((dir / "poses.csv").string() + ": cannot write");
+  }
+  nlohmann::json j;
+  j["benchmark"] = "bench_peers";
+  j["command_line"] = args.command_line;
+  j["date"] = date;
+  j["quick"] = args.quick;
+  j["total_seconds"] = total_s;
+  j["loadavg_start"] = load_start;
+  j["loadavg_end"] = load_end;
+  j["other_cores_run"] = others_run;
+  j["nproc"] = std::thread::hardware_concurrency();
+  j["device"] = {{"name", info.name},
+                 {"vendor", info.vendor},
+                 {"platform", info.platform_name},
+                 {"driver", info.driver_version},
+                 {"type", info.type},
+                 {"compute_units", info.compute_units}};
+  j["scene"] = {{"file", args.scene},
+                {"name", base_scene.name},
+                {"descriptor_used", "indicator (winding number), as scenes/collision_only.json"},
+                {"spacing", spacing},
+                {"units", scene.units}};
+  j["poses"] = {{"requested", all_poses.size()},
+                {"used", poses.size()},
+                {"dropped_outside_grid", dropped},
+                {"perturbation", "+-0.5 scene units per axis, up to 2 degrees about a random axis, seed 20261122"}};
+  j["verdict"] = {{"rule", "collision when E > tau; E = overlap volume of the two indicators, low-passed to m' modes"},
+                  {"tau_main_voxels", tau_main},
+                  {"tau_main", tau_main * voxel},
+                  {"why", "half a grid cell: the sampled indicators cannot resolve an overlap smaller than the volume "
+                          "one grid point stands for"}};
+  j["method"] = {
+      {"fcl", "BVHModel<OBBRSSd>; collide with 1 contact and no contact data; distance exact (rel_err = abs_err = 0); "
+              "wall clock of setTransform + computeAABB + the call, one call per pose"},
+      {"snapfit", "PoseQueryEngine::query wall clock, one call per pose after " + std::to_string(warmup) +
+                      " warm-up; fields + spectra as build_assembly_pair does on the indicator scene"}};
+  nlohmann::json lj = nlohmann::json::array();
+  for (const auto& R : levels) {
+    nlohmann::json sj = nlohmann::json::array();
+    for (const auto& s : R.snap)
+      sj.push_back({{"variant", s.variant}, {"modes", s.modes}, {"p50_us", num(s.stat.p50)}, {"p99_us", num(s.stat.p99)},
+                    {"max_us", num(s.stat.max)}, {"n", s.stat.n}});
+    lj.push_back({{"level", R.label},
+                  {"target", R.target},
+                  {"triangles", R.tri1 + R.tri2},
+                  {"triangles_part1", R.tri1},
+                  {"triangles_part2", R.tri2},
+                  {"refine_radius", R.radius},
+                  {"refine_s", R.refine_s},
+                  {"fcl_build_s", {R.fcl_build1_s, R.fcl_build2_s}},
+                  {"fcl_collide", {{"p50_us", num(R.collide.p50)}, {"p99_us", num(R.collide.p99)}, {"max_us", num(R.collide.max)}, {"n", R.collide.n}}},
+                  {"fcl_distance",
+                   {{"p50_us", num(R.distance.p50)}, {"p99_us", num(R.distance.p99)}, {"max_us", num(R.distance.max)},
+                    {"n", R.distance.n}, {"skipped_by_budget", R.distance_skipped}}},
+                  {"snapfit_fields_s", R.fields_s},
+                  {"snapfit_fields_cached", R.fields_cached},
+                  {"snapfit_spectra_s", R.spectra_s},
+                  {"fft_dims", R.fft_dims},
+                  {"snapfit_latency", sj},
+                  {"other_cores_snap", R.other_cores_snap},
+                  {"other_cores_fcl", R.other_cores_fcl},
+                  {"load_before", R.load_before},
+                  {"load_after", R.load_after}});
+  }
+  j["levels"] = lj;
+  nlohmann::json aj = nlohmann::json::array();
+  for (const auto& a : agreement)
+    aj.push_back({{"level", a.level}, {"triangles", a.triangles}, {"modes", a.modes}, {"tau_voxels", a.tau_voxels},
+                  {"tau", a.tau}, {"poses", a.poses}, {"agree", a.agree}, {"fraction", a.fraction()},
+                  {"both_collide", a.both_collide}, {"both_free", a.both_free}, {"snapfit_only", a.snap_only},
+                  {"fcl_only", a.fcl_only}, {"snapfit_only_fcl_distance_within_h", a.snap_only_within_h}});
+  j["agreement"] = aj;
+  j["fcl_verdict_changes_across_levels"] = fcl_changes;
+  {
+    std::ofstream f(dir / "peers.json");
+    f << j.dump(2) << "\n";
+    if (!f) throw snapfit::Error((dir / "peers.json").string() + ": cannot write");
+  }
+
+  // ---- charts
+  {
+    snapfit::Chart c;
+    c.title = "query time vs triangles: FCL vs snapfit (same poses)";
+    c.x_label = "triangles (both parts)";
+    c.y_label = "time per query (us)";
+    c.log_x = c.log_y = true;
+    auto add = [&](const std::string& label, auto get) {
+      snapfit::Series s;
+      s.label = label;
+      for (const auto& R : levels) s.x.push_back(double(R.tri1 + R.tri2)), s.y.push_back(get(R));
+      c.series.push_back(s);
+    };
+    add("FCL collide p50", [](const LevelResult& R) { return R.collide.p50; });
+    add("FCL collide p99", [](const LevelResult& R) { return R.collide.p99; });
+    add("FCL distance p50", [](const LevelResult& R) { return R.distance.p50; });
+    add("FCL distance p99", [](const LevelResult& R) { return R.distance.p99; });
+    for (std::size_t m : timing_modes)
+      for (const bool p99 : {false, true})
+        add("snapfit E+F+T m' " + std::to_string(m) + (p99 ? " p99" : " p50"), [&](const LevelResult& R) {
+          for (const auto& s : R.snap)
+            if (s.variant == "eft_tricubic" && s.modes == m) return p99 ? s.stat.p99 : s.stat.p50;
+          return std::numeric_limits<double>::quiet_NaN();
+        });
+    c.hlines.push_back({1000.0, "1 ms"});
+    snapfit::write_chart_png((dir / "query_time.png").string(), c);
+  }
+  {
+    snapfit::Chart c;
+    c.title = "precompute vs triangles: FCL BVH build, snapfit fields + spectra";
+    c.x_label = "triangles (both parts)";
+    c.y_label = "seconds";
+    c.log_x = c.log_y = true;
+    snapfit::Series a, b;
+    a.label = "FCL BVH build (OBBRSS, both parts)";
+    b.label = "snapfit indicator fields + spectra";
+    for (const auto& R : levels) {
+      a.x.push_back(double(R.tri1 + R.tri2)), a.y.push_back(R.fcl_build1_s + R.fcl_build2_s);
+      if (!R.fields_cached) b.x.push_back(double(R.tri1 + R.tri2)), b.y.push_back(R.fields_s + R.spectra_s);
+    }
+    c.series = {a, b};
+    snapfit::write_chart_png((dir / "build_time.png").string(), c);
+  }
+  {
+    snapfit::Chart c;
+    c.title = "collision verdict agreement with FCL vs m' (tau = 0.5 h^3)";
+    c.x_label = "retained modes m'";
+    c.y_label = "poses where snapfit and FCL agree (%)";
+    c.log_x = true;
+    for (const auto& R : levels) {
+      snapfit::Series s;
+      s.label = R.label + " (" + std::to_string(R.tri1 + R.tri2) + " triangles)";
+      for (const auto& a : agreement)
+        if (a.level == R.label && a.tau_voxels == tau_main) s.x.push_back(double(a.modes)), s.y.push_back(100.0 * a.fraction());
+      c.series.push_back(s);
+    }
+    snapfit::write_chart_png((dir / "agreement.png").string(), c);
+  }
+  std::cout << "\nload average at end: " << load_end << " (start: " << load_start << "), total " << fixed(total_s, 0)
+            << " s; other processes kept " << fixed(others_run, 2) << " cores busy on average\nwrote "
+            << (dir / "peers.csv").string() << ", agreement.csv, poses.csv, peers.json, query_time.png, "
+            << "build_time.png, agreement.png\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(parse_args(argc, argv));
+  } catch (const snapfit::Error& e) {
+    std::cerr << "bench_peers: error: " << e.what() << "\n";
+    return 1;
+  } catch (const cl::Error& e) {
+    std::cerr << "bench_peers: OpenCL error: " << e.what() << " (" << e.err() << ")\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "bench_peers: error: " << e.what() << "\n";
+    return 1;
+  }
+}
