@@ -28,7 +28,9 @@ struct DescriptorOptions {
   double min_distance_fraction = 1e-3;
   // Before the hierarchy is built, triangles are split until each fits in a ball of
   // this fraction of the grid spacing (engine/triangle_refine.h); 0 disables it.
-  double refine_fraction = 0.25;
+  // 0.5 measured as fast as 0.25 in the density pass (the per-point splitting with the
+  // second-moment bound is cheap) with a 4x smaller hierarchy to build.
+  double refine_fraction = 0.5;
   // The paper's brute-force O(m n) skeletal density (every triangle, adaptive splitting,
   // no hierarchy, no refinement): for benchmarks and cross-checks only.
   bool brute_force_density = false;
