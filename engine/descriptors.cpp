@@ -1,6 +1,7 @@
 #include "engine/descriptors.h"
 
 #include <chrono>
+#include <climits>
 #include <cmath>
 
 #include "engine/error.h"
@@ -77,7 +78,9 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
   const bool skeletal = params.kind == DescriptorKind::skeletal_density;
   const bool need_distance = skeletal || options.indicator_signed_distance;
   // Sign propagation needs the distance too (cheap next to the winding kernel).
-  const bool propagate = options.winding_sign_propagation && mesh_is_closed(mesh);
+  // (Component labels are 32-bit: larger grids, far beyond memory here, keep the full pass.)
+  const bool propagate = options.winding_sign_propagation && grid.count() <= static_cast<std::size_t>(INT32_MAX) &&
+                         mesh_is_closed(mesh);
   const bool compute_distance = need_distance || propagate;
   if (skeletal && !(params.sigma > 0)) throw Error("descriptor sigma must be positive");
 
