@@ -1,12 +1,14 @@
 #include "engine/descriptors.h"
 
 #include <chrono>
+#include <climits>
 #include <cmath>
 
 #include "engine/error.h"
 #include "engine/kernel_sources.h"
 #include "engine/triangle_bvh.h"
 #include "engine/triangle_refine.h"
+#include "engine/winding_propagation.h"
 
 namespace snapfit {
 namespace {
@@ -17,19 +19,25 @@ struct ChunkIo {
   std::vector<float>* host;
 };
 
-// Runs `kernel` over the grid chunk by chunk. Arguments 0..5 (first point, point count,
-// origin, spacing, nx, ny) are set here, the rest by the caller beforehand. Inputs are
-// written from their host arrays before each launch, outputs read back after it.
+// Runs `kernel` over `count` work items (the grid points, or a list of them) chunk by
+// chunk. Arguments 0..5 (first item, item count, origin, spacing, nx, ny) are set here,
+// the rest by the caller beforehand. Inputs are written from their host arrays before
+// each launch, outputs read back after it. Progress is reported in grid points (a list
+// of items counts as the whole grid, in proportion).
 void run_pass(const ComputeContext& ctx, const GridSpec& grid, const DescriptorOptions& options, cl::Kernel& kernel,
-              const std::vector<ChunkIo>& inputs, const std::vector<ChunkIo>& outputs, const std::string& pass) {
-  const std::size_t count = grid.count();
+              const std::vector<ChunkIo>& inputs, const std::vector<ChunkIo>& outputs, const std::string& pass,
+              std::size_t count) {
   const cl_float3 origin{{static_cast<float>(grid.origin.x()), static_cast<float>(grid.origin.y()),
                           static_cast<float>(grid.origin.z()), 0.0f}};
   kernel.setArg(2, origin);
   kernel.setArg(3, static_cast<float>(grid.spacing));
   kernel.setArg(4, static_cast<cl_int>(grid.dims.x()));
   kernel.setArg(5, static_cast<cl_int>(grid.dims.y()));
-  if (options.progress) options.progress(pass, 0, count);  // starts the clock before the first chunk
+  const std::uint64_t points = grid.count();
+  auto report = [&](std::size_t done) {
+    if (options.progress) options.progress(pass, done == count ? points : done * points / count, points);
+  };
+  report(0);  // starts the clock before the first chunk
   for (std::size_t first = 0; first < count; first += options.chunk_points) {
     const std::size_t n = std::min(options.chunk_points, count - first);
     kernel.setArg(0, static_cast<cl_long>(first));
@@ -46,7 +54,7 @@ void run_pass(const ComputeContext& ctx, const GridSpec& grid, const DescriptorO
     for (const ChunkIo& out : outputs)
       ctx.queue.enqueueReadBuffer(out.buffer, CL_FALSE, 0, sizeof(float) * n, out.host->data() + first);
     ctx.queue.finish();
-    if (options.progress) options.progress(pass, first + n, count);
+    report(first + n);
   }
 }
 
@@ -69,6 +77,11 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
   if (!(params.tolerance > 0 && params.tolerance < 1)) throw Error("descriptor tolerance must be in (0, 1)");
   const bool skeletal = params.kind == DescriptorKind::skeletal_density;
   const bool need_distance = skeletal || options.indicator_signed_distance;
+  // Sign propagation needs the distance too (cheap next to the winding kernel).
+  // (Component labels are 32-bit: larger grids, far beyond memory here, keep the full pass.)
+  const bool propagate = options.winding_sign_propagation && grid.count() <= static_cast<std::size_t>(INT32_MAX) &&
+                         mesh_is_closed(mesh);
+  const bool compute_distance = need_distance || propagate;
   if (skeletal && !(params.sigma > 0)) throw Error("descriptor sigma must be positive");
 
   DescriptorFields out;
@@ -94,7 +107,7 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
   out.grid = grid;
   out.params = params;
   const std::size_t count = grid.count();
-  std::vector<float> distance(need_distance ? count : 0);
+  std::vector<float> distance(compute_distance ? count : 0);
   out.winding.resize(count);
   out.winding_bound.resize(count);
   try {
@@ -117,25 +130,44 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
 
     // 1. Unsigned distance |xi| (not for the indicator, which needs w alone).
     t = std::chrono::steady_clock::now();
-    if (need_distance) {
+    if (compute_distance) {
       cl::Kernel distance_kernel = make_kernel(ctx, "unsigned_distance", stack_size, options);
       distance_kernel.setArg(6, nodes);
       distance_kernel.setArg(7, triangles);
       distance_kernel.setArg(8, chunk_a);
-      run_pass(ctx, grid, options, distance_kernel, {}, {{chunk_a, &distance}}, "distance");
+      run_pass(ctx, grid, options, distance_kernel, {}, {{chunk_a, &distance}}, "distance", count);
       out.distance_seconds = seconds_since(t);
     }
     t = std::chrono::steady_clock::now();
 
-    // 2. Winding number w and its error bound.
-    cl::Kernel winding_kernel = make_kernel(ctx, "winding_number", stack_size, options);
+    // 2. Winding number w and its error bound: on a closed mesh at one seed per
+    // component of the "surface cannot cross" grid graph, copied to the component;
+    // otherwise at every point.
+    cl::Kernel winding_kernel =
+        make_kernel(ctx, "winding_number", stack_size, options, propagate ? " -D POINT_LIST" : "");
     winding_kernel.setArg(6, nodes);
     winding_kernel.setArg(7, triangles);
     winding_kernel.setArg(8, static_cast<float>(params.tolerance));
     winding_kernel.setArg(9, chunk_a);
     winding_kernel.setArg(10, chunk_b);
-    run_pass(ctx, grid, options, winding_kernel, {}, {{chunk_a, &out.winding}, {chunk_b, &out.winding_bound}},
-             "winding number");
+    if (propagate) {
+      const WindingComponents components =
+          winding_components(grid, distance, distance_rounding_slack(grid, mesh));
+      const std::size_t seeds = components.seeds.size();
+      std::vector<cl_long> ids(components.seeds.begin(), components.seeds.end());
+      cl::Buffer id_buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_long) * seeds, ids.data());
+      winding_kernel.setArg(11, id_buffer);
+      std::vector<float> seed_winding(seeds), seed_bound(seeds);
+      run_pass(ctx, grid, options, winding_kernel, {}, {{chunk_a, &seed_winding}, {chunk_b, &seed_bound}},
+               "winding number", seeds);
+      propagate_winding(components, seed_winding, seed_bound, out.winding, out.winding_bound);
+      out.winding_method = "sign propagation";
+      out.winding_kernel_points = seeds;
+    } else {
+      run_pass(ctx, grid, options, winding_kernel, {}, {{chunk_a, &out.winding}, {chunk_b, &out.winding_bound}},
+               "winding number", count);
+      out.winding_kernel_points = count;
+    }
     out.winding_seconds = seconds_since(t);
     t = std::chrono::steady_clock::now();
 
@@ -156,7 +188,7 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
       density_kernel.setArg(13, chunk_a);
       density_kernel.setArg(14, chunk_b);
       run_pass(ctx, grid, options, density_kernel, {{chunk_c, &distance}},
-               {{chunk_a, &out.skeletal_density}, {chunk_b, &out.density_bound}}, "skeletal density");
+               {{chunk_a, &out.skeletal_density}, {chunk_b, &out.density_bound}}, "skeletal density", count);
       out.density_seconds = seconds_since(t);
     }
   } catch (const cl::Error& e) {

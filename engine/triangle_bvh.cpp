@@ -55,20 +55,28 @@ struct Builder {
       normal += t.area_normal;
     }
     const Vec3 c = area > 0 ? Vec3(weighted / area) : box.center();
-    double radius = 0;
+    double radius = 0, second = 0;
     Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
     for (int i = first; i < first + count; ++i) {
       const TriangleData& t = tris[order[i]];
       for (const Vec3& v : t.v) radius = std::max(radius, (v - c).norm());
       moment += t.area_normal * (t.centroid - c).transpose();
+      // integral over the triangle of |q - c|^2 dA = A |c_t - c|^2 + (A/12) sum_i |v_i - c_t|^2
+      // (the covariance of a uniform triangle is (1/12) sum_i (v_i - c_t)(v_i - c_t)^T).
+      double spread = 0;
+      for (const Vec3& v : t.v) spread += (v - t.centroid).squaredNorm();
+      second += t.area * ((t.centroid - c).squaredNorm() + spread / 12.0);
     }
     BvhNode& out = nodes[node];
     out.bbox_min = f4(box.min(), area);
     // The kernels see float centroids and vertices: grow the ball by their rounding
     // (a few float steps at the coordinates' magnitude), so it still holds every vertex.
     const double magnitude = std::max(box.min().cwiseAbs().maxCoeff(), box.max().cwiseAbs().maxCoeff());
-    out.bbox_max = f4(box.max(), radius * (1.0 + 1e-6) + 8.0 * 1.2e-7 * magnitude);
-    out.centroid = f4(c);
+    const double slack = radius * 1e-6 + 8.0 * 1.2e-7 * magnitude;
+    out.bbox_max = f4(box.max(), radius + slack);
+    // The second moment grows likewise: |q - c| + slack under the integral, and
+    // integral |q - c| dA <= sqrt(A I) (Cauchy-Schwarz).
+    out.centroid = f4(c, second * (1.0 + 1e-6) + 2.0 * slack * std::sqrt(area * second) + area * slack * slack);
     out.area_normal = f4(normal);
     for (int row = 0; row < 3; ++row) out.moment[row] = f4(moment.row(row).transpose());
 

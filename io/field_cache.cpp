@@ -12,7 +12,9 @@
 namespace snapfit {
 namespace {
 
-constexpr std::uint32_t kFieldCacheVersion = 1;
+constexpr std::uint32_t kFieldCacheVersion = 2;
+// Mask bit (above the field bits) set when w came from sign propagation.
+constexpr std::uint32_t kSignPropagationBit = 1u << 16;
 constexpr const char* kKind = "descriptor-fields";
 
 std::uint64_t mesh_hash(const Mesh& mesh) {
@@ -20,8 +22,8 @@ std::uint64_t mesh_hash(const Mesh& mesh) {
   return fnv1a64(mesh.triangles.data(), mesh.triangles.size() * sizeof(Eigen::Vector3i), h);
 }
 
-// Payload: u64 point count, u32 mask of present fields, then each present field's
-// floats, in this order.
+// Payload: u64 point count, u32 mask of present fields (plus kSignPropagationBit), then
+// each present field's floats, in this order.
 template <typename Fields>
 auto field_list(Fields& f) {
   return std::vector<decltype(&f.winding)>{&f.winding, &f.winding_bound, &f.signed_distance, &f.skeletal_density,
@@ -45,7 +47,7 @@ std::string descriptor_cache_key(const Mesh& mesh, const GridSpec& grid, const D
         << "|brute_force=" << options.brute_force_density;
   key << "|leaf=" << options.bvh_leaf_size << "|xi=" << (params.kind == DescriptorKind::skeletal_density || options.indicator_signed_distance)
       << "|tolerance=" << params.tolerance << "|min_distance=" << options.min_distance_fraction
-      << "|kernels=" << hex64(sources);
+      << "|kernels=" << hex64(sources) << "|winding_propagation=" << options.winding_sign_propagation;
   return key.str();
 }
 
@@ -74,6 +76,7 @@ std::optional<DescriptorFields> load_cached_descriptors(const std::string& key,
   std::memcpy(&count, bytes.data(), 8);
   std::memcpy(&mask, bytes.data() + 8, 4);
   std::size_t at = 12;
+  if (mask & kSignPropagationBit) fields.winding_method = "sign propagation";
   for (std::size_t i = 0; i < field_list(fields).size(); ++i) {
     if (!(mask & (1u << i))) continue;
     if (bytes.size() - at < count * sizeof(float)) {
@@ -100,6 +103,7 @@ void save_cached_descriptors(const std::string& key, const DescriptorFields& fie
     const auto* raw = reinterpret_cast<const unsigned char*>(list[i]->data());
     payload.insert(payload.end(), raw, raw + list[i]->size() * sizeof(float));
   }
+  if (fields.winding_method == "sign propagation") mask |= kSignPropagationBit;
   std::memcpy(payload.data(), &count, 8);
   std::memcpy(payload.data() + 8, &mask, 4);
   try {

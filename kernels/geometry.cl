@@ -5,7 +5,7 @@
 typedef struct {
   float4 bbox_min;     // w: total area A
   float4 bbox_max;     // w: radius r around the centroid
-  float4 centroid;     // area-weighted centroid c
+  float4 centroid;     // area-weighted centroid c; w: I = integral of |q - c|^2 dA
   float4 area_normal;  // N = sum A_t n_t
   float4 moment[3];    // rows of M = sum A_t n_t (c_t - c)^T
   int4 links;          // x: right child (-1: leaf), y: first triangle, z: triangle count

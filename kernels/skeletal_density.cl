@@ -12,12 +12,14 @@
 // (a single flat piece has M = 0: the midpoint rule, also second order). Along any
 // segment the second derivative of K is at most
 //     K2 = |g''|/(|xi|^2 eta^2) + 5|g'|/(|xi| eta^3) + 6 g/eta^4,   eta >= D - r,
-// with the maxima of g, |g'|, |g''| taken over the cluster's x range, so the error is
-// at most (1/2) K2 r^2 A. A cluster is accepted when that bound is at most
+// with the maxima of g, |g'|, |g''| taken over the cluster's x range, so the Taylor
+// remainder at q is at most (1/2) K2 |q - c|^2 and the error at most (1/2) K2 I, with
+// I = integral of |q - c|^2 dA the cluster's second moment (stored per node; for a
+// triangle piece (A/12) sum_i |v_i - c|^2 <= r^2 A / 4). A cluster is accepted when that bound is at most
 // tolerance * g(0) * A/(D - r)^2 (a relative error on its solid-angle bound);
 // otherwise nodes open their children and triangles are split at their longest edge.
 // Triangles arrive pre-split to a fraction of the grid spacing (engine/triangle_refine.h),
-// so MAX_SPLIT_DEPTH = 16 halvings reach ~1e-3 of the spacing, the distance below which
+// so MAX_SPLIT_DEPTH = 16 halvings reach ~2e-3 of the spacing, near the 1e-3 below which
 // |xi| is clamped; a small split stack also keeps PoCL fast (measured: depth 40 is ~2x slower).
 // Pieces still rejected at MAX_SPLIT_DEPTH use the exact solid angle times g(x_c),
 // with error at most max|g(x) - g(x_c)| * |Omega|. The sum of all accepted bounds is
@@ -48,12 +50,12 @@ inline float3 gauss_maxima(const Gaussian g, const float lo, const float hi) {
   return (float3)(m0, m1, m2);
 }
 
-// (1/2) K2 r^2 A, with K2 from the maxima m = (max g, max|g'|, max|g''|), for a cluster
-// at distance d with radius r (requires d > r).
-inline float cluster_error_with(const float3 m, const float d, const float r, const float area, const float xi) {
+// (1/2) K2 I, with K2 from the maxima m = (max g, max|g'|, max|g''|), for a cluster
+// at distance d with radius r and second moment I (requires d > r).
+inline float cluster_error_with(const float3 m, const float d, const float r, const float second, const float xi) {
   const float inv = 1.0f / (d - r);
   const float k2 = m.z * inv * inv / (xi * xi) + 5.0f * m.y * inv * inv * inv / xi + 6.0f * m.x * inv * inv * inv * inv;
-  return 0.5f * k2 * r * r * area;
+  return 0.5f * k2 * second;
 }
 
 inline bool acceptable(const Gaussian g, const float err, const float area, const float dm, const float tolerance) {
@@ -62,13 +64,17 @@ inline bool acceptable(const Gaussian g, const float err, const float area, cons
 
 // Error bound of a cluster if it is acceptable, else -1. The global maxima of g, |g'|,
 // |g''| are tried first (no exp); the maxima over the cluster's x range only when needed.
-inline float accepted_error(const Gaussian g, const float d, const float r, const float area, const float xi,
-                            const float tolerance) {
+inline float accepted_error(const Gaussian g, const float d, const float r, const float area, const float second,
+                            const float xi, const float tolerance) {
   const float dm = d - r;
   const float3 global_max = (float3)(g.g0, g.g0 * 0.60653066f / g.sigma, g.g0 * g.inv_sigma2);
-  float err = cluster_error_with(global_max, d, r, area, xi);
+  float err = cluster_error_with(global_max, d, r, second, xi);
   if (acceptable(g, err, area, dm, tolerance)) return err;
-  err = cluster_error_with(gauss_maxima(g, dm / xi - 1.0f, (d + r) / xi - 1.0f), d, r, area, xi);
+  const float lo = dm / xi - 1.0f, hi = (d + r) / xi - 1.0f;
+  // A range holding [0, sigma] has the global maxima (g at 0, |g'| at sigma, |g''| at 0):
+  // the test would fail again, skip its two exp().
+  if (lo <= 0.0f && hi >= g.sigma) return -1.0f;
+  err = cluster_error_with(gauss_maxima(g, lo, hi), d, r, second, xi);
   return acceptable(g, err, area, dm, tolerance) ? err : -1.0f;
 }
 
@@ -88,12 +94,15 @@ inline void integrate_triangle(const float3 p, const float xi, const Gaussian g,
     const float3 an = 0.5f * cross(b - a, c - a);  // A n
     const float area = length(an);
     if (area == 0.0f) continue;
-    const float r = sqrt(fmax(fmax(dot(a - cen, a - cen), dot(b - cen, b - cen)), dot(c - cen, c - cen)));
+    const float ra2 = dot(a - cen, a - cen), rb2 = dot(b - cen, b - cen), rc2 = dot(c - cen, c - cen);
+    const float r = sqrt(fmax(fmax(ra2, rb2), rc2));
     const float3 u = cen - p;
     const float d = length(u);
     const float xc = d / xi - 1.0f;
     if (d > r) {
-      const float err = accepted_error(g, d, r, area, xi, tolerance);
+      // Second moment of the piece about its centroid, grown by a float step.
+      const float second = area * (ra2 + rb2 + rc2) * (1.0f / 12.0f) * 1.00001f;
+      const float err = accepted_error(g, d, r, area, second, xi, tolerance);
       if (err >= 0.0f) {
         *s += gauss(g, xc) * dot(u, an) / (d * d * d);  // midpoint rule, M = 0
         *bound += err;
@@ -155,7 +164,7 @@ __kernel void skeletal_density(const long first_point, const long point_count, c
     const float d = length(u);
     const float r = node->bbox_max.w, area = node->bbox_min.w;
     if (d > r && area > 0.0f) {
-      const float err = accepted_error(g, d, r, area, xi, tolerance);
+      const float err = accepted_error(g, d, r, area, node->centroid.w, xi, tolerance);
       if (err >= 0.0f) {
         const float inv_d = 1.0f / d;
         const float inv_d3 = inv_d * inv_d * inv_d;

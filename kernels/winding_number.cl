@@ -8,13 +8,23 @@
 // when that bound is at most `tolerance` times its solid-angle bound A/(D - r)^2;
 // otherwise its children are visited, and leaves are summed exactly.
 // Output: w and its error bound (sum of the accepted remainders / 4pi).
+// With -D POINT_LIST the points are grid indices point_ids[first_point + i] (the seeds
+// of engine/winding_propagation.h) instead of the range first_point + i.
 
 __kernel void winding_number(const long first_point, const long point_count, const float3 origin,
                              const float spacing, const int nx, const int ny,
                              __global const BvhNode* nodes, __global const float4* triangles,
-                             const float tolerance, __global float* winding_out, __global float* bound_out) {
-  const long id = first_point + get_global_id(0);
+                             const float tolerance, __global float* winding_out, __global float* bound_out
+#ifdef POINT_LIST
+                             , __global const long* point_ids
+#endif
+                             ) {
   if (get_global_id(0) >= point_count) return;
+#ifdef POINT_LIST
+  const long id = point_ids[first_point + get_global_id(0)];
+#else
+  const long id = first_point + get_global_id(0);
+#endif
   const float3 p = grid_point(id, origin, spacing, nx, ny);
   float omega = 0.0f, bound = 0.0f;
   int stack[STACK_SIZE];

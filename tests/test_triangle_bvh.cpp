@@ -84,6 +84,7 @@ int expected_node_count(int n, int leaf_size) {
 // Moments of triangles [first, first + count) in double.
 struct Moments {
   double area = 0, abs_moment = 0;
+  double second = 0;  // integral of |q - about|^2 dA (edge-midpoint rule, exact for quadratics)
   Vector3d centroid = Vector3d::Zero(), area_normal = Vector3d::Zero();
   Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
 };
@@ -100,6 +101,8 @@ Moments moments_of(const TriangleBvh& bvh, int first, int count, const Vector3d&
     weighted += an.norm() * ct;
     m.moment += an * (ct - about).transpose();
     m.abs_moment += an.norm() * (ct - about).norm();
+    for (const Vector3d& mid : {Vector3d((a + b) / 2), Vector3d((b + c) / 2), Vector3d((c + a) / 2)})
+      m.second += an.norm() / 3.0 * (mid - about).squaredNorm();
   }
   m.centroid = m.area > 0 ? Vector3d(weighted / m.area) : Vector3d::Zero();
   return m;
@@ -182,6 +185,12 @@ void check_bvh(const Mesh& mesh, const TriangleBvh& bvh, int leaf_size) {
     Eigen::Matrix3d stored;
     for (int row = 0; row < 3; ++row) stored.row(row) = v3(node.moment[row]).transpose();
     CHECK((stored - m.moment).norm() <= 1e-5 * m.abs_moment + 4.0 * m.area * position_tolerance);
+    // Second moment about the centroid (centroid.w): at least the exact integral, at
+    // most its documented float margin above it, and never above r^2 A.
+    const double second = node.centroid.s[3];
+    CHECK(second >= m.second * (1 - 1e-5) - 1e-12);
+    CHECK(second <= m.second * (1 + 1e-4) + 4.0 * radius * m.area * position_tolerance + 1e-12);
+    CHECK(second <= radius * radius * area * (1 + 1e-5) + 1e-12);
   }
   CHECK(bvh.nodes[0].bbox_min.s[3] == doctest::Approx(bvh.total_area).epsilon(1e-6));
   CHECK(bvh.total_area == doctest::Approx(moments_of(bvh, 0, n, Vector3d::Zero()).area).epsilon(1e-6));
