@@ -31,6 +31,11 @@ struct QueryVariant {
   bool torque = true;                 // needs spectra with torque
   bool translation_only = false;      // R fixed at the identity: no interpolation at all
   Interpolation interpolation = Interpolation::trilinear;
+  // Store the 6-DOF spectrum cube as half floats (scaled per spectrum): half the bytes
+  // per tap, so the cube stays in cache at large m'. Adds a rounding error of a few
+  // 1e-4 relative to the float cube (tests/test_pose_query.cpp measures it); below
+  // trilinear's interpolation error, above tricubic's. Ignored for translation only.
+  bool half_cube = false;
 };
 
 enum QueryFlags : std::uint32_t {
