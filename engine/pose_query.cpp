@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <numeric>
 #include <string>
 
@@ -23,7 +24,9 @@ struct PoseQueryEngine::Impl {
   Eigen::Vector3d c1, c2, half1, half2, length;
   std::size_t mode_total = 0, mode_count = 0;
   std::size_t wg = 64, max_groups = 4, modes_per_group = 4096;
-  cl::Buffer modes, cube, poses, partials;
+  cl::Buffer modes, blocked, cube, poses, partials;
+  cl::Buffer line_weights, line_rank;  // translation only: dense x-lines (kernels/pose_query.cl)
+  std::size_t block = 0;  // modes per Morton-ordered block (kernels/pose_query.cl)
   std::vector<int> table_half;  // max |k| over all axes of modes [0, i]: the phase tables' reach
   std::vector<float> partial_host;
   // Part 2's spectra (host), the |w| of every mode in order, and the radius (in |w|)
@@ -82,10 +85,10 @@ struct PoseQueryEngine::Impl {
     } else {
       cube = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * data.size(), data.data());
     }
-    kernel.setArg(1, cube);
-    kernel.setArg(2, cl_int4{{n[0], n[1], n[2], 0}});
-    kernel.setArg(3, cl_int4{{half[0], half[1], half[2], 0}});
-    kernel.setArg(5, scale);
+    kernel.setArg(3, cube);
+    kernel.setArg(4, cl_int4{{n[0], n[1], n[2], 0}});
+    kernel.setArg(5, cl_int4{{half[0], half[1], half[2], 0}});
+    kernel.setArg(7, scale);
     cube_radius = radius;
   }
 
@@ -93,12 +96,12 @@ struct PoseQueryEngine::Impl {
     if (pose_count > pose_capacity) {
       pose_capacity = std::max<std::size_t>(pose_count, 16);
       poses = cl::Buffer(ctx.context, CL_MEM_READ_ONLY, sizeof(cl_float16) * pose_capacity);
-      kernel.setArg(7, poses);
+      kernel.setArg(variant.translation_only ? 6 : 9, poses);
     }
     if (groups > partial_capacity) {
       partial_capacity = std::max<std::size_t>(groups, 64);
       partials = cl::Buffer(ctx.context, CL_MEM_WRITE_ONLY, sizeof(float) * 8 * partial_capacity);
-      kernel.setArg(12, partials);
+      kernel.setArg(variant.translation_only ? 11 : 14, partials);
     }
     partial_host.resize(8 * std::max(groups, partial_host.size() / 8));
   }
@@ -213,6 +216,55 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
     std::memcpy(&out.s[2], &kxy, 4);
     std::memcpy(&out.s[3], &kzi, 4);
   }
+  // The same modes, each block of `block` consecutive ones sorted along a Morton curve
+  // of k (a permutation within the block keeps every whole-block prefix the same set).
+  std::vector<cl_float4> blocked_data(mode_data);
+  m.block = 2048;
+  if (const char* b = std::getenv("SNAPFIT_QUERY_BLOCK")) m.block = std::max<std::size_t>(1, std::strtoul(b, nullptr, 10));
+  {
+    auto morton = [](const cl_float4& v) {
+      cl_short2 kxy;
+      cl_int kz;
+      std::memcpy(&kxy, &v.s[2], 4);
+      std::memcpy(&kz, &v.s[3], 4);
+      const std::uint32_t c[3] = {std::uint32_t(kxy.s[0] + 32768), std::uint32_t(kxy.s[1] + 32768), std::uint32_t(kz + 32768)};
+      std::uint64_t key = 0;
+      for (int bit = 15; bit >= 0; --bit)
+        for (int a = 2; a >= 0; --a) key = key << 1 | ((c[a] >> bit) & 1u);
+      return key;
+    };
+    std::vector<std::pair<std::uint64_t, std::size_t>> keyed(total);
+    for (std::size_t i = 0; i < total; ++i) keyed[i] = {morton(mode_data[i]), i};
+    for (std::size_t b = 0; b < total; b += m.block)
+      std::sort(keyed.begin() + static_cast<std::ptrdiff_t>(b),
+                keyed.begin() + static_cast<std::ptrdiff_t>(std::min(total, b + m.block)));
+    for (std::size_t i = 0; i < total; ++i) blocked_data[i] = mode_data[keyed[i].second];
+  }
+  // Translation only: W_k in a dense box of x-lines with each node's rank in the |w|
+  // order (kernels/pose_query.cl translation_lines); rows padded by 8 nodes (rank max).
+  std::vector<Complex> line_w;
+  std::vector<cl_int> line_rank;
+  int dense_min[3] = {0, 0, 0}, dense_max[3] = {0, 0, 0}, dense_dims[3] = {0, 0, 0};
+  if (variant.translation_only) {
+    for (int a = 0; a < 3; ++a) {
+      dense_max[a] = int(dims[a] / 2);
+      dense_min[a] = dense_max[a] - int(dims[a]) + 1;
+      dense_dims[a] = int(dims[a]) + (a == 0 ? 8 : 0);
+    }
+    const std::size_t dense = std::size_t(dense_dims[0]) * dense_dims[1] * dense_dims[2];
+    line_w.assign(dense, Complex(0, 0));
+    line_rank.assign(dense, std::numeric_limits<cl_int>::max());
+    for (std::size_t i = 0; i < total; ++i) {
+      cl_short2 kxy;
+      cl_int kz;
+      std::memcpy(&kxy, &mode_data[i].s[2], 4);
+      std::memcpy(&kz, &mode_data[i].s[3], 4);
+      const std::size_t node = std::size_t(kxy.s[0] - dense_min[0]) +
+                               std::size_t(dense_dims[0]) * (std::size_t(kxy.s[1] - dense_min[1]) + std::size_t(dense_dims[1]) * std::size_t(kz - dense_min[2]));
+      line_w[node] = Complex(mode_data[i].s[0], mode_data[i].s[1]);
+      line_rank[node] = static_cast<cl_int>(std::min<std::size_t>(i, std::numeric_limits<cl_int>::max() - 1));
+    }
+  }
   m.mode_total = total;
   m.mode_count = total;
   m.mode_radius.resize(total);
@@ -220,7 +272,6 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
 
   try {
     m.queue = cl::CommandQueue(ctx.context, ctx.device.device, 0);
-    m.modes = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * total, mode_data.data());
     m.dims = dims;
     if (!variant.translation_only) {
       m.s2 = spectra.part2.rho;
@@ -239,7 +290,7 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
     m.max_groups = std::max<std::size_t>(1, env("SNAPFIT_QUERY_GROUPS", std::max<std::size_t>(2, 2 * ctx.device.info.compute_units)));
     m.modes_per_group = std::max<std::size_t>(1, env("SNAPFIT_QUERY_MODES_PER_GROUP", m.wg));
     // Phase tables for |k| <= reach on every axis, in local memory.
-    const std::size_t local_bytes = 3 * (2 * std::size_t(reach) + 1) * sizeof(Complex) + 8 * sizeof(float) * m.wg;
+    const std::size_t local_bytes = 3 * (2 * std::size_t(reach) + 17) * sizeof(Complex) + 8 * sizeof(float) * m.wg;
     if (local_bytes > ctx.device.info.local_memory_bytes)
       throw Error("FFT grid of " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]) +
                   " needs " + std::to_string(local_bytes) + " bytes of local memory for the query kernel's phase tables; " +
@@ -250,19 +301,29 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
     if (variant.translation_only) options += " -D TRANSLATION_ONLY";
     if (!variant.translation_only && variant.interpolation == Interpolation::tricubic) options += " -D TRICUBIC";
     if (!variant.translation_only && variant.half_cube) options += " -D HALF_CUBE";
-    m.kernel = cl::Kernel(build_program(ctx, "pose_query", kernel_source("spectrum_sample") + kernel_source("pose_query"), options, cache).program, "pose_query");
-    m.kernel.setArg(0, m.modes);
-    m.kernel.setArg(5, cl_float4{{1.0f, 1.0f, 0.0f, 0.0f}});
+    m.kernel = cl::Kernel(build_program(ctx, "pose_query", kernel_source("spectrum_sample") + kernel_source("pose_query"), options, cache).program,
+                          variant.translation_only ? "translation_lines" : "pose_query");
+    const cl_float4 inv_length{{float(1.0 / spectra.length.x()), float(1.0 / spectra.length.y()), float(1.0 / spectra.length.z()), 0.0f}};
     if (variant.translation_only) {
-      // No spectrum of part 2 is read: a one-node placeholder keeps the arguments valid.
-      const Complex none[4] = {};
-      m.cube = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof none, const_cast<Complex*>(none));
-      m.kernel.setArg(1, m.cube);
-      m.kernel.setArg(2, cl_int4{{1, 1, 1, 0}});
-      m.kernel.setArg(3, cl_int4{{0, 0, 0, 0}});
+      m.line_weights = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * line_w.size(), line_w.data());
+      m.line_rank = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_int) * line_rank.size(), line_rank.data());
+      m.kernel.setArg(0, m.line_weights);
+      m.kernel.setArg(1, m.line_rank);
+      m.kernel.setArg(2, cl_int4{{dense_dims[0], dense_dims[1], dense_dims[2], 0}});
+      m.kernel.setArg(3, cl_int4{{dense_min[0], dense_min[1], dense_min[2], 0}});
+      m.kernel.setArg(4, cl_int4{{dense_max[0], dense_max[1], dense_max[2], 0}});
+      m.kernel.setArg(5, cl_float16{});
+      m.kernel.setArg(12, inv_length);
+    } else {
+      m.modes = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * total, mode_data.data());
+      m.blocked = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * total, blocked_data.data());
+      m.kernel.setArg(0, m.modes);
+      m.kernel.setArg(1, m.blocked);
+      m.kernel.setArg(6, cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
+      m.kernel.setArg(7, cl_float4{{1.0f, 1.0f, 0.0f, 0.0f}});
+      m.kernel.setArg(8, cl_float16{});
+      m.kernel.setArg(15, inv_length);
     }
-    m.kernel.setArg(4, cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
-    m.kernel.setArg(6, cl_float16{});
     m.ensure_capacity(1, m.max_groups);
   } catch (const cl::Error& e) {
     throw Error("cannot set up pose queries on " + ctx.device.info.name + ": " + e.what() + " (error " +
@@ -319,15 +380,18 @@ std::vector<QueryResult> PoseQueryEngine::query_batch(const std::vector<Pose>& p
     try {
       m.ensure_capacity(slot.size(), groups);
       m.ensure_cube(m.mode_radius[m.mode_count - 1]);
+      // Argument numbers: pose_query, or translation_lines 3 lower (kernels/pose_query.cl).
+      const cl_uint shift = m.variant.translation_only ? 3 : 0;
       if (slot.size() == 1) {
-        m.kernel.setArg(6, packed[0]);  // one pose: an argument, no buffer write
+        m.kernel.setArg(8 - shift, packed[0]);  // one pose: an argument, no buffer write
       } else {
         m.queue.enqueueWriteBuffer(m.poses, CL_FALSE, 0, sizeof(cl_float16) * packed.size(), packed.data());
       }
-      m.kernel.setArg(8, static_cast<cl_int>(slot.size()));
-      m.kernel.setArg(9, static_cast<cl_int>(m.mode_count));
-      m.kernel.setArg(10, static_cast<cl_int>(groups_per_pose));
-      m.kernel.setArg(11, static_cast<cl_int>(m.table_half[m.mode_count - 1]));
+      if (!m.variant.translation_only) m.kernel.setArg(2, static_cast<cl_int>(m.mode_count / m.block * m.block));  // whole blocks
+      m.kernel.setArg(10 - shift, static_cast<cl_int>(slot.size()));
+      m.kernel.setArg(11 - shift, static_cast<cl_int>(m.mode_count));
+      m.kernel.setArg(12 - shift, static_cast<cl_int>(groups_per_pose));
+      m.kernel.setArg(13 - shift, static_cast<cl_int>(m.table_half[m.mode_count - 1]));
       m.queue.enqueueNDRangeKernel(m.kernel, cl::NullRange, cl::NDRange(groups * m.wg), cl::NDRange(m.wg));
       m.queue.enqueueReadBuffer(m.partials, CL_TRUE, 0, sizeof(float) * 8 * groups, m.partial_host.data());
       const std::vector<float>& partial = m.partial_host;

@@ -17,7 +17,11 @@
 // `pose_arg` (no buffer write); a batch reads poses[pose] (pose_count > 1).
 //
 // Each mode is one float4: (Re W_k, Im W_k, (kx, ky) as two shorts, kz as an int),
-// so the mode loop streams 16 bytes per mode from one array.
+// so the mode loop streams 16 bytes per mode from one array. `modes` holds them by
+// increasing |w| (any m' is a prefix); `blocked` holds the same modes with every block
+// of BLOCK consecutive ones re-ordered along a Morton curve of k, so neighbouring modes
+// read neighbouring cube nodes. Modes [0, blocked_end) (whole blocks) come from
+// `blocked`, the rest of the prefix from `modes`: the same set, in a cache-friendly order.
 
 // The spectrum of part 2 near the low-pass ball, as a compact cube (no wrapping):
 // signed FFT index i sits at cube index i + offset. With torque each node holds
@@ -52,12 +56,68 @@ inline float2 axis_phase(const int k, const float hi, const float lo) {
   return (float2)(cospi(2.0f * turns), sinpi(2.0f * turns));
 }
 
+// The spectrum sample at fractional cube index u (rows summed first, then planes:
+// short dependency chains, so the loads of neighbouring taps overlap).
+#ifndef TRANSLATION_ONLY
+inline Sample sample_cube(__global const CUBE_T* cube, const int4 cube_dims, const int4 offset, const float3 u) {
+  float wx[TAPS], wy[TAPS], wz[TAPS];
+  const int ix = axis_weights(u.x, wx) + offset.x, iy = axis_weights(u.y, wy) + offset.y,
+            iz = axis_weights(u.z, wz) + offset.z;
+  Sample acc = (Sample)(0.0f);
+  for (int c = 0; c < TAPS; ++c) {
+    Sample plane = (Sample)(0.0f);
+    for (int b = 0; b < TAPS; ++b) {
+      const int row = cube_dims.x * (cube_dims.y * (iz + c) + iy + b) + ix;
+      Sample line = (Sample)(0.0f);
+      for (int a = 0; a < TAPS; ++a) line += wx[a] * LOAD_SAMPLE(row + a);
+      plane += wy[b] * line;
+    }
+    acc += wz[c] * plane;
+  }
+  return acc;
+}
+#endif
+
+// One mode's term (seed 000 eq. 10-12) added to the sums f, force, torque.
+inline void add_mode(const float4 mode, const float16 P, __local const float2* tx, __local const float2* ty,
+                     __local const float2* tz, __global const CUBE_T* cube, const int4 cube_dims, const int4 offset,
+                     const float4 length, const float4 inv_length, const float4 cube_scale, float2* f,
+                     float3* force, float3* torque) {
+  const short2 kxy = as_short2(mode.z);
+  const int3 k = (int3)(kxy.x, kxy.y, as_int(mode.w));
+  const float3 w = convert_float3(k) * inv_length.xyz;  // w_k = k / L
+  float2 term = cmul(mode.xy, cmul(tx[k.x], cmul(ty[k.y], tz[k.z])));
+#ifndef TRANSLATION_ONLY
+  // w' = -R^T w (R^T's rows are R's columns), as a fractional FFT index u = w' L.
+  const float3 wp = -(float3)(P.s0 * w.x + P.s3 * w.y + P.s6 * w.z, P.s1 * w.x + P.s4 * w.y + P.s7 * w.z,
+                              P.s2 * w.x + P.s5 * w.y + P.s8 * w.z);
+  const Sample acc = sample_cube(cube, cube_dims, offset, wp * length.xyz);
+#ifdef TORQUE
+  const float2 v = acc.s01 * cube_scale.x;
+  const float2 q0 = acc.s23 * cube_scale.y, q1 = acc.s45 * cube_scale.y, q2 = acc.s67 * cube_scale.y;
+  // 2 pi i term_q (w' x SQ): Re of i z is -Im z.
+  const float2 e = term;  // W_k e^{i phi}
+  const float2 t0 = cmul(e, q0), t1 = cmul(e, q1), t2 = cmul(e, q2);
+  const float3 im = (float3)(wp.y * t2.y - wp.z * t1.y, wp.z * t0.y - wp.x * t2.y, wp.x * t1.y - wp.y * t0.y);
+  *torque += -TWO_PI * im;
+#else
+  const float2 v = acc * cube_scale.x;
+#endif
+  term = cmul(term, v);
+#endif
+  *f += term;
+#ifdef FORCE
+  *force += -TWO_PI * term.y * w;  // Re(2 pi i w term)
+#endif
+}
+
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void pose_query(__global const float4* modes, __global const CUBE_T* cube,
+void pose_query(__global const float4* modes, __global const float4* blocked, const int blocked_end,
+                __global const CUBE_T* cube,
                 const int4 cube_dims, const int4 offset, const float4 length, const float4 cube_scale,
                 const float16 pose_arg, __global const float16* poses, const int pose_count,
                 const int mode_count, const int groups_per_pose, const int table_half,
-                __global float* partials) {
+                __global float* partials, const float4 inv_length) {
   const int group = get_group_id(0);
   const int pose = group / groups_per_pose;
   const int slice = group % groups_per_pose;
@@ -77,48 +137,23 @@ void pose_query(__global const float4* modes, __global const CUBE_T* cube,
   }
   barrier(CLK_LOCAL_MEM_FENCE);
 
-  float2 f = (float2)(0.0f);
-  float3 force = (float3)(0.0f), torque = (float3)(0.0f);
-  for (int m = slice * WG_SIZE + lid; m < mode_count; m += groups_per_pose * WG_SIZE) {
-    const float4 mode = modes[m];
-    const short2 kxy = as_short2(mode.z);
-    const int3 k = (int3)(kxy.x, kxy.y, as_int(mode.w));
-    const float3 w = convert_float3(k) / length.xyz;  // w_k = k / L
-    float2 term = cmul(mode.xy, cmul(tx[k.x], cmul(ty[k.y], tz[k.z])));
-#ifndef TRANSLATION_ONLY
-    // w' = -R^T w (R^T's rows are R's columns).
-    const float3 wp = -(float3)(P.s0 * w.x + P.s3 * w.y + P.s6 * w.z, P.s1 * w.x + P.s4 * w.y + P.s7 * w.z,
-                                P.s2 * w.x + P.s5 * w.y + P.s8 * w.z);
-    const float3 u = wp * length.xyz;  // fractional FFT index
-    float wx[TAPS], wy[TAPS], wz[TAPS];
-    const int ix = axis_weights(u.x, wx), iy = axis_weights(u.y, wy), iz = axis_weights(u.z, wz);
-    Sample acc = (Sample)(0.0f);
-    for (int c3 = 0; c3 < TAPS; ++c3) {
-      const int z = iz + c3 + offset.z;
-      for (int b = 0; b < TAPS; ++b) {
-        const int row = cube_dims.x * (cube_dims.y * z + iy + b + offset.y) + ix + offset.x;
-        const float wyz = wy[b] * wz[c3];
-        for (int a = 0; a < TAPS; ++a) acc += (wx[a] * wyz) * LOAD_SAMPLE(row + a);
-      }
-    }
-#ifdef TORQUE
-    const float2 v = acc.s01 * cube_scale.x;
-    const float2 q0 = acc.s23 * cube_scale.y, q1 = acc.s45 * cube_scale.y, q2 = acc.s67 * cube_scale.y;
-    // 2 pi i term_q (w' x SQ): Re of i z is -Im z.
-    const float2 e = term;  // W_k e^{i phi}
-    const float2 t0 = cmul(e, q0), t1 = cmul(e, q1), t2 = cmul(e, q2);
-    const float3 im = (float3)(wp.y * t2.y - wp.z * t1.y, wp.z * t0.y - wp.x * t2.y, wp.x * t1.y - wp.y * t0.y);
-    torque += -TWO_PI * im;
-#else
-    const float2 v = acc * cube_scale.x;
-#endif
-    term = cmul(term, v);
-#endif
-    f += term;
-#ifdef FORCE
-    force += -TWO_PI * term.y * w;  // Re(2 pi i w term)
-#endif
+  // Two modes per iteration into separate sums: independent work for the core to overlap.
+  float2 f = (float2)(0.0f), f1 = (float2)(0.0f);
+  float3 force = (float3)(0.0f), torque = (float3)(0.0f), force1 = (float3)(0.0f), torque1 = (float3)(0.0f);
+  const int stride = groups_per_pose * WG_SIZE;
+  int m = slice * WG_SIZE + lid;
+  for (; m + stride < mode_count; m += 2 * stride) {
+    const float4 a = m < blocked_end ? blocked[m] : modes[m];
+    const float4 b = m + stride < blocked_end ? blocked[m + stride] : modes[m + stride];
+    add_mode(a, P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f, &force, &torque);
+    add_mode(b, P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f1, &force1, &torque1);
   }
+  if (m < mode_count)
+    add_mode(m < blocked_end ? blocked[m] : modes[m], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f,
+             &force, &torque);
+  f += f1;
+  force += force1;
+  torque += torque1;
 
   // Work-group reduction of the 8 sums.
   __local float scratch[8 * WG_SIZE];
@@ -138,3 +173,94 @@ void pose_query(__global const float4* modes, __global const CUBE_T* cube,
   }
   if (lid < 8) partials[8 * group + lid] = scratch[lid];
 }
+
+#ifdef TRANSLATION_ONLY
+// Translation only (seed 000 section 3.3; R = I): f(t) = sum_k W_k e^{2 pi i w_k.tau} with
+// W_k = S1(w_k) S2(-w_k) dw. The weights sit in a dense box of x-lines (kz, ky, kx with
+// kx fastest; `rank` is each node's position in the |w| order, so node k is one of the
+// m' retained modes exactly when rank < m'). Per line (ky, kz) the phase factors,
+// e^{i phi} = tx[kx] (ty[ky] tz[kz]) (DESIGN.md, separable per axis), so the line is a
+// contiguous, 8-wide complex dot product of W with the x table:
+//   s = sum_kx W tx[kx],  s_x = sum_kx kx W tx[kx];  f += s p,  p = ty[ky] tz[kz],
+//   F = Re(2 pi i w f-terms) = -2 pi (Im(s_x p) / L_x, ky Im(s p) / L_y, kz Im(s p) / L_z).
+// Lines have `dims.x` nodes (the grid's x-extent plus 8 of padding with rank INT_MAX);
+// dense_min is the signed k of node (0, 0, 0).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void translation_lines(__global const float2* W, __global const int* rank, const int4 dims, const int4 dense_min,
+                       const int4 dense_max, const float16 pose_arg, __global const float16* poses,
+                       const int pose_count, const int mode_count, const int groups_per_pose, const int table_half,
+                       __global float* partials, const float4 inv_length) {
+  const int group = get_group_id(0);
+  const int pose = group / groups_per_pose;
+  const int slice = group % groups_per_pose;
+  const int lid = get_local_id(0);
+  const float16 P = pose_count > 1 ? poses[pose] : pose_arg;
+
+  // Tables for |k| <= table_half + 8: the last 8-wide chunk of a line may reach 7
+  // beyond; those nodes are masked, but their table values must be finite.
+#define PAD_HALF (MAX_HALF + 8)
+  __local float2 tables[3 * (2 * PAD_HALF + 1)];
+  __local float2* tx = tables + PAD_HALF;
+  __local float2* ty = tx + (2 * PAD_HALF + 1);
+  __local float2* tz = ty + (2 * PAD_HALF + 1);
+  const int reach = min(table_half + 8, PAD_HALF);
+  for (int k = lid - reach; k <= reach; k += WG_SIZE) {
+    tx[k] = axis_phase(k, P.s9, P.sc);
+    ty[k] = axis_phase(k, P.sa, P.sd);
+    tz[k] = axis_phase(k, P.sb, P.se);
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+
+  // The lines that can hold retained modes: |ky|, |kz| <= table_half.
+  const int y0 = max(-table_half, dense_min.y), y1 = min(table_half, dense_max.y);
+  const int z0 = max(-table_half, dense_min.z), z1 = min(table_half, dense_max.z);
+  const int x0 = max(-table_half, dense_min.x), x1 = min(table_half, dense_max.x);
+  const int ny = y1 - y0 + 1, lines = ny * (z1 - z0 + 1);
+  const float8 lane = (float8)(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f);
+  float2 f = (float2)(0.0f);
+  float3 force = (float3)(0.0f);
+  for (int l = slice * WG_SIZE + lid; l < lines; l += groups_per_pose * WG_SIZE) {
+    const int ky = y0 + l % ny, kz = z0 + l / ny;
+    const int row = dims.x * ((kz - dense_min.z) * dims.y + (ky - dense_min.y)) - dense_min.x;
+    float8 sr = (float8)(0.0f), si = (float8)(0.0f), sxr = (float8)(0.0f), sxi = (float8)(0.0f);
+    for (int x = x0; x <= x1; x += 8) {
+      const float16 w = vload16(0, (__global const float*)(W + row + x));
+      const float16 t = vload16(0, (__local const float*)(tx + x));
+      const int8 keep = vload8(0, rank + row + x) < (int8)(mode_count);
+      const float8 pr = select((float8)(0.0f), w.even * t.even - w.odd * t.odd, keep);
+      const float8 pim = select((float8)(0.0f), w.even * t.odd + w.odd * t.even, keep);
+      const float8 kx = (float8)((float)x) + lane;
+      sr += pr;
+      si += pim;
+      sxr += kx * pr;
+      sxi += kx * pim;
+    }
+    const float4 r4 = sr.lo + sr.hi, i4 = si.lo + si.hi, xr4 = sxr.lo + sxr.hi, xi4 = sxi.lo + sxi.hi;
+    const float2 s = (float2)(r4.x + r4.y + r4.z + r4.w, i4.x + i4.y + i4.z + i4.w);
+    const float2 sx = (float2)(xr4.x + xr4.y + xr4.z + xr4.w, xi4.x + xi4.y + xi4.z + xi4.w);
+    const float2 p = cmul(ty[ky], tz[kz]);
+    const float2 term = cmul(s, p);
+    f += term;
+#ifdef FORCE
+    force += -TWO_PI * (float3)(cmul(sx, p).y, (float)ky * term.y, (float)kz * term.y) * inv_length.xyz;
+#endif
+  }
+
+  __local float scratch[8 * WG_SIZE];
+  scratch[8 * lid + 0] = f.x;
+  scratch[8 * lid + 1] = f.y;
+  scratch[8 * lid + 2] = force.x;
+  scratch[8 * lid + 3] = force.y;
+  scratch[8 * lid + 4] = force.z;
+  scratch[8 * lid + 5] = 0.0f;
+  scratch[8 * lid + 6] = 0.0f;
+  scratch[8 * lid + 7] = 0.0f;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int stride = WG_SIZE / 2; stride > 0; stride >>= 1) {
+    if (lid < stride)
+      for (int j = 0; j < 8; ++j) scratch[8 * lid + j] += scratch[8 * (lid + stride) + j];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (lid < 8) partials[8 * group + lid] = scratch[lid];
+}
+#endif
