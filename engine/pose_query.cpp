@@ -218,10 +218,11 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
   }
   // The same modes, each block of `block` consecutive ones sorted along a Morton curve
   // of k (a permutation within the block keeps every whole-block prefix the same set).
-  std::vector<cl_float4> blocked_data(mode_data);
+  std::vector<cl_float4> blocked_data;
   m.block = 2048;
   if (const char* b = std::getenv("SNAPFIT_QUERY_BLOCK")) m.block = std::max<std::size_t>(1, std::strtoul(b, nullptr, 10));
-  {
+  if (!variant.translation_only) {
+    blocked_data = mode_data;
     auto morton = [](const cl_float4& v) {
       cl_short2 kxy;
       cl_int kz;

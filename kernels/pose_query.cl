@@ -59,16 +59,19 @@ inline float2 axis_phase(const int k, const float hi, const float lo) {
 // The spectrum sample at fractional cube index u (rows summed first, then planes:
 // short dependency chains, so the loads of neighbouring taps overlap).
 #ifndef TRANSLATION_ONLY
-inline Sample sample_cube(__global const CUBE_T* cube, const int4 cube_dims, const int4 offset, const float3 u) {
+__attribute__((always_inline)) inline Sample sample_cube(__global const CUBE_T* cube, const int4 cube_dims, const int4 offset, const float3 u) {
   float wx[TAPS], wy[TAPS], wz[TAPS];
   const int ix = axis_weights(u.x, wx) + offset.x, iy = axis_weights(u.y, wy) + offset.y,
             iz = axis_weights(u.z, wz) + offset.z;
   Sample acc = (Sample)(0.0f);
+#pragma unroll
   for (int c = 0; c < TAPS; ++c) {
     Sample plane = (Sample)(0.0f);
+#pragma unroll
     for (int b = 0; b < TAPS; ++b) {
       const int row = cube_dims.x * (cube_dims.y * (iz + c) + iy + b) + ix;
       Sample line = (Sample)(0.0f);
+#pragma unroll
       for (int a = 0; a < TAPS; ++a) line += wx[a] * LOAD_SAMPLE(row + a);
       plane += wy[b] * line;
     }
@@ -79,7 +82,7 @@ inline Sample sample_cube(__global const CUBE_T* cube, const int4 cube_dims, con
 #endif
 
 // One mode's term (seed 000 eq. 10-12) added to the sums f, force, torque.
-inline void add_mode(const float4 mode, const float16 P, __local const float2* tx, __local const float2* ty,
+__attribute__((always_inline)) inline void add_mode(const float4 mode, const float16 P, __local const float2* tx, __local const float2* ty,
                      __local const float2* tz, __global const CUBE_T* cube, const int4 cube_dims, const int4 offset,
                      const float4 length, const float4 inv_length, const float4 cube_scale, float2* f,
                      float3* force, float3* torque) {
