@@ -24,9 +24,8 @@ struct PoseQueryEngine::Impl {
   Eigen::Vector3d c1, c2, half1, half2, length;
   std::size_t mode_total = 0, mode_count = 0;
   std::size_t wg = 64, max_groups = 4, modes_per_group = 4096;
-  cl::Buffer modes, blocked, cube, poses, partials;
+  cl::Buffer modes, cube, poses, partials;
   cl::Buffer line_weights, line_rank;  // translation only: dense x-lines (kernels/pose_query.cl)
-  std::size_t block = 0;  // modes per Morton-ordered block (kernels/pose_query.cl)
   std::vector<int> table_half;  // max |k| over all axes of modes [0, i]: the phase tables' reach
   std::vector<float> partial_host;
   // Part 2's spectra (host), the |w| of every mode in order, and the radius (in |w|)
@@ -85,10 +84,10 @@ struct PoseQueryEngine::Impl {
     } else {
       cube = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * data.size(), data.data());
     }
-    kernel.setArg(3, cube);
-    kernel.setArg(4, cl_int4{{n[0], n[1], n[2], 0}});
-    kernel.setArg(5, cl_int4{{half[0], half[1], half[2], 0}});
-    kernel.setArg(7, scale);
+    kernel.setArg(1, cube);
+    kernel.setArg(2, cl_int4{{n[0], n[1], n[2], 0}});
+    kernel.setArg(3, cl_int4{{half[0], half[1], half[2], 0}});
+    kernel.setArg(5, scale);
     cube_radius = radius;
   }
 
@@ -96,12 +95,12 @@ struct PoseQueryEngine::Impl {
     if (pose_count > pose_capacity) {
       pose_capacity = std::max<std::size_t>(pose_count, 16);
       poses = cl::Buffer(ctx.context, CL_MEM_READ_ONLY, sizeof(cl_float16) * pose_capacity);
-      kernel.setArg(variant.translation_only ? 6 : 9, poses);
+      kernel.setArg(variant.translation_only ? 6 : 7, poses);
     }
     if (groups > partial_capacity) {
       partial_capacity = std::max<std::size_t>(groups, 64);
       partials = cl::Buffer(ctx.context, CL_MEM_WRITE_ONLY, sizeof(float) * 8 * partial_capacity);
-      kernel.setArg(variant.translation_only ? 11 : 14, partials);
+      kernel.setArg(variant.translation_only ? 11 : 12, partials);
     }
     partial_host.resize(8 * std::max(groups, partial_host.size() / 8));
   }
@@ -216,31 +215,6 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
     std::memcpy(&out.s[2], &kxy, 4);
     std::memcpy(&out.s[3], &kzi, 4);
   }
-  // The same modes, each block of `block` consecutive ones sorted along a Morton curve
-  // of k (a permutation within the block keeps every whole-block prefix the same set).
-  std::vector<cl_float4> blocked_data;
-  m.block = 2048;
-  if (const char* b = std::getenv("SNAPFIT_QUERY_BLOCK")) m.block = std::max<std::size_t>(1, std::strtoul(b, nullptr, 10));
-  if (!variant.translation_only) {
-    blocked_data = mode_data;
-    auto morton = [](const cl_float4& v) {
-      cl_short2 kxy;
-      cl_int kz;
-      std::memcpy(&kxy, &v.s[2], 4);
-      std::memcpy(&kz, &v.s[3], 4);
-      const std::uint32_t c[3] = {std::uint32_t(kxy.s[0] + 32768), std::uint32_t(kxy.s[1] + 32768), std::uint32_t(kz + 32768)};
-      std::uint64_t key = 0;
-      for (int bit = 15; bit >= 0; --bit)
-        for (int a = 2; a >= 0; --a) key = key << 1 | ((c[a] >> bit) & 1u);
-      return key;
-    };
-    std::vector<std::pair<std::uint64_t, std::size_t>> keyed(total);
-    for (std::size_t i = 0; i < total; ++i) keyed[i] = {morton(mode_data[i]), i};
-    for (std::size_t b = 0; b < total; b += m.block)
-      std::sort(keyed.begin() + static_cast<std::ptrdiff_t>(b),
-                keyed.begin() + static_cast<std::ptrdiff_t>(std::min(total, b + m.block)));
-    for (std::size_t i = 0; i < total; ++i) blocked_data[i] = mode_data[keyed[i].second];
-  }
   // Translation only: W_k in a dense box of x-lines with each node's rank in the |w|
   // order (kernels/pose_query.cl translation_lines); rows padded by 8 nodes (rank max).
   std::vector<Complex> line_w;
@@ -317,13 +291,11 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
       m.kernel.setArg(12, inv_length);
     } else {
       m.modes = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * total, mode_data.data());
-      m.blocked = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * total, blocked_data.data());
       m.kernel.setArg(0, m.modes);
-      m.kernel.setArg(1, m.blocked);
-      m.kernel.setArg(6, cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
-      m.kernel.setArg(7, cl_float4{{1.0f, 1.0f, 0.0f, 0.0f}});
-      m.kernel.setArg(8, cl_float16{});
-      m.kernel.setArg(15, inv_length);
+      m.kernel.setArg(4, cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
+      m.kernel.setArg(5, cl_float4{{1.0f, 1.0f, 0.0f, 0.0f}});
+      m.kernel.setArg(6, cl_float16{});
+      m.kernel.setArg(13, inv_length);
     }
     m.ensure_capacity(1, m.max_groups);
   } catch (const cl::Error& e) {
@@ -381,18 +353,17 @@ std::vector<QueryResult> PoseQueryEngine::query_batch(const std::vector<Pose>& p
     try {
       m.ensure_capacity(slot.size(), groups);
       m.ensure_cube(m.mode_radius[m.mode_count - 1]);
-      // Argument numbers: pose_query, or translation_lines 3 lower (kernels/pose_query.cl).
-      const cl_uint shift = m.variant.translation_only ? 3 : 0;
+      // Argument numbers: pose_query, or translation_lines 1 lower (kernels/pose_query.cl).
+      const cl_uint shift = m.variant.translation_only ? 1 : 0;
       if (slot.size() == 1) {
-        m.kernel.setArg(8 - shift, packed[0]);  // one pose: an argument, no buffer write
+        m.kernel.setArg(6 - shift, packed[0]);  // one pose: an argument, no buffer write
       } else {
         m.queue.enqueueWriteBuffer(m.poses, CL_FALSE, 0, sizeof(cl_float16) * packed.size(), packed.data());
       }
-      if (!m.variant.translation_only) m.kernel.setArg(2, static_cast<cl_int>(m.mode_count / m.block * m.block));  // whole blocks
-      m.kernel.setArg(10 - shift, static_cast<cl_int>(slot.size()));
-      m.kernel.setArg(11 - shift, static_cast<cl_int>(m.mode_count));
-      m.kernel.setArg(12 - shift, static_cast<cl_int>(groups_per_pose));
-      m.kernel.setArg(13 - shift, static_cast<cl_int>(m.table_half[m.mode_count - 1]));
+      m.kernel.setArg(8 - shift, static_cast<cl_int>(slot.size()));
+      m.kernel.setArg(9 - shift, static_cast<cl_int>(m.mode_count));
+      m.kernel.setArg(10 - shift, static_cast<cl_int>(groups_per_pose));
+      m.kernel.setArg(11 - shift, static_cast<cl_int>(m.table_half[m.mode_count - 1]));
       m.queue.enqueueNDRangeKernel(m.kernel, cl::NullRange, cl::NDRange(groups * m.wg), cl::NDRange(m.wg));
       m.queue.enqueueReadBuffer(m.partials, CL_TRUE, 0, sizeof(float) * 8 * groups, m.partial_host.data());
       const std::vector<float>& partial = m.partial_host;

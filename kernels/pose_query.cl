@@ -17,11 +17,8 @@
 // `pose_arg` (no buffer write); a batch reads poses[pose] (pose_count > 1).
 //
 // Each mode is one float4: (Re W_k, Im W_k, (kx, ky) as two shorts, kz as an int),
-// so the mode loop streams 16 bytes per mode from one array. `modes` holds them by
-// increasing |w| (any m' is a prefix); `blocked` holds the same modes with every block
-// of BLOCK consecutive ones re-ordered along a Morton curve of k, so neighbouring modes
-// read neighbouring cube nodes. Modes [0, blocked_end) (whole blocks) come from
-// `blocked`, the rest of the prefix from `modes`: the same set, in a cache-friendly order.
+// so the mode loop streams 16 bytes per mode from one array, by increasing |w| (any m'
+// is a prefix).
 
 // The spectrum of part 2 near the low-pass ball, as a compact cube (no wrapping):
 // signed FFT index i sits at cube index i + offset. With torque each node holds
@@ -115,8 +112,7 @@ __attribute__((always_inline)) inline void add_mode(const float4 mode, const flo
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void pose_query(__global const float4* modes, __global const float4* blocked, const int blocked_end,
-                __global const CUBE_T* cube,
+void pose_query(__global const float4* modes, __global const CUBE_T* cube,
                 const int4 cube_dims, const int4 offset, const float4 length, const float4 cube_scale,
                 const float16 pose_arg, __global const float16* poses, const int pose_count,
                 const int mode_count, const int groups_per_pose, const int table_half,
@@ -146,13 +142,11 @@ void pose_query(__global const float4* modes, __global const float4* blocked, co
   const int stride = groups_per_pose * WG_SIZE;
   int m = slice * WG_SIZE + lid;
   for (; m + stride < mode_count; m += 2 * stride) {
-    const float4 a = m < blocked_end ? blocked[m] : modes[m];
-    const float4 b = m + stride < blocked_end ? blocked[m + stride] : modes[m + stride];
-    add_mode(a, P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f, &force, &torque);
-    add_mode(b, P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f1, &force1, &torque1);
+    add_mode(modes[m], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f, &force, &torque);
+    add_mode(modes[m + stride], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f1, &force1, &torque1);
   }
   if (m < mode_count)
-    add_mode(m < blocked_end ? blocked[m] : modes[m], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f,
+    add_mode(modes[m], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f,
              &force, &torque);
   f += f1;
   force += force1;
