@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
 #include <numeric>
+#include <string>
 
 #include "engine/error.h"
 #include "engine/kernel_sources.h"
@@ -14,12 +18,16 @@ struct PoseQueryEngine::Impl {
   Impl(const ComputeContext& c, QueryVariant v) : ctx(c), variant(v) {}
   const ComputeContext& ctx;
   QueryVariant variant;
+  // The engine's own in-order queue without profiling: a query is one kernel launch and
+  // one small blocking read, not queued behind other stages' work on ctx.queue.
+  cl::CommandQueue queue;
   Eigen::Vector3d c1, c2, half1, half2, length;
   std::size_t mode_total = 0, mode_count = 0;
-  std::size_t wg = 64, max_groups = 4;
-  cl::Buffer weights, cube, poses, partials, mode_index, tables;
+  std::size_t wg = 64, max_groups = 4, modes_per_group = 4096;
+  cl::Buffer modes, cube, poses, partials;
+  cl::Buffer line_weights, line_rank;  // translation only: dense x-lines (kernels/pose_query.cl)
   std::vector<int> table_half;  // max |k| over all axes of modes [0, i]: the phase tables' reach
-  std::size_t table_capacity = 0;
+  std::vector<float> partial_host;
   // Part 2's spectra (host), the |w| of every mode in order, and the radius (in |w|)
   // the device cube currently covers.
   std::array<std::size_t, 3> dims{};
@@ -53,22 +61,86 @@ struct PoseQueryEngine::Impl {
           if (variant.torque)
             for (int a = 0; a < 3; ++a) node[1 + a] = sq[a][k];
         }
-    cube = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * data.size(), data.data());
+    cl_float4 scale{{1.0f, 1.0f, 0.0f, 0.0f}};
+    if (variant.half_cube) {
+      // Half floats hold |x| <= 65504 with 11 significant bits: scale S2 and SQ each
+      // by 1 / (largest component) so every stored value is at most 1 in magnitude.
+      float largest[2] = {0, 0};
+      for (std::size_t i = 0; i < data.size(); ++i) {
+        float& l = largest[i % per_node == 0 ? 0 : 1];
+        l = std::max({l, std::abs(data[i].real()), std::abs(data[i].imag())});
+      }
+      for (int j = 0; j < 2; ++j) {
+        if (!(largest[j] > 0) || !std::isfinite(largest[j])) largest[j] = 1;
+        scale.s[j] = largest[j];
+      }
+      std::vector<std::uint16_t> halves(2 * data.size());
+      for (std::size_t i = 0; i < data.size(); ++i) {
+        const float inv = 1.0f / largest[i % per_node == 0 ? 0 : 1];
+        halves[2 * i] = float_to_half(data[i].real() * inv);
+        halves[2 * i + 1] = float_to_half(data[i].imag() * inv);
+      }
+      cube = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(std::uint16_t) * halves.size(), halves.data());
+    } else {
+      cube = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * data.size(), data.data());
+    }
     kernel.setArg(1, cube);
     kernel.setArg(2, cl_int4{{n[0], n[1], n[2], 0}});
     kernel.setArg(3, cl_int4{{half[0], half[1], half[2], 0}});
+    kernel.setArg(5, scale);
     cube_radius = radius;
   }
 
   void ensure_capacity(std::size_t pose_count, std::size_t groups) {
     if (pose_count > pose_capacity) {
       pose_capacity = std::max<std::size_t>(pose_count, 16);
-      poses = cl::Buffer(ctx.context, CL_MEM_READ_ONLY, sizeof(float) * 12 * pose_capacity);
+      poses = cl::Buffer(ctx.context, CL_MEM_READ_ONLY, sizeof(cl_float16) * pose_capacity);
+      kernel.setArg(variant.translation_only ? 6 : 7, poses);
     }
     if (groups > partial_capacity) {
       partial_capacity = std::max<std::size_t>(groups, 64);
       partials = cl::Buffer(ctx.context, CL_MEM_WRITE_ONLY, sizeof(float) * 8 * partial_capacity);
+      kernel.setArg(variant.translation_only ? 11 : 12, partials);
     }
+    partial_host.resize(8 * std::max(groups, partial_host.size() / 8));
+  }
+
+  // Work-groups per pose: one per `modes_per_group` modes, at most max_groups (on a CPU
+  // device a work-group runs on one core; more groups than cores only add overhead).
+  std::size_t groups_per_pose() const {
+    return std::clamp<std::size_t>((mode_count + modes_per_group - 1) / modes_per_group, 1, max_groups);
+  }
+
+  // Round to nearest even; subnormal halves kept (IEEE 754 binary16).
+  static std::uint16_t float_to_half(float f) {
+    std::uint32_t x;
+    std::memcpy(&x, &f, 4);
+    const auto sign = static_cast<std::uint16_t>((x >> 16) & 0x8000u);
+    x &= 0x7fffffffu;
+    if (x >= 0x7f800000u) return sign | 0x7c00u | (x > 0x7f800000u ? 0x200u : 0u);  // inf, nan
+    if (x >= 0x477ff000u) return sign | 0x7c00u;                                     // rounds past 65504
+    if (x < 0x38800000u) {                                                            // below 2^-14: subnormal
+      float a;
+      std::memcpy(&a, &x, 4);
+      return sign | static_cast<std::uint16_t>(std::nearbyint(a * 16777216.0f));  // units of 2^-24
+    }
+    std::uint32_t h = ((x >> 23) - 112u) << 10 | ((x & 0x7fffffu) >> 13);
+    const std::uint32_t rest = x & 0x1fffu;
+    if (rest > 0x1000u || (rest == 0x1000u && (h & 1u))) ++h;  // a carry moves into the exponent correctly
+    return static_cast<std::uint16_t>(sign | h);
+  }
+
+  // The kernel's pose: R row-major, then tau / L as a float pair (hi + lo).
+  cl_float16 pack_pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& tau) const {
+    cl_float16 p{};
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) p.s[3 * r + c] = static_cast<float>(R(r, c));
+    for (int a = 0; a < 3; ++a) {
+      const double x = tau[a] / length[a];
+      p.s[9 + a] = static_cast<float>(x);
+      p.s[12 + a] = static_cast<float>(x - double(p.s[9 + a]));
+    }
+    return p;
   }
 };
 
@@ -115,18 +187,17 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return norm2[a] < norm2[b]; });
 
-  // dw = 1 / (L_x L_y L_z) (DESIGN.md), folded into the weights.
+  // dw = 1 / (L_x L_y L_z) (DESIGN.md), folded into the weights. One float4 per mode:
+  // (Re W, Im W, (kx, ky) as two shorts, kz as an int), w_k = k / L in the kernel.
   const double dw = 1.0 / (spectra.length.x() * spectra.length.y() * spectra.length.z());
-  std::vector<cl_short4> index_data(total);  // signed (kx, ky, kz): w_k = k / L in the kernel
+  std::vector<cl_float4> mode_data(total);
   m.table_half.resize(total);
   int reach = 0;
   auto signed_k = [](std::size_t k, std::size_t n) { return k <= n / 2 ? int(k) : int(k) - int(n); };
-  std::vector<Complex> weight_data(total);
   for (std::size_t i = 0; i < total; ++i) {
     const std::size_t k = order[i];
     const int kx = signed_k(k % dims[0], dims[0]), ky = signed_k((k / dims[0]) % dims[1], dims[1]),
               kz = signed_k(k / (dims[0] * dims[1]), dims[2]);
-    index_data[i] = cl_short4{{cl_short(kx), cl_short(ky), cl_short(kz), 0}};
     reach = std::max({reach, std::abs(kx), std::abs(ky), std::abs(kz)});
     m.table_half[i] = reach;
     Complex weight = spectra.part1.rho[k] * static_cast<float>(dw);
@@ -136,7 +207,38 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
       const std::size_t neg = (dims[0] - x) % dims[0] + dims[0] * ((dims[1] - y) % dims[1] + dims[1] * ((dims[2] - z) % dims[2]));
       weight *= spectra.part2.rho[neg];
     }
-    weight_data[i] = weight;
+    const cl_short2 kxy{{cl_short(kx), cl_short(ky)}};
+    const cl_int kzi = kz;
+    cl_float4& out = mode_data[i];
+    out.s[0] = weight.real();
+    out.s[1] = weight.imag();
+    std::memcpy(&out.s[2], &kxy, 4);
+    std::memcpy(&out.s[3], &kzi, 4);
+  }
+  // Translation only: W_k in a dense box of x-lines with each node's rank in the |w|
+  // order (kernels/pose_query.cl translation_lines); rows padded by 8 nodes (rank max).
+  std::vector<Complex> line_w;
+  std::vector<cl_int> line_rank;
+  int dense_min[3] = {0, 0, 0}, dense_max[3] = {0, 0, 0}, dense_dims[3] = {0, 0, 0};
+  if (variant.translation_only) {
+    for (int a = 0; a < 3; ++a) {
+      dense_max[a] = int(dims[a] / 2);
+      dense_min[a] = dense_max[a] - int(dims[a]) + 1;
+      dense_dims[a] = int(dims[a]) + (a == 0 ? 8 : 0);
+    }
+    const std::size_t dense = std::size_t(dense_dims[0]) * dense_dims[1] * dense_dims[2];
+    line_w.assign(dense, Complex(0, 0));
+    line_rank.assign(dense, std::numeric_limits<cl_int>::max());
+    for (std::size_t i = 0; i < total; ++i) {
+      cl_short2 kxy;
+      cl_int kz;
+      std::memcpy(&kxy, &mode_data[i].s[2], 4);
+      std::memcpy(&kz, &mode_data[i].s[3], 4);
+      const std::size_t node = std::size_t(kxy.s[0] - dense_min[0]) +
+                               std::size_t(dense_dims[0]) * (std::size_t(kxy.s[1] - dense_min[1]) + std::size_t(dense_dims[1]) * std::size_t(kz - dense_min[2]));
+      line_w[node] = Complex(mode_data[i].s[0], mode_data[i].s[1]);
+      line_rank[node] = static_cast<cl_int>(std::min<std::size_t>(i, std::numeric_limits<cl_int>::max() - 1));
+    }
   }
   m.mode_total = total;
   m.mode_count = total;
@@ -144,33 +246,58 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
   for (std::size_t i = 0; i < total; ++i) m.mode_radius[i] = std::sqrt(norm2[order[i]]);
 
   try {
-    m.weights = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * total, weight_data.data());
-    m.mode_index = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_short4) * total, index_data.data());
+    m.queue = cl::CommandQueue(ctx.context, ctx.device.device, 0);
     m.dims = dims;
     if (!variant.translation_only) {
       m.s2 = spectra.part2.rho;
       if (variant.torque) m.sq = spectra.part2.moments;
     }
+    // Launch shape: 64 work-items, one group per 64 modes up to 2 per compute unit. On
+    // PoCL's CPU device 1-256 work-items and 1-4 groups per pose measured alike at
+    // m' = 32,768 (a work-group runs as a loop on one core); SNAPFIT_QUERY_WG, _GROUPS and
+    // _MODES_PER_GROUP override them for measurements on other devices.
+    auto env = [](const char* name, std::size_t fallback) {
+      const char* v = std::getenv(name);
+      return v && *v ? static_cast<std::size_t>(std::strtoul(v, nullptr, 10)) : fallback;
+    };
+    const std::size_t wg_target = env("SNAPFIT_QUERY_WG", 64);
     m.wg = 1;
-    while (m.wg * 2 <= std::min<std::size_t>(64, ctx.device.info.max_work_group_size)) m.wg *= 2;
-    m.max_groups = std::max<std::size_t>(2, 2 * ctx.device.info.compute_units);
-    std::string options = "-cl-std=CL1.2 -D WG_SIZE=" + std::to_string(m.wg);
+    while (m.wg * 2 <= std::min<std::size_t>(wg_target, ctx.device.info.max_work_group_size)) m.wg *= 2;
+    m.max_groups = std::max<std::size_t>(1, env("SNAPFIT_QUERY_GROUPS", std::max<std::size_t>(2, 2 * ctx.device.info.compute_units)));
+    m.modes_per_group = std::max<std::size_t>(1, env("SNAPFIT_QUERY_MODES_PER_GROUP", m.wg));
+    // Phase tables for |k| <= reach on every axis, in local memory.
+    const std::size_t local_bytes = 3 * (2 * std::size_t(reach) + 17) * sizeof(Complex) + 8 * sizeof(float) * m.wg;
+    if (local_bytes > ctx.device.info.local_memory_bytes)
+      throw Error("FFT grid of " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]) +
+                  " needs " + std::to_string(local_bytes) + " bytes of local memory for the query kernel's phase tables; " +
+                  ctx.device.info.name + " has " + std::to_string(ctx.device.info.local_memory_bytes));
+    std::string options = "-cl-std=CL1.2 -D WG_SIZE=" + std::to_string(m.wg) + " -D MAX_HALF=" + std::to_string(reach);
     if (variant.force) options += " -D FORCE";
     if (variant.torque) options += " -D TORQUE";
     if (variant.translation_only) options += " -D TRANSLATION_ONLY";
     if (!variant.translation_only && variant.interpolation == Interpolation::tricubic) options += " -D TRICUBIC";
-    m.kernel = cl::Kernel(build_program(ctx, "pose_query", kernel_source("spectrum_sample") + kernel_source("pose_query"), options, cache).program, "pose_query");
-    m.kernel.setArg(0, m.weights);
+    if (!variant.translation_only && variant.half_cube) options += " -D HALF_CUBE";
+    m.kernel = cl::Kernel(build_program(ctx, "pose_query", kernel_source("spectrum_sample") + kernel_source("pose_query"), options, cache).program,
+                          variant.translation_only ? "translation_lines" : "pose_query");
+    const cl_float4 inv_length{{float(1.0 / spectra.length.x()), float(1.0 / spectra.length.y()), float(1.0 / spectra.length.z()), 0.0f}};
     if (variant.translation_only) {
-      // No spectrum of part 2 is read: a one-node placeholder keeps the arguments valid.
-      const Complex none[4] = {};
-      m.cube = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof none, const_cast<Complex*>(none));
-      m.kernel.setArg(1, m.cube);
-      m.kernel.setArg(2, cl_int4{{1, 1, 1, 0}});
-      m.kernel.setArg(3, cl_int4{{0, 0, 0, 0}});
+      m.line_weights = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * line_w.size(), line_w.data());
+      m.line_rank = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_int) * line_rank.size(), line_rank.data());
+      m.kernel.setArg(0, m.line_weights);
+      m.kernel.setArg(1, m.line_rank);
+      m.kernel.setArg(2, cl_int4{{dense_dims[0], dense_dims[1], dense_dims[2], 0}});
+      m.kernel.setArg(3, cl_int4{{dense_min[0], dense_min[1], dense_min[2], 0}});
+      m.kernel.setArg(4, cl_int4{{dense_max[0], dense_max[1], dense_max[2], 0}});
+      m.kernel.setArg(5, cl_float16{});
+      m.kernel.setArg(12, inv_length);
+    } else {
+      m.modes = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * total, mode_data.data());
+      m.kernel.setArg(0, m.modes);
+      m.kernel.setArg(4, cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
+      m.kernel.setArg(5, cl_float4{{1.0f, 1.0f, 0.0f, 0.0f}});
+      m.kernel.setArg(6, cl_float16{});
+      m.kernel.setArg(13, inv_length);
     }
-    m.kernel.setArg(4, cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
-    m.kernel.setArg(8, m.mode_index);
     m.ensure_capacity(1, m.max_groups);
   } catch (const cl::Error& e) {
     throw Error("cannot set up pose queries on " + ctx.device.info.name + ": " + e.what() + " (error " +
@@ -187,16 +314,21 @@ void PoseQueryEngine::set_modes(std::size_t m) {
   impl_->ensure_cube(impl_->mode_radius[impl_->mode_count - 1]);
 }
 
-QueryResult PoseQueryEngine::query(const Pose& pose) { return query_batch({pose}).front(); }
+QueryResult PoseQueryEngine::query(const Pose& pose) {
+  std::vector<QueryResult> one = query_batch(std::vector<Pose>(1, pose));
+  return one.front();
+}
 
 std::vector<QueryResult> PoseQueryEngine::query_batch(const std::vector<Pose>& poses) {
   Impl& m = *impl_;
   const auto start = std::chrono::steady_clock::now();
   std::vector<QueryResult> results(poses.size());
-  std::vector<float> packed;
+  std::vector<cl_float16> packed;
+  packed.reserve(poses.size());
   std::vector<std::size_t> slot;  // poses sent to the device, by index
   std::vector<Eigen::Matrix3d> rotations;
-  std::vector<Eigen::Vector3d> taus;
+  slot.reserve(poses.size());
+  rotations.reserve(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) {
     results[i].modes = m.mode_count;
     Eigen::Matrix3d R;
@@ -212,44 +344,30 @@ std::vector<QueryResult> PoseQueryEngine::query_batch(const std::vector<Pose>& p
       results[i].flags |= query_outside_grid;
       continue;
     }
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) packed.push_back(static_cast<float>(R(r, c)));
-    for (int a = 0; a < 3; ++a) packed.push_back(static_cast<float>(tau[a]));
-    taus.push_back(tau);
+    packed.push_back(m.pack_pose(R, tau));
     slot.push_back(i);
     rotations.push_back(R);
   }
   if (!slot.empty()) {
-    const std::size_t groups_per_pose = std::clamp<std::size_t>((m.mode_count + m.wg - 1) / m.wg, 1, m.max_groups);
+    const std::size_t groups_per_pose = m.groups_per_pose();
     const std::size_t groups = groups_per_pose * slot.size();
     try {
       m.ensure_capacity(slot.size(), groups);
-      m.ctx.queue.enqueueWriteBuffer(m.poses, CL_FALSE, 0, sizeof(float) * packed.size(), packed.data());
       m.ensure_cube(m.mode_radius[m.mode_count - 1]);
-      // Per pose and axis: exp(2 pi i k tau_a / L_a) for |k| <= half, in double.
-      const int half = m.table_half[m.mode_count - 1];
-      const std::size_t table = 2 * static_cast<std::size_t>(half) + 1;
-      std::vector<Complex> tables(3 * table * slot.size());
-      for (std::size_t p = 0; p < slot.size(); ++p)
-        for (int a = 0; a < 3; ++a)
-          for (int k = -half; k <= half; ++k) {
-            const double phi = 2.0 * M_PI * k * taus[p][a] / m.length[a];
-            tables[(3 * p + a) * table + (k + half)] = Complex(float(std::cos(phi)), float(std::sin(phi)));
-          }
-      if (tables.size() > m.table_capacity) {
-        m.table_capacity = std::max<std::size_t>(tables.size(), 1024);
-        m.tables = cl::Buffer(m.ctx.context, CL_MEM_READ_ONLY, sizeof(Complex) * m.table_capacity);
+      // Argument numbers: pose_query, or translation_lines 1 lower (kernels/pose_query.cl).
+      const cl_uint shift = m.variant.translation_only ? 1 : 0;
+      if (slot.size() == 1) {
+        m.kernel.setArg(6 - shift, packed[0]);  // one pose: an argument, no buffer write
+      } else {
+        m.queue.enqueueWriteBuffer(m.poses, CL_FALSE, 0, sizeof(cl_float16) * packed.size(), packed.data());
       }
-      m.ctx.queue.enqueueWriteBuffer(m.tables, CL_FALSE, 0, sizeof(Complex) * tables.size(), tables.data());
-      m.kernel.setArg(5, m.poses);
-      m.kernel.setArg(6, static_cast<cl_int>(m.mode_count));
-      m.kernel.setArg(7, static_cast<cl_int>(groups_per_pose));
-      m.kernel.setArg(9, m.tables);
-      m.kernel.setArg(10, static_cast<cl_int>(half));
-      m.kernel.setArg(11, m.partials);
-      m.ctx.queue.enqueueNDRangeKernel(m.kernel, cl::NullRange, cl::NDRange(groups * m.wg), cl::NDRange(m.wg));
-      std::vector<float> partial(8 * groups);
-      m.ctx.queue.enqueueReadBuffer(m.partials, CL_TRUE, 0, sizeof(float) * partial.size(), partial.data());
+      m.kernel.setArg(8 - shift, static_cast<cl_int>(slot.size()));
+      m.kernel.setArg(9 - shift, static_cast<cl_int>(m.mode_count));
+      m.kernel.setArg(10 - shift, static_cast<cl_int>(groups_per_pose));
+      m.kernel.setArg(11 - shift, static_cast<cl_int>(m.table_half[m.mode_count - 1]));
+      m.queue.enqueueNDRangeKernel(m.kernel, cl::NullRange, cl::NDRange(groups * m.wg), cl::NDRange(m.wg));
+      m.queue.enqueueReadBuffer(m.partials, CL_TRUE, 0, sizeof(float) * 8 * groups, m.partial_host.data());
+      const std::vector<float>& partial = m.partial_host;
       for (std::size_t s = 0; s < slot.size(); ++s) {
         double sum[8] = {0, 0, 0, 0, 0, 0, 0, 0};
         for (std::size_t g = 0; g < groups_per_pose; ++g)

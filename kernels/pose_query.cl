@@ -2,82 +2,155 @@
 // engine/pose_query.h has the formulas and frames). One work-group reduces a slice of
 // the retained modes of one pose; the host adds the groups' partial sums.
 //
-// Options: -D WG_SIZE=n (power of two)  -D FORCE  -D TORQUE  -D TRANSLATION_ONLY
-//          -D TRICUBIC (Catmull-Rom; default trilinear)
+// Options: -D WG_SIZE=n (power of two)  -D MAX_HALF=h (largest |k| on any axis)
+//          -D FORCE  -D TORQUE  -D TRANSLATION_ONLY
+//          -D TRICUBIC (Catmull-Rom; default trilinear)  -D HALF_CUBE (cube stored as half)
 // Per mode k: w = w_k (part 1's frequency node), weight W_k = S1(w_k) dw, and
 //   6-DOF: w' = -R^T w, term = W_k S2(w') e^{i phi}, phi = 2 pi w.tau, tau = t + R c2 - c1
-//          (e^{i phi} from per-axis tables: no sincos per mode)
+//          (e^{i phi} from per-axis tables built here in local memory: no sincos per mode)
 //          torque (part 2 frame): Re[2 pi i W_k e^{i phi} (w' x SQ(w'))]
 //   translation only: W_k already holds S1(w_k) S2(-w_k) dw, term = W_k e^{i phi}.
 // Partial sums per group (8 floats): Re f, Im f, F (3), T in part 2's frame (3).
+//
+// The pose (float16): s0-s8 R row-major, s9-sb tau_a / L_a rounded to float ("hi"),
+// sc-se the rest tau_a / L_a - hi ("lo"). A single query passes it as the argument
+// `pose_arg` (no buffer write); a batch reads poses[pose] (pose_count > 1).
+//
+// Each mode is one float4: (Re W_k, Im W_k, (kx, ky) as two shorts, kz as an int),
+// so the mode loop streams 16 bytes per mode from one array, by increasing |w| (any m'
+// is a prefix).
 
 // The spectrum of part 2 near the low-pass ball, as a compact cube (no wrapping):
 // signed FFT index i sits at cube index i + offset. With torque each node holds
-// S2, SQ_x, SQ_y, SQ_z interleaved (one 32-byte load per tap).
+// S2, SQ_x, SQ_y, SQ_z interleaved (one 32-byte load per tap, 16 with HALF_CUBE;
+// half values are scaled by 1 / max |component| and scaled back here).
 #ifdef TORQUE
 typedef float8 Sample;
+#ifdef HALF_CUBE
+#define LOAD_SAMPLE(i) vload_half8((i), cube)
+#endif
 #else
 typedef float2 Sample;
+#ifdef HALF_CUBE
+#define LOAD_SAMPLE(i) vload_half2((i), cube)
+#endif
+#endif
+#ifdef HALF_CUBE
+#define CUBE_T half
+#else
+#define CUBE_T Sample
+#define LOAD_SAMPLE(i) cube[(i)]
 #endif
 
+// e^{2 pi i k x} for x = hi + lo (tau_a / L_a as a float pair), reduced to a fraction
+// of a turn first: k * hi is split exactly with fma, so |phase error| stays ~1e-7 rad
+// for every |k| (as the host's double-precision tables were).
+inline float2 axis_phase(const int k, const float hi, const float lo) {
+  const float kf = (float)k;
+  const float p = kf * hi;
+  const float e = fma(kf, hi, -p);                // k hi = p + e exactly
+  const float turns = (p - rint(p)) + (e + kf * lo);  // k x mod 1, in [-0.5, 0.5] + tiny
+  return (float2)(cospi(2.0f * turns), sinpi(2.0f * turns));
+}
+
+// The spectrum sample at fractional cube index u (rows summed first, then planes:
+// short dependency chains, so the loads of neighbouring taps overlap).
+#ifndef TRANSLATION_ONLY
+__attribute__((always_inline)) inline Sample sample_cube(__global const CUBE_T* cube, const int4 cube_dims, const int4 offset, const float3 u) {
+  float wx[TAPS], wy[TAPS], wz[TAPS];
+  const int ix = axis_weights(u.x, wx) + offset.x, iy = axis_weights(u.y, wy) + offset.y,
+            iz = axis_weights(u.z, wz) + offset.z;
+  Sample acc = (Sample)(0.0f);
+#pragma unroll
+  for (int c = 0; c < TAPS; ++c) {
+    Sample plane = (Sample)(0.0f);
+#pragma unroll
+    for (int b = 0; b < TAPS; ++b) {
+      const int row = cube_dims.x * (cube_dims.y * (iz + c) + iy + b) + ix;
+      Sample line = (Sample)(0.0f);
+#pragma unroll
+      for (int a = 0; a < TAPS; ++a) line += wx[a] * LOAD_SAMPLE(row + a);
+      plane += wy[b] * line;
+    }
+    acc += wz[c] * plane;
+  }
+  return acc;
+}
+#endif
+
+// One mode's term (seed 000 eq. 10-12) added to the sums f, force, torque.
+__attribute__((always_inline)) inline void add_mode(const float4 mode, const float16 P, __local const float2* tx, __local const float2* ty,
+                     __local const float2* tz, __global const CUBE_T* cube, const int4 cube_dims, const int4 offset,
+                     const float4 length, const float4 inv_length, const float4 cube_scale, float2* f,
+                     float3* force, float3* torque) {
+  const short2 kxy = as_short2(mode.z);
+  const int3 k = (int3)(kxy.x, kxy.y, as_int(mode.w));
+  const float3 w = convert_float3(k) * inv_length.xyz;  // w_k = k / L
+  float2 term = cmul(mode.xy, cmul(tx[k.x], cmul(ty[k.y], tz[k.z])));
+#ifndef TRANSLATION_ONLY
+  // w' = -R^T w (R^T's rows are R's columns), as a fractional FFT index u = w' L.
+  const float3 wp = -(float3)(P.s0 * w.x + P.s3 * w.y + P.s6 * w.z, P.s1 * w.x + P.s4 * w.y + P.s7 * w.z,
+                              P.s2 * w.x + P.s5 * w.y + P.s8 * w.z);
+  const Sample acc = sample_cube(cube, cube_dims, offset, wp * length.xyz);
+#ifdef TORQUE
+  const float2 v = acc.s01 * cube_scale.x;
+  const float2 q0 = acc.s23 * cube_scale.y, q1 = acc.s45 * cube_scale.y, q2 = acc.s67 * cube_scale.y;
+  // 2 pi i term_q (w' x SQ): Re of i z is -Im z.
+  const float2 e = term;  // W_k e^{i phi}
+  const float2 t0 = cmul(e, q0), t1 = cmul(e, q1), t2 = cmul(e, q2);
+  const float3 im = (float3)(wp.y * t2.y - wp.z * t1.y, wp.z * t0.y - wp.x * t2.y, wp.x * t1.y - wp.y * t0.y);
+  *torque += -TWO_PI * im;
+#else
+  const float2 v = acc * cube_scale.x;
+#endif
+  term = cmul(term, v);
+#endif
+  *f += term;
+#ifdef FORCE
+  *force += -TWO_PI * term.y * w;  // Re(2 pi i w term)
+#endif
+}
+
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void pose_query(__global const float2* weights, __global const Sample* cube,
-                const int4 cube_dims, const int4 offset, const float4 length, __global const float* poses,
-                const int mode_count, const int groups_per_pose, __global const short4* mode_index,
-                __global const float2* phase_tables, const int table_half, __global float* partials) {
+void pose_query(__global const float4* modes, __global const CUBE_T* cube,
+                const int4 cube_dims, const int4 offset, const float4 length, const float4 cube_scale,
+                const float16 pose_arg, __global const float16* poses, const int pose_count,
+                const int mode_count, const int groups_per_pose, const int table_half,
+                __global float* partials, const float4 inv_length) {
   const int group = get_group_id(0);
   const int pose = group / groups_per_pose;
   const int slice = group % groups_per_pose;
   const int lid = get_local_id(0);
-  __global const float* P = poses + 12 * pose;  // R row-major (9), tau (3)
-  // exp(2 pi i w.tau) is separable per axis (DESIGN.md): the host tabulates
-  // exp(2 pi i k tau_a / L_a) for |k| <= table_half, per pose and axis.
-  const int table = 2 * table_half + 1;
-  __global const float2* tx = phase_tables + 3 * table * pose + table_half;
-  __global const float2* ty = tx + table;
-  __global const float2* tz = ty + table;
+  const float16 P = pose_count > 1 ? poses[pose] : pose_arg;
 
-  float2 f = (float2)(0.0f);
-  float3 force = (float3)(0.0f), torque = (float3)(0.0f);
-  for (int m = slice * WG_SIZE + lid; m < mode_count; m += groups_per_pose * WG_SIZE) {
-    const int4 k = convert_int4(mode_index[m]);
-    const float3 w = convert_float3(k.xyz) / length.xyz;  // w_k = k / L
-    float2 term = cmul(weights[m], cmul(tx[k.x], cmul(ty[k.y], tz[k.z])));
-#ifndef TRANSLATION_ONLY
-    // w' = -R^T w (R^T's rows are R's columns).
-    const float3 wp = -(float3)(P[0] * w.x + P[3] * w.y + P[6] * w.z, P[1] * w.x + P[4] * w.y + P[7] * w.z,
-                                P[2] * w.x + P[5] * w.y + P[8] * w.z);
-    const float3 u = wp * length.xyz;  // fractional FFT index
-    float wx[TAPS], wy[TAPS], wz[TAPS];
-    const int ix = axis_weights(u.x, wx), iy = axis_weights(u.y, wy), iz = axis_weights(u.z, wz);
-    Sample acc = (Sample)(0.0f);
-    for (int c3 = 0; c3 < TAPS; ++c3) {
-      const int z = iz + c3 + offset.z;
-      for (int b = 0; b < TAPS; ++b) {
-        const int row = cube_dims.x * (cube_dims.y * z + iy + b + offset.y) + ix + offset.x;
-        const float wyz = wy[b] * wz[c3];
-        for (int a = 0; a < TAPS; ++a) acc += (wx[a] * wyz) * cube[row + a];
-      }
-    }
-#ifdef TORQUE
-    const float2 v = acc.s01, q0 = acc.s23, q1 = acc.s45, q2 = acc.s67;
-#else
-    const float2 v = acc;
-#endif
-#ifdef TORQUE
-    // 2 pi i term_q (w' x SQ): Re of i z is -Im z.
-    const float2 e = term;  // W_k e^{i phi}
-    const float2 t0 = cmul(e, q0), t1 = cmul(e, q1), t2 = cmul(e, q2);
-    const float3 im = (float3)(wp.y * t2.y - wp.z * t1.y, wp.z * t0.y - wp.x * t2.y, wp.x * t1.y - wp.y * t0.y);
-    torque += -TWO_PI * im;
-#endif
-    term = cmul(term, v);
-#endif
-    f += term;
-#ifdef FORCE
-    force += -TWO_PI * term.y * w;  // Re(2 pi i w term)
-#endif
+  // exp(2 pi i w.tau) is separable per axis (DESIGN.md): tables of
+  // exp(2 pi i k tau_a / L_a) for |k| <= table_half, one per axis, built by the group.
+  __local float2 tables[3 * (2 * MAX_HALF + 1)];
+  __local float2* tx = tables + MAX_HALF;
+  __local float2* ty = tx + (2 * MAX_HALF + 1);
+  __local float2* tz = ty + (2 * MAX_HALF + 1);
+  for (int k = lid - table_half; k <= table_half; k += WG_SIZE) {
+    tx[k] = axis_phase(k, P.s9, P.sc);
+    ty[k] = axis_phase(k, P.sa, P.sd);
+    tz[k] = axis_phase(k, P.sb, P.se);
   }
+  barrier(CLK_LOCAL_MEM_FENCE);
+
+  // Two modes per iteration into separate sums: independent work for the core to overlap.
+  float2 f = (float2)(0.0f), f1 = (float2)(0.0f);
+  float3 force = (float3)(0.0f), torque = (float3)(0.0f), force1 = (float3)(0.0f), torque1 = (float3)(0.0f);
+  const int stride = groups_per_pose * WG_SIZE;
+  int m = slice * WG_SIZE + lid;
+  for (; m + stride < mode_count; m += 2 * stride) {
+    add_mode(modes[m], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f, &force, &torque);
+    add_mode(modes[m + stride], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f1, &force1, &torque1);
+  }
+  if (m < mode_count)
+    add_mode(modes[m], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f,
+             &force, &torque);
+  f += f1;
+  force += force1;
+  torque += torque1;
 
   // Work-group reduction of the 8 sums.
   __local float scratch[8 * WG_SIZE];
@@ -97,3 +170,94 @@ void pose_query(__global const float2* weights, __global const Sample* cube,
   }
   if (lid < 8) partials[8 * group + lid] = scratch[lid];
 }
+
+#ifdef TRANSLATION_ONLY
+// Translation only (seed 000 section 3.3; R = I): f(t) = sum_k W_k e^{2 pi i w_k.tau} with
+// W_k = S1(w_k) S2(-w_k) dw. The weights sit in a dense box of x-lines (kz, ky, kx with
+// kx fastest; `rank` is each node's position in the |w| order, so node k is one of the
+// m' retained modes exactly when rank < m'). Per line (ky, kz) the phase factors,
+// e^{i phi} = tx[kx] (ty[ky] tz[kz]) (DESIGN.md, separable per axis), so the line is a
+// contiguous, 8-wide complex dot product of W with the x table:
+//   s = sum_kx W tx[kx],  s_x = sum_kx kx W tx[kx];  f += s p,  p = ty[ky] tz[kz],
+//   F = Re(2 pi i w f-terms) = -2 pi (Im(s_x p) / L_x, ky Im(s p) / L_y, kz Im(s p) / L_z).
+// Lines have `dims.x` nodes (the grid's x-extent plus 8 of padding with rank INT_MAX);
+// dense_min is the signed k of node (0, 0, 0).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void translation_lines(__global const float2* W, __global const int* rank, const int4 dims, const int4 dense_min,
+                       const int4 dense_max, const float16 pose_arg, __global const float16* poses,
+                       const int pose_count, const int mode_count, const int groups_per_pose, const int table_half,
+                       __global float* partials, const float4 inv_length) {
+  const int group = get_group_id(0);
+  const int pose = group / groups_per_pose;
+  const int slice = group % groups_per_pose;
+  const int lid = get_local_id(0);
+  const float16 P = pose_count > 1 ? poses[pose] : pose_arg;
+
+  // Tables for |k| <= table_half + 8: the last 8-wide chunk of a line may reach 7
+  // beyond; those nodes are masked, but their table values must be finite.
+#define PAD_HALF (MAX_HALF + 8)
+  __local float2 tables[3 * (2 * PAD_HALF + 1)];
+  __local float2* tx = tables + PAD_HALF;
+  __local float2* ty = tx + (2 * PAD_HALF + 1);
+  __local float2* tz = ty + (2 * PAD_HALF + 1);
+  const int reach = min(table_half + 8, PAD_HALF);
+  for (int k = lid - reach; k <= reach; k += WG_SIZE) {
+    tx[k] = axis_phase(k, P.s9, P.sc);
+    ty[k] = axis_phase(k, P.sa, P.sd);
+    tz[k] = axis_phase(k, P.sb, P.se);
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+
+  // The lines that can hold retained modes: |ky|, |kz| <= table_half.
+  const int y0 = max(-table_half, dense_min.y), y1 = min(table_half, dense_max.y);
+  const int z0 = max(-table_half, dense_min.z), z1 = min(table_half, dense_max.z);
+  const int x0 = max(-table_half, dense_min.x), x1 = min(table_half, dense_max.x);
+  const int ny = y1 - y0 + 1, lines = ny * (z1 - z0 + 1);
+  const float8 lane = (float8)(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f);
+  float2 f = (float2)(0.0f);
+  float3 force = (float3)(0.0f);
+  for (int l = slice * WG_SIZE + lid; l < lines; l += groups_per_pose * WG_SIZE) {
+    const int ky = y0 + l % ny, kz = z0 + l / ny;
+    const int row = dims.x * ((kz - dense_min.z) * dims.y + (ky - dense_min.y)) - dense_min.x;
+    float8 sr = (float8)(0.0f), si = (float8)(0.0f), sxr = (float8)(0.0f), sxi = (float8)(0.0f);
+    for (int x = x0; x <= x1; x += 8) {
+      const float16 w = vload16(0, (__global const float*)(W + row + x));
+      const float16 t = vload16(0, (__local const float*)(tx + x));
+      const int8 keep = vload8(0, rank + row + x) < (int8)(mode_count);
+      const float8 pr = select((float8)(0.0f), w.even * t.even - w.odd * t.odd, keep);
+      const float8 pim = select((float8)(0.0f), w.even * t.odd + w.odd * t.even, keep);
+      const float8 kx = (float8)((float)x) + lane;
+      sr += pr;
+      si += pim;
+      sxr += kx * pr;
+      sxi += kx * pim;
+    }
+    const float4 r4 = sr.lo + sr.hi, i4 = si.lo + si.hi, xr4 = sxr.lo + sxr.hi, xi4 = sxi.lo + sxi.hi;
+    const float2 s = (float2)(r4.x + r4.y + r4.z + r4.w, i4.x + i4.y + i4.z + i4.w);
+    const float2 sx = (float2)(xr4.x + xr4.y + xr4.z + xr4.w, xi4.x + xi4.y + xi4.z + xi4.w);
+    const float2 p = cmul(ty[ky], tz[kz]);
+    const float2 term = cmul(s, p);
+    f += term;
+#ifdef FORCE
+    force += -TWO_PI * (float3)(cmul(sx, p).y, (float)ky * term.y, (float)kz * term.y) * inv_length.xyz;
+#endif
+  }
+
+  __local float scratch[8 * WG_SIZE];
+  scratch[8 * lid + 0] = f.x;
+  scratch[8 * lid + 1] = f.y;
+  scratch[8 * lid + 2] = force.x;
+  scratch[8 * lid + 3] = force.y;
+  scratch[8 * lid + 4] = force.z;
+  scratch[8 * lid + 5] = 0.0f;
+  scratch[8 * lid + 6] = 0.0f;
+  scratch[8 * lid + 7] = 0.0f;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int stride = WG_SIZE / 2; stride > 0; stride >>= 1) {
+    if (lid < stride)
+      for (int j = 0; j < 8; ++j) scratch[8 * lid + j] += scratch[8 * (lid + stride) + j];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (lid < 8) partials[8 * group + lid] = scratch[lid];
+}
+#endif

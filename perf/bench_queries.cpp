@@ -10,9 +10,11 @@
 //   1. latency   wall clock around PoseQueryEngine::query(pose), p50 / p99 / max in
 //                microseconds, N repetitions (default 2000, --quick 300) after 100
 //                warm-up queries, at m' in {1, 1024, ..., 131072} (m' = 1: the fixed
-//                cost of one query: host tables, upload, launch, read-back), for
+//                cost of one query: pose arguments, launch, phase tables, read-back), for
 //                  6dof_eft_trilinear   6-DOF energy + force + torque, trilinear (8 taps)
 //                  6dof_eft_tricubic    6-DOF energy + force + torque, Catmull-Rom (64 taps)
+//                  6dof_eft_trilinear_half, 6dof_eft_tricubic_half   the same with the
+//                                       spectrum cube stored as half floats
 //                  6dof_ef_trilinear    6-DOF energy + force, trilinear
 //                  translation_ef       translation only, energy + force
 //                The translation-only engine runs on the same spectra
@@ -89,6 +91,9 @@ struct Args {
   std::string scene = "scenes/default.json";
   std::string out = "results/bench_queries";
   int repeats = 0;  // 0: 2000, or 300 with --quick
+  bool latency_only = false;              // sections 1 and 5 only
+  std::vector<std::size_t> modes;         // empty: the default m' list
+  std::vector<std::string> variants;      // empty: every variant
   std::string command_line;
 };
 
@@ -99,7 +104,11 @@ void usage(std::ostream& os) {
         "                  (default: $SNAPFIT_DEVICE, else PoCL's CPU device)\n"
         "  --scene FILE    scene (default scenes/default.json)\n"
         "  --out DIR       output folder (default results/bench_queries)\n"
-        "  --repeats N     timed queries per latency point (default 2000, --quick 300)\n";
+        "  --repeats N     timed queries per latency point (default 2000, --quick 300)\n"
+        "  --latency-only  per-query latency and targets only (no batches, maps, device limits, roofline)\n"
+        "  --modes LIST    comma-separated m' values for the latency points (default 1,1024,...,131072)\n"
+        "  --variants LIST comma-separated variant keys (default all: 6dof_eft_trilinear, 6dof_eft_tricubic,\n"
+        "                  6dof_eft_trilinear_half, 6dof_eft_tricubic_half, 6dof_ef_trilinear, translation_ef)\n";
 }
 
 Args parse_args(int argc, char** argv) {
@@ -122,6 +131,24 @@ Args parse_args(int argc, char** argv) {
     } else if (is("--out")) {
       a.out = value("--out");
       if (a.out.empty()) throw snapfit::Error("--out: must not be empty");
+    } else if (s == "--latency-only") {
+      a.latency_only = true;
+    } else if (is("--modes")) {
+      std::stringstream in(value("--modes"));
+      for (std::string item; std::getline(in, item, ',');) {
+        std::size_t used = 0;
+        unsigned long n = 0;
+        try {
+          n = std::stoul(item, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != item.size() || n < 1) throw snapfit::Error("--modes: expected integers >= 1 (got '" + item + "')");
+        a.modes.push_back(n);
+      }
+    } else if (is("--variants")) {
+      std::stringstream in(value("--variants"));
+      for (std::string item; std::getline(in, item, ',');) a.variants.push_back(item);
     } else if (is("--repeats")) {
       const std::string v = value("--repeats");
       std::size_t used = 0;
@@ -262,6 +289,10 @@ std::vector<VariantSpec> variant_specs() {
   return {
       {"6dof_eft_trilinear", "6-DOF E+F+T trilinear", QueryVariant{true, true, false, Interpolation::trilinear}},
       {"6dof_eft_tricubic", "6-DOF E+F+T tricubic", QueryVariant{true, true, false, Interpolation::tricubic}},
+      {"6dof_eft_trilinear_half", "6-DOF E+F+T trilin half",
+       QueryVariant{true, true, false, Interpolation::trilinear, true}},
+      {"6dof_eft_tricubic_half", "6-DOF E+F+T tricub half",
+       QueryVariant{true, true, false, Interpolation::tricubic, true}},
       {"6dof_ef_trilinear", "6-DOF E+F trilinear", QueryVariant{true, false, false, Interpolation::trilinear}},
       {"translation_ef", "translation-only E+F", QueryVariant{true, false, true, Interpolation::trilinear}},
   };
@@ -271,9 +302,14 @@ std::vector<VariantSpec> variant_specs() {
 // iteration of the mode loop). Bytes: every global load the loop issues, counted once
 // per mode as if nothing were cached (the "requested" traffic; the compact cube and the
 // phase tables are small enough to stay in cache on a CPU, so DRAM traffic is lower):
-//   modes[m] float4 16 B, mode_index[m] int4 16 B, weights[m] float2 8 B,
-//   3 phase-table lookups 3 x 8 B                                   = 64 B for every variant
-//   6-DOF: TAPS^3 cube taps x sizeof(Sample): float8 (32 B) with torque, float2 (8 B) without
+//   6-DOF: modes[m] float4 16 B (weight and packed k), 3 phase-table lookups 3 x 8 B
+//          (local memory)                                                  = 40 B
+//          TAPS^3 cube taps x sizeof(Sample): float8 (32 B) with torque, float2 (8 B)
+//          without; half that with the half-float cube
+//   translation only (dense x-lines): per node of the box |k_a| <= h, weight 8 B +
+//          rank 4 B + x table 8 B (local) = 20 B, times the box's nodes per retained
+//          mode ((2h + 1)^3 / m', computed per m'); flops per node: complex multiply 6,
+//          2 selects, 2 adds, 2 fma (kx terms) 4 = 12, times the same ratio
 // Flops: an add, a multiply or a subtraction is 1, an fma 2; integer index arithmetic,
 // floor and conversions are not counted:
 //   phase: 3 complex multiplies (4 mul + 2 add each)                           18
@@ -284,35 +320,36 @@ std::vector<VariantSpec> variant_specs() {
 //          term *= v: one complex multiply 6
 //   torque: 3 complex multiplies 18, cross product of imaginary parts 9, *(-2 pi) and += 6
 //   f += term 2; force += -2 pi term.y w: 1 + 3 + 3 = 7
-// Per query on top (not per mode): 3 (2 h + 1) complex table entries and 12 pose floats
-// uploaded, 8 floats per work-group read back, and the work-group reductions.
+// Per query on top (not per mode): 3 (2 h + 1) sincos per work-group for the phase
+// tables, 8 floats per work-group read back, and the work-group reductions.
 struct Cost {
   double bytes = 0, flops = 0;
   std::string bytes_detail, flops_detail;
 };
 
-Cost cost_model(const QueryVariant& v) {
+Cost cost_model(const QueryVariant& v, double box_nodes_per_mode) {
   Cost c;
-  const double stream = 16 + 16 + 8 + 3 * 8;
+  const double stream = 16 + 3 * 8;
   const double phase = 18, accumulate = 2, force = v.force ? 7 : 0;
   if (v.translation_only) {
-    c.bytes = stream;
-    c.flops = phase + accumulate + force;
-    c.bytes_detail = "64 (modes 16 + index 16 + weight 8 + 3 tables 24)";
-    c.flops_detail = "18 phase + 2 sum + 7 force";
+    c.bytes = 20 * box_nodes_per_mode;
+    c.flops = 12 * box_nodes_per_mode;
+    c.bytes_detail = "20 per box node (weight 8 + rank 4 + x table 8) x " + fmt(box_nodes_per_mode, 3) + " nodes per mode";
+    c.flops_detail = "12 per box node x " + fmt(box_nodes_per_mode, 3) + " nodes per mode";
     return c;
   }
   const int taps = v.interpolation == Interpolation::tricubic ? 4 : 2;
   const int comps = v.torque ? 8 : 2;
   const double taps3 = double(taps) * taps * taps;
-  const double gather_bytes = taps3 * comps * 4;
+  const double gather_bytes = taps3 * comps * (v.half_cube ? 2 : 4);
   const double rotate = 15 + 3;
   const double weights = 3 * (taps == 4 ? 20 : 2);
   const double gather = taps * taps + taps3 * (1 + 2 * comps);
   const double torque = v.torque ? 18 + 9 + 6 : 0;
   c.bytes = stream + gather_bytes;
   c.flops = phase + rotate + weights + gather + 6 + torque + accumulate + force;
-  c.bytes_detail = "64 stream + " + fmt(taps3, 3) + " taps x " + std::to_string(comps * 4) + " B = " + fmt(c.bytes, 5);
+  c.bytes_detail = "40 stream + " + fmt(taps3, 3) + " taps x " + std::to_string(comps * (v.half_cube ? 2 : 4)) +
+                   " B = " + fmt(c.bytes, 5);
   c.flops_detail = "18 phase + 18 rotate + " + fmt(weights, 3) + " weights + " + fmt(gather, 5) + " gather + 6 + " +
                    fmt(torque, 3) + " torque + 2 sum + 7 force = " + fmt(c.flops, 5);
   return c;
@@ -399,8 +436,21 @@ std::vector<float> sorted_mode_radii(const snapfit::PairSpectra& s) {
   return r;
 }
 
+// Nodes of the translation kernel's dense box |k_a| <= h (h: the largest |k_a| among
+// the first m' modes) per retained mode.
+double box_nodes_per_mode(const snapfit::PairSpectra& s, const std::vector<float>& radii, std::size_t m) {
+  m = std::clamp<std::size_t>(m, 1, radii.size());
+  const double r = radii[m - 1];
+  double nodes = 1;
+  for (int a = 0; a < 3; ++a) {
+    const double h = std::floor(r * s.length[a] + 1e-6);
+    nodes *= std::min(2 * h + 1, double(s.dims[a]));
+  }
+  return nodes / double(m);
+}
+
 // The working set of one query at m' (what engine/pose_query.cpp uploads): the mode
-// arrays (40 B per mode), the compact cube of part 2's spectrum (as ensure_cube builds
+// arrays (16 B per mode; translation only: 12 B per dense-box node), the compact cube of part 2's spectrum (as ensure_cube builds
 // it fresh for this m') and the three phase tables.
 struct Footprint {
   double mode_bytes = 0, cube_bytes = 0, table_bytes = 0;
@@ -410,7 +460,7 @@ Footprint footprint(const snapfit::PairSpectra& s, const std::vector<float>& rad
                     const QueryVariant& v) {
   Footprint f;
   m = std::clamp<std::size_t>(m, 1, radii.size());
-  f.mode_bytes = 40.0 * double(m);
+  f.mode_bytes = v.translation_only ? 12.0 * box_nodes_per_mode(s, radii, m) * double(m) : 16.0 * double(m);
   const double r = radii[m - 1];
   int table_half = 0;
   for (int a = 0; a < 3; ++a) table_half = std::max(table_half, int(std::floor(r * s.length[a] + 1e-6)));
@@ -423,7 +473,7 @@ Footprint footprint(const snapfit::PairSpectra& s, const std::vector<float>& rad
       f.cube_dims[a] = 2 * half + 2;
       nodes *= f.cube_dims[a];
     }
-    f.cube_bytes = nodes * (v.torque ? 32 : 8);
+    f.cube_bytes = nodes * (v.torque ? 32 : 8) * (v.half_cube ? 0.5 : 1.0);
   }
   return f;
 }
@@ -760,11 +810,13 @@ int run(const Args& args) {
             << ", load average at start: " << load_start << "\n";
 
   const std::vector<std::size_t> modes_list =
-      args.quick ? std::vector<std::size_t>{1, 1024, 4096, 32768}
-                 : std::vector<std::size_t>{1, 1024, 4096, 8192, 16384, 32768, 65536, 131072};
+      !args.modes.empty() ? args.modes
+      : args.quick        ? std::vector<std::size_t>{1, 1024, 4096, 32768}
+                          : std::vector<std::size_t>{1, 1024, 4096, 8192, 16384, 32768, 65536, 131072};
   const int repeats = args.repeats > 0 ? args.repeats : (args.quick ? 300 : 2000);
   const int warmup = 100;
-  const std::vector<std::size_t> batch_modes = {4096, 32768};
+  const std::vector<std::size_t> batch_modes =
+      args.latency_only ? std::vector<std::size_t>{} : std::vector<std::size_t>{4096, 32768};
   const std::vector<std::size_t> batch_sizes = {1, 16, 256, 4096};
   const double batch_cap_s = args.quick ? 3.0 : 30.0;
 
@@ -796,7 +848,11 @@ int run(const Args& args) {
   const std::vector<float> radii = sorted_mode_radii(spectra);
 
   // ---- 1. latency
-  const auto specs = variant_specs();
+  std::vector<VariantSpec> specs;
+  for (const auto& spec : variant_specs())
+    if (args.variants.empty() || std::find(args.variants.begin(), args.variants.end(), spec.key) != args.variants.end())
+      specs.push_back(spec);
+  if (specs.empty()) throw snapfit::Error("--variants: no known variant named (see --help)");
   QuietGuard guard;
   if (args.quick) guard.max_retries = 0;  // --quick only records the contention
   std::vector<LatencyRow> latency;
@@ -827,7 +883,7 @@ int run(const Args& args) {
           [&] { return measure_latency(*engine, spec, poses_of[spec.key], m, warmup, repeats, cursor, sink); }, others,
           attempts);
       r.attempts = attempts;
-      r.cost = cost_model(spec.variant);
+      r.cost = cost_model(spec.variant, box_nodes_per_mode(spectra, radii, r.modes_used));
       r.fp = footprint(spectra, radii, r.modes_used, spec.variant);
       std::cout << "    m' " << pad(std::to_string(r.modes_used), 7) << "  p50 " << pad(fixed(r.p50), 9) << " us  p99 "
                 << pad(fixed(r.p99), 9) << " us  max " << pad(fixed(r.max), 9) << " us  [p10 " << pad(fixed(r.p10), 8)
@@ -924,7 +980,7 @@ int run(const Args& args) {
   std::cout << "\n[3] full translational maps (translational_energy_map, all modes) at the FFT grid " << dims[0] << "x"
             << dims[1] << "x" << dims[2] << "\n";
   std::vector<MapRow> maps;
-  {
+  if (!args.latency_only) {
     const auto rot_poses = make_poses(scene, spectra.spacing, 16, true, 777u);
     const int warm_runs = args.quick ? 1 : 4;
     std::size_t next = 0;
@@ -971,8 +1027,10 @@ int run(const Args& args) {
   std::cout << "\n[4] device limits (best of 5) and roofline\n";
   double limits_others = 0;
   int limits_attempts = 1;
-  const DeviceLimits limits = guard.run(
-      "the device limits", [&] { return measure_limits(ctx, args.quick); }, limits_others, limits_attempts);
+  const DeviceLimits limits =
+      args.latency_only
+          ? DeviceLimits{}
+          : guard.run("the device limits", [&] { return measure_limits(ctx, args.quick); }, limits_others, limits_attempts);
   std::cout << "  (other processes used " << fixed(limits_others, 2) << " cores meanwhile"
             << (limits_attempts > 1 ? ", attempt " + std::to_string(limits_attempts) : "") << ")\n";
   for (const auto& r : limits.bandwidth)
@@ -1030,7 +1088,8 @@ int run(const Args& args) {
     roof.push_back(rr);
   }
   for (const auto& spec : specs) {
-    const Cost c = cost_model(spec.variant);
+    const LatencyRow* lr = find_lat(spec.key, roof_m);
+    const Cost c = lr ? lr->cost : cost_model(spec.variant, box_nodes_per_mode(spectra, radii, roof_m));
     std::cout << "    " << padr(spec.label, 24) << " bytes: " << c.bytes_detail << "; flops: " << c.flops_detail
               << "\n";
   }
@@ -1060,7 +1119,7 @@ int run(const Args& args) {
               << pad(fixed(cub->p50, 0), 11) << "\n";
   }
   std::cout
-      << "  (fixed: translation-only at m' = 1 - host phase tables, uploads, launch, read-back; stream: translation\n"
+      << "  (fixed: translation-only at m' = 1 - pose arguments, launch, phase tables, read-back; stream: translation\n"
          "   E+F above that - the per-mode arrays, table lookups and complex products; rot+2^3: 6-DOF E+F trilinear\n"
          "   above translation - rotation, weights and 8 float2 taps; float8: E+F+T above E+F; 4^3 taps: tricubic\n"
          "   above trilinear E+F+T)\n";
@@ -1090,8 +1149,10 @@ int run(const Args& args) {
     }
     targets["largest_modes_within_1ms_p99"] = reach;
     nlohmann::json six = nlohmann::json::object();
-    for (const std::string key : {"6dof_eft_trilinear", "6dof_eft_tricubic"}) {
+    for (const std::string key :
+         {"6dof_eft_trilinear", "6dof_eft_tricubic", "6dof_eft_trilinear_half", "6dof_eft_tricubic_half"}) {
       const LatencyRow* r = find_lat(key, 32768);
+      if (!r) continue;
       const bool met = r && r->p99 <= 1000.0;
       six[key] = {{"p99_us_at_32768", r ? num(r->p99) : nlohmann::json(nullptr)}, {"met", met}};
       std::cout << "  target 6-DOF E+F+T m' >= 32768 at p99 <= 1 ms (" << key << "): "
@@ -1360,7 +1421,7 @@ int run(const Args& args) {
     snapfit::write_chart_png((dir / "latency_p99_all.png").string(), c);
     charts.push_back("latency_p99_all.png");
   }
-  {
+  if (!args.latency_only) {
     snapfit::Chart c;
     c.title = "batched throughput vs batch size (" + dev_short + ")";
     c.x_label = "poses per batch";
@@ -1379,7 +1440,7 @@ int run(const Args& args) {
     snapfit::write_chart_png((dir / "throughput.png").string(), c);
     charts.push_back("throughput.png");
   }
-  {
+  if (!args.latency_only) {
     snapfit::Chart c;
     c.title = "roofline at m' = 32768 (measured limits; requested bytes)";
     c.x_label = "arithmetic intensity (flop / byte requested)";

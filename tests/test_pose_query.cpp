@@ -609,6 +609,117 @@ TEST_CASE("pose query: translation-only and force-only variants agree with the 6
   }
 }
 
+TEST_CASE("pose query: translation-only sums exactly the m' lowest-|w| modes at any m'") {
+  // translation_lines masks a dense box of x-lines by each node's rank in the |w| order;
+  // at R = I the 6-DOF kernel reads the nodes themselves from the |w|-sorted list, so
+  // the two agree to float rounding at every m' only if both sum the same mode set.
+  const GaussianPair& s = pair();
+  const double scale = s.score_scale();
+  auto six = make_engine(2.0, variant(Interpolation::trilinear, true, false));
+  auto translation = make_engine(2.0, variant(Interpolation::trilinear, true, false, true));
+  const std::size_t all = translation->max_modes();
+  const std::vector<Vector3d> offsets = {Vector3d(0, 0, 0), Vector3d(0.5, -0.25, 0.3), Vector3d(-1.6, 0.9, 2.45)};
+  double force_scale = 0;
+  for (const Vector3d& off : offsets)
+    force_scale = std::max(force_scale, s.derivatives(s.pose(Eigen::AngleAxisd::Identity(), off)).force.norm());
+  double worst = 0;
+  for (const std::size_t m : {std::size_t(1), std::size_t(2), std::size_t(7), std::size_t(33), std::size_t(100), std::size_t(1234),
+                              std::size_t(4097), std::size_t(20000), all - 1, all}) {
+    CAPTURE(m);
+    six->set_modes(m);
+    translation->set_modes(m);
+    for (const Vector3d& off : offsets) {
+      const Pose p = s.pose(Eigen::AngleAxisd::Identity(), off);
+      const QueryResult a = six->query(p), b = translation->query(p);
+      REQUIRE(a.flags == query_ok);
+      REQUIRE(b.flags == query_ok);
+      CHECK(b.modes == m);
+      worst = std::max({worst, std::abs(b.score - a.score) / scale, (b.force - a.force).norm() / force_scale});
+    }
+  }
+  MESSAGE("translation-only (dense lines, rank mask) vs 6-DOF at R = I over m' in 1 .. all: max relative diff "
+          << fmt("%.2e", worst));
+  CHECK(worst < 1e-5);
+}
+
+TEST_CASE("pose query: phase tables built in the kernel match a double-precision host sum") {
+  // The kernel builds exp(2 pi i k tau_a / L_a) itself from tau / L as a float pair,
+  // reduced to a fraction of a turn (kernels/pose_query.cl axis_phase). Checked against
+  // sum_k W_k exp(2 pi i w_k.tau) in double over every mode, W_k = S1(w_k) S2(-w_k) dw,
+  // at translations up to the aliasing limit (large k tau / L).
+  const GaussianPair& s = pair();
+  const PairSpectra& sp = spectra(2.0);
+  auto engine = make_engine(2.0, variant(Interpolation::trilinear, true, false, true));
+  const auto& d = sp.dims;
+  const double dw = 1.0 / (sp.length.x() * sp.length.y() * sp.length.z());
+  auto signed_k = [](std::size_t k, std::size_t n) { return k <= n / 2 ? double(k) : double(k) - double(n); };
+  double worst = 0, scale = 0;
+  int used = 0;
+  for (const Vector3d& off : {Vector3d(0.3, -0.2, 0.1), Vector3d(2.7, -3.1, 1.9), Vector3d(-4.4, 3.3, -2.6), Vector3d(5.1, 4.9, -5.3)}) {
+    const Pose p = s.pose(Eigen::AngleAxisd::Identity(), off);
+    const QueryResult r = engine->query(p);
+    if (r.flags != query_ok) continue;
+    ++used;
+    const Vector3d tau = p.translation + sp.part2.centre - sp.part1.centre;  // R = I
+    cd f = 0;
+    Vector3d force = Vector3d::Zero();
+    for (std::size_t z = 0; z < d[2]; ++z)
+      for (std::size_t y = 0; y < d[1]; ++y)
+        for (std::size_t x = 0; x < d[0]; ++x) {
+          const std::size_t k = x + d[0] * (y + d[1] * z);
+          const std::size_t neg = (d[0] - x) % d[0] + d[0] * ((d[1] - y) % d[1] + d[1] * ((d[2] - z) % d[2]));
+          const Vector3d w(signed_k(x, d[0]) / sp.length.x(), signed_k(y, d[1]) / sp.length.y(), signed_k(z, d[2]) / sp.length.z());
+          const cd weight = cd(sp.part1.rho[k]) * cd(sp.part2.rho[neg]) * dw;
+          const cd term = weight * std::exp(cd(0, 2 * kPi * w.dot(tau)));
+          f += term;
+          force += -2 * kPi * term.imag() * w;  // Re(2 pi i w term)
+        }
+    scale = std::max(scale, s.score_scale());
+    worst = std::max({worst, std::abs(r.score - f) / scale, (r.force - force).norm() / (2 * kPi * scale / sp.spacing)});
+  }
+  REQUIRE(used >= 3);
+  MESSAGE("kernel phase tables vs a double-precision host sum over all " << engine->max_modes() << " modes, "
+          << used << " translations up to the aliasing limit: max error " << fmt("%.2e", worst) << " of |f| aligned");
+  CHECK(worst < 1e-5);
+}
+
+TEST_CASE("pose query: a half-float cube stays within its stated error of the float cube") {
+  // QueryVariant::half_cube stores S2 and SQ as half floats (11 significant bits),
+  // each scaled by 1 / (largest component). Measured against the float cube at random
+  // poses including near 180 degrees, relative to the largest |f|, |F|, |T| over them.
+  const std::vector<Pose> poses = random_poses(12, 11);
+  for (const Interpolation interp : {Interpolation::trilinear, Interpolation::tricubic}) {
+    const std::string scheme = name(interp);
+    CAPTURE(scheme);
+    QueryVariant half = variant(interp, true, true);
+    half.half_cube = true;
+    auto a = make_engine(2.0, variant(interp, true, true));
+    auto b = make_engine(2.0, half);
+    for (const std::size_t m : {std::size_t(5000), a->max_modes()}) {
+      a->set_modes(m);
+      b->set_modes(m);
+      double fs = 0, ff = 0, ft = 0, df = 0, dF = 0, dT = 0;
+      for (const Pose& p : poses) {
+        const QueryResult x = a->query(p), y = b->query(p);
+        REQUIRE(x.flags == y.flags);
+        fs = std::max(fs, std::abs(x.score));
+        ff = std::max(ff, x.force.norm());
+        ft = std::max(ft, x.torque.norm());
+        df = std::max(df, std::abs(y.score - x.score));
+        dF = std::max(dF, (y.force - x.force).norm());
+        dT = std::max(dT, (y.torque - x.torque).norm());
+      }
+      MESSAGE(scheme << ", m' " << m << ": half cube vs float cube, relative to the largest value over the poses: score "
+                     << fmt("%.2e", df / fs) << ", force " << fmt("%.2e", dF / ff) << ", torque " << fmt("%.2e", dT / ft));
+      // Measured about 1e-5 (score 3e-6): below trilinear's interpolation error (5e-3)
+      // and tricubic's (6e-5) at oversampling 2.
+      CHECK(df / fs < 5e-5);
+      CHECK(dF / ff < 5e-5);
+      CHECK(dT / ft < 5e-5);
+    }
+  }
+}
+
 // ============================================================================ 5. batch
 
 TEST_CASE("pose query: query_batch equals a loop of query") {
