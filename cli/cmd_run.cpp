@@ -176,6 +176,9 @@ void run_main_job(const RunOptions& opt) {
               << seconds << " s of real time, m' = " << tuning.chosen_modes << ")\n";
     session = run_scripted_assembly(scene, parts.part2.mesh, spectra->spacing, *loop_engine, tuning);
     const LoopReport& loop = session->loop;
+    if (session->priority.failed)
+      note("could not raise the priority of " + std::to_string(session->priority.failed) +
+           " threads for the loop (" + session->priority.reason + "); frames may be late on a busy machine");
     std::cout << "    " << loop.frames << " frames, measured " << loop.measured_rate_hz << " Hz; frame time p50 "
               << quantile(loop.frame_ms, 0.5) << " ms, p99 " << quantile(loop.frame_ms, 0.99) << " ms, max "
               << quantile(loop.frame_ms, 1.0) << " ms; " << loop.misses << " misses (" << 100 * loop.miss_rate()

@@ -42,6 +42,7 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, 
   part.pose = device.read(0).pose;  // the part starts in the user's hand
   WrenchEvaluator evaluator{[&engine](const Pose& p) { return engine.query(p); },
                             [&engine](std::size_t m) { engine.set_modes(m); }};
+  if (options.nice != 0 && !options.simulated_time) out.priority = raise_process_priority(options.nice);
   HapticLoopThread loop(device, evaluator, config, part,
                         options.simulated_time ? simulated_loop_clock() : steady_loop_clock());
   out.loop = loop.join();

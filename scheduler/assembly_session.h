@@ -11,6 +11,7 @@
 #include "scheduler/auto_tune.h"
 #include "scheduler/haptic_loop.h"
 #include "scheduler/haptic_setup.h"
+#include "scheduler/thread_priority.h"
 
 namespace snapfit {
 
@@ -19,6 +20,7 @@ struct SessionOptions {
   bool loop_back = false;            // replay the trajectory back and forth (long runs)
   bool keep_log = true;
   bool simulated_time = false;       // scheduler/haptic_loop.h simulated_loop_clock (deterministic)
+  int nice = -10;                    // scheduler/thread_priority.h for the run's threads; 0 leaves them
 };
 
 struct SessionResult {
@@ -32,6 +34,7 @@ struct SessionResult {
   double position_tolerance = 0;   // scene units
   double angle_tolerance_deg = 0;
   bool assembled = false;          // final_error within the tolerances
+  PriorityChange priority;         // what raising the threads' priority did
 };
 
 // Runs the loop on its own thread on the steady clock and waits for it. Throws
