@@ -89,7 +89,8 @@ void check_off_counts(const std::string& path, std::uintmax_t file_size) {
 // PLY file cut inside its header, and aborts (ai_assert in TriangulateProcess) on one
 // cut inside its body. So a file that starts with the "ply" magic is walked here first:
 // the header must end with end_header, and the body must hold every element it declares
-// (binary: list counts read and skipped; ASCII: enough tokens). Otherwise it is refused.
+// (binary: list counts read and skipped; ASCII: enough tokens), and every face at least
+// 3 indices. Otherwise it is refused.
 void check_ply_complete(const std::string& path, std::uintmax_t file_size) {
   std::ifstream in(path, std::ios::binary);
   std::string line;
@@ -157,6 +158,13 @@ void check_ply_complete(const std::string& path, std::uintmax_t file_size) {
   const bool ascii = format == "ascii";
   const bool big_endian = format == "binary_big_endian";
   if (!ascii && !big_endian && format != "binary_little_endian") return;  // leave it to Assimp
+  // Faces with fewer than 3 indices make Assimp's triangulation abort (ai_assert
+  // numOut != mNumFaces; found by fuzz/fuzz_mesh).
+  const auto check_face = [&](const Element& e, unsigned long long i, unsigned long long items) {
+    if (e.name == "face" && items < 3)
+      fail(path, "cannot read mesh: PLY face " + std::to_string(i) + " has " + std::to_string(items) +
+                     " vertex indices (at least 3 needed)");
+  };
   const auto truncated = [&](const Element& e, unsigned long long i) {
     fail(path, "cannot read mesh: truncated PLY body (element '" + e.name + "' entry " + std::to_string(i) + " of " +
                    std::to_string(e.count) + " is missing)");
@@ -173,6 +181,7 @@ void check_ply_complete(const std::string& path, std::uintmax_t file_size) {
           if (p.count_size > 0) {
             if (!(in >> token)) truncated(e, i);
             items = is_count(token) ? std::stoull(token) : 0;
+            check_face(e, i, items);
           }
           for (unsigned long long k = 0; k < items; ++k)
             if (!(in >> token)) truncated(e, i);
@@ -187,6 +196,7 @@ void check_ply_complete(const std::string& path, std::uintmax_t file_size) {
           items = 0;
           for (int k = 0; k < p.count_size; ++k)
             items |= static_cast<unsigned long long>(b[big_endian ? p.count_size - 1 - k : k]) << (8 * k);
+          check_face(e, i, items);
         }
         if (items > file_size) truncated(e, i);
         offset += items * static_cast<unsigned long long>(p.size);

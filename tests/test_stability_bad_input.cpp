@@ -137,7 +137,12 @@ TEST_CASE("stability bad input: unknown units and wrong types in a scene name th
 TEST_CASE("stability bad input: non-finite and huge poses, library and CLI") {
   test::CacheDirScope cache;
   const Scene scene = test::small_peg_hole_scene();
-  const AssemblyPair pair = test::build_small_pair(scene);
+  // Through the cache (this test's folder), so the CLI run below finds the fields.
+  const FftLibrary fft;
+  PairOptions cached;
+  cached.note = [](const std::string&) {};
+  cached.descriptors.program_cache = test::test_program_cache();
+  const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, cached);
   PoseQueryEngine engine(test::test_context(), pair.spectra, query_variant_for(scene), test::test_program_cache());
   engine.set_modes(1024);
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
@@ -262,7 +267,7 @@ TEST_CASE("stability bad input: truncated copies of valid mesh files fail cleanl
   CHECK(tried >= 16);
 }
 
-TEST_CASE("stability bad input: a kernel build with invalid options is an error naming the kernel; nothing is cached") {
+TEST_CASE("stability bad input: a kernel build with invalid options is an error naming the kernel, nothing is cached") {
   test::TempDir dir;
   ProgramCacheConfig cache;
   cache.directory = dir.file("programs");
@@ -283,7 +288,7 @@ TEST_CASE("stability bad input: a kernel build with invalid options is an error 
   CHECK(files_under(dir.path).empty());
 }
 
-TEST_CASE("stability bad input: a cache root that is a file is a note; results are the uncached ones") {
+TEST_CASE("stability bad input: a cache root that is a file is a note, results are the uncached ones") {
   test::CacheDirScope scope;
   const std::string file_root = scope.dir.file("not_a_folder");
   test::write_text(file_root, "a file where the cache root should be");
@@ -304,7 +309,7 @@ TEST_CASE("stability bad input: a cache root that is a file is a note; results a
   CHECK(test::read_bytes(file_root).size() == 37);  // untouched
 }
 
-TEST_CASE("stability bad input: a full disk while writing a cache entry is an error naming the path; no file is left") {
+TEST_CASE("stability bad input: a full disk while writing a cache entry is an error naming the path, no file is left") {
   // A child process with a 64 KiB file-size limit (RLIMIT_FSIZE, SIGXFSZ ignored: the
   // write fails with EFBIG as it would with ENOSPC) writes a 1 MiB entry over an old one.
   test::TempDir dir;
@@ -380,4 +385,18 @@ TEST_CASE("stability bad input: fuzz regression: a malformed bzip-compressed Dir
   test::write_bytes(file, test::read_bytes(std::string(SNAPFIT_SOURCE_DIR) + "/tests/data/fuzz/x_bzip_segv.bin"));
   REQUIRE(fs::file_size(file) == 775);
   CHECK_THROWS_WITH_AS(load_mesh(file), doctest::Contains("compressed DirectX .x"), Error);
+}
+
+TEST_CASE("stability bad input: fuzz regression: a binary PLY face with fewer than 3 indices is refused, not an abort") {
+  // fuzz/fuzz_mesh found this input (byte 0 picked ".ply"): a face list of 0 indices makes
+  // Debian's Assimp 5.2 abort in its triangulation (ai_assert numOut != mNumFaces).
+  test::TempDir dir;
+  const std::string file = dir.file("crash.ply");
+  test::write_bytes(file, test::read_bytes(std::string(SNAPFIT_SOURCE_DIR) + "/tests/data/fuzz/ply_face_count_abort.bin"));
+  REQUIRE(fs::file_size(file) == 448);
+  CHECK_THROWS_WITH_AS(load_mesh(file), doctest::Contains("vertex indices (at least 3 needed)"), Error);
+  // The same in ASCII: a line (2 indices) among the faces.
+  test::write_text(file, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                         "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n2 0 1\n");
+  CHECK_THROWS_WITH_AS(load_mesh(file), doctest::Contains("PLY face 1 has 2 vertex indices"), Error);
 }

@@ -189,9 +189,10 @@ TEST_CASE("stability extreme: beyond the padded box the query is zero and flagge
 
 TEST_CASE("stability extreme: the same scene in micrometres and in kilometres scales as E ~ L^3, F ~ L^2, T ~ L^3") {
   // Lengths multiplied by s, scene units unchanged (mm), so the numbers span 1e-3 ..
-  // 3e7. s = 2^-10 and 2^20 (about um and km sizes) scale every coordinate exactly, so
+  // 3e7. s = 2^-10 and 2^20 (about um and km sizes) scale every coordinate exactly (as
+  // does mm, s = 1, which the other extreme tests cover), so
   // any absolute epsilon or overflow anywhere in the pipeline would show: measured
-  // identical results (difference 0). s = 1e-3 and 1e6 (exactly um and km) perturb the
+  // identical results (difference 0). s = 1e6 (exactly km; likewise 1e-3) perturbs the
   // geometry by round-off; the coarse fields are sensitive to that where grid points lie
   // on the surface to round-off (the winding number jumps there between its one-sided
   // values: 1/2 on a face, 1/4 on an edge, 1/8 at a corner, 0 or 1 off it; seen at the
@@ -200,7 +201,7 @@ TEST_CASE("stability extreme: the same scene in micrometres and in kilometres sc
   const std::vector<Pose> poses = {pose_at({1, 0, -8}, 2), pose_at({0.5, 0.3, 2}, 10, {1, 1, 0}),
                                    pose_at({0, 0, -20}), pose_at({4, -3, 12}, 170, {0, 1, 1})};
   std::map<double, std::vector<QueryResult>> runs;
-  for (double scale : {1.0, std::ldexp(1.0, -10), std::ldexp(1.0, 20), 1e-3, 1e6}) {
+  for (double scale : {std::ldexp(1.0, -10), std::ldexp(1.0, 20), 1e6}) {
     test::SmallPairParams params;
     params.scale = scale;
     SmallEngine s = small_engine(params, 4096);
@@ -234,8 +235,6 @@ TEST_CASE("stability extreme: the same scene in micrometres and in kilometres sc
     std::cout << "scale: " << what << ": worst relative difference in E, F, T " << worst << "\n";
     return worst;
   };
-  compare(1.0, std::ldexp(1.0, -10), 1e-6, "mm vs 2^-10 (um-sized, exact scaling)");
-  compare(1.0, std::ldexp(1.0, 20), 1e-6, "mm vs 2^20 (km-sized, exact scaling)");
-  compare(1e-3, 1e6, 0, "1e-3 (um) vs 1e6 (km), report only");
-  compare(1.0, 1e-3, 0, "mm vs 1e-3, report only");
+  compare(std::ldexp(1.0, -10), std::ldexp(1.0, 20), 1e-6, "2^-10 (um-sized) vs 2^20 (km-sized), exact scaling");
+  compare(std::ldexp(1.0, 20), 1e6, 0, "2^20 vs 1e6 (exactly km), report only");
 }
