@@ -85,6 +85,139 @@ void check_off_counts(const std::string& path, std::uintmax_t file_size) {
   }
 }
 
+// PLY (issue 7, found by truncating valid files): Debian's Assimp 5.2 loops forever on a
+// PLY file cut inside its header, and aborts (ai_assert in TriangulateProcess) on one
+// cut inside its body. So a file that starts with the "ply" magic is walked here first:
+// the header must end with end_header, and the body must hold every element it declares
+// (binary: list counts read and skipped; ASCII: enough tokens), and every face at least
+// 3 indices. Otherwise it is refused.
+void check_ply_complete(const std::string& path, std::uintmax_t file_size) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  if (!std::getline(in, line)) return;
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  if (line != "ply") return;  // not PLY
+  struct Property {
+    int size = 0;        // scalar size, or the item size of a list
+    int count_size = 0;  // > 0: a list with a count of this size
+  };
+  struct Element {
+    std::string name;
+    unsigned long long count = 0;
+    std::vector<Property> properties;
+  };
+  const auto type_size = [](const std::string& t) {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32") return 4;
+    if (t == "double" || t == "float64") return 8;
+    return 0;
+  };
+  std::vector<Element> elements;
+  std::string format;
+  bool ended = false, unknown_type = false;
+  for (int n = 0; n < 100000 && std::getline(in, line); ++n) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    if (key == "end_header") {
+      ended = true;
+      break;
+    }
+    if (key == "format") {
+      words >> format;
+    } else if (key == "element") {
+      Element e;
+      std::string count;
+      words >> e.name >> count;
+      if (!is_count(count)) fail(path, "cannot read mesh: PLY element '" + e.name + "' has no valid count");
+      e.count = std::stoull(count);
+      if (e.count > file_size) fail(path, "cannot read mesh: PLY element '" + e.name + "' declares " + count +
+                                              " entries, more than the " + std::to_string(file_size) + "-byte file can hold");
+      elements.push_back(e);
+    } else if (key == "property" && !elements.empty()) {
+      std::string type;
+      words >> type;
+      Property prop;
+      if (type == "list") {
+        std::string count_type, item_type;
+        words >> count_type >> item_type;
+        prop.count_size = type_size(count_type);
+        prop.size = type_size(item_type);
+        if (prop.count_size == 0 || prop.size == 0) unknown_type = true;
+      } else {
+        prop.size = type_size(type);
+        if (prop.size == 0) unknown_type = true;
+      }
+      elements.back().properties.push_back(prop);
+    }
+  }
+  if (!ended) fail(path, "cannot read mesh: truncated PLY header (no end_header line)");
+  if (unknown_type) return;  // a property type not known here: leave the body to Assimp
+  const bool ascii = format == "ascii";
+  const bool big_endian = format == "binary_big_endian";
+  if (!ascii && !big_endian && format != "binary_little_endian") return;  // leave it to Assimp
+  // Faces with fewer than 3 indices make Assimp's triangulation abort (ai_assert
+  // numOut != mNumFaces; found by fuzz/fuzz_mesh).
+  const auto check_face = [&](const Element& e, unsigned long long i, unsigned long long items) {
+    if (e.name == "face" && items < 3)
+      fail(path, "cannot read mesh: PLY face " + std::to_string(i) + " has " + std::to_string(items) +
+                     " vertex indices (at least 3 needed)");
+  };
+  const auto truncated = [&](const Element& e, unsigned long long i) {
+    fail(path, "cannot read mesh: truncated PLY body (element '" + e.name + "' entry " + std::to_string(i) + " of " +
+                   std::to_string(e.count) + " is missing)");
+  };
+  const std::streamoff body = in.tellg();
+  if (body < 0) fail(path, "cannot read mesh: truncated PLY header");
+  std::uintmax_t offset = static_cast<std::uintmax_t>(body);  // binary: bytes walked so far
+  for (const Element& e : elements)
+    for (unsigned long long i = 0; i < e.count; ++i)
+      for (const Property& p : e.properties) {
+        unsigned long long items = 1;
+        if (ascii) {
+          std::string token;
+          if (p.count_size > 0) {
+            if (!(in >> token)) truncated(e, i);
+            items = is_count(token) ? std::stoull(token) : 0;
+            check_face(e, i, items);
+          }
+          for (unsigned long long k = 0; k < items; ++k)
+            if (!(in >> token)) truncated(e, i);
+          continue;
+        }
+        if (p.count_size > 0) {
+          unsigned char b[8] = {};
+          if (offset + p.count_size > file_size) truncated(e, i);
+          in.seekg(static_cast<std::streamoff>(offset));
+          if (!in.read(reinterpret_cast<char*>(b), p.count_size)) truncated(e, i);
+          offset += p.count_size;
+          items = 0;
+          for (int k = 0; k < p.count_size; ++k)
+            items |= static_cast<unsigned long long>(b[big_endian ? p.count_size - 1 - k : k]) << (8 * k);
+          check_face(e, i, items);
+        }
+        if (items > file_size) truncated(e, i);
+        offset += items * static_cast<unsigned long long>(p.size);
+        if (offset > file_size) truncated(e, i);
+      }
+}
+
+// DirectX .x files compressed with MSZIP ("xof 0303bzip" / "tzip"): Debian's Assimp 5.2
+// crashes (SEGV) inside its decompressor on malformed ones (found by fuzz/fuzz_mesh,
+// regression tests/data/fuzz/x_bzip_segv.bin). Compressed .x files are refused here.
+void check_x_uncompressed(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[16] = {};
+  in.read(head, sizeof head);
+  if (in.gcount() < 12 || std::string(head, 4) != "xof ") return;
+  const std::string format(head + 8, 4);
+  if (format == "bzip" || format == "tzip")
+    fail(path, "cannot read mesh: compressed DirectX .x files (format '" + format +
+                   "') are not supported; save it as text or binary .x");
+}
+
 // Missing, not a regular file, empty or unreadable: say so before Assimp guesses.
 void check_input_file(const std::string& path) {
   std::error_code ec;
@@ -100,6 +233,8 @@ void check_input_file(const std::string& path) {
   std::ifstream probe(path, std::ios::binary);
   if (!probe) fail(path, "file is not readable");
   check_off_counts(path, size);
+  check_ply_complete(path, size);
+  check_x_uncompressed(path);
 }
 
 // aiMatrix4x4 is row-major: a1..a4 is the first row.

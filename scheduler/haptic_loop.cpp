@@ -102,6 +102,90 @@ class ModeGovernor {
   std::size_t since_change_ = 0;
 };
 
+// The passivity measures on the geometric wrench (see the header): its stiffness along
+// the motion, for the implicit step, and the passivity observer and damping controller.
+class PassivityController {
+ public:
+  explicit PassivityController(const LoopConfig& c) : config_(c) {}
+
+  // Called each frame after the query at the part's pose, with the wrench it gives:
+  // observes the last step (energy created) and updates the stiffness estimate.
+  void observe(const Pose& pose, const QueryResult& q, const Wrench& wrench) {
+    const bool ok = q.flags == query_ok;
+    const double u = config_.coupling.metres_per_unit;
+    const double potential = ok ? config_.geometry_gain * u * q.energy : 0.0;
+    stiffness_ *= kDecay;
+    rot_stiffness_ *= kDecay;
+    if (valid_ && ok && q.modes == modes_) {
+      const Eigen::Vector3d dx = u * (pose.translation - pose_.translation);
+      const Eigen::Vector3d dtheta = rotation_between(pose_.rotation, pose.rotation);
+      const double work = wrench_.force.dot(dx) + wrench_.torque.dot(dtheta);
+      const double created = work - (potential_ - potential);
+      if (std::isfinite(created)) budget_ = std::min(0.0, budget_ + (-created));
+      // Secant stiffness along the motion, -dF.dx / |dx|^2 (only its positive part
+      // threatens stability); steps below a nanometre / nanoradian are float noise.
+      if (dx.norm() > 1e-9) {
+        const double k = -(wrench.force - wrench_.force).dot(dx) / dx.squaredNorm();
+        if (std::isfinite(k)) stiffness_ = std::max(stiffness_, k);
+      }
+      if (dtheta.norm() > 1e-9) {
+        const double k = -(wrench.torque - wrench_.torque).dot(dtheta) / dtheta.squaredNorm();
+        if (std::isfinite(k)) rot_stiffness_ = std::max(rot_stiffness_, k);
+      }
+    }
+    valid_ = ok;
+    pose_ = pose;
+    potential_ = potential;
+    modes_ = q.modes;
+    wrench_ = wrench;
+  }
+
+  // The implicit extras for this frame's step: the geometric stiffness, and damping
+  // that removes the energy still owed.
+  ImplicitExtras extras(const BodyState& part) const {
+    ImplicitExtras d;
+    if (!config_.passivity_control) return d;
+    d.stiffness = stiffness_;
+    d.rot_stiffness = rot_stiffness_;
+    if (budget_ >= 0) return d;
+    const double u = config_.coupling.metres_per_unit;
+    const double twice_kinetic = config_.coupling.mass_kg * (u * part.velocity).squaredNorm() +
+                                 config_.coupling.inertia_kg_m2 * part.angular_velocity.squaredNorm();
+    const double period = 1.0 / config_.rate_hz;
+    if (!(twice_kinetic > 0)) return d;
+    // Dissipated power alpha * 2 KE over one step removes the deficit; alpha dt <= 10.
+    const double alpha = std::min(-budget_ / (period * twice_kinetic), 10.0 / period);
+    d.damping = alpha * config_.coupling.mass_kg;
+    d.rot_damping = alpha * config_.coupling.inertia_kg_m2;
+    return d;
+  }
+
+  // After the step: the energy the extra damping removed (its force times the new
+  // velocity over the step). Returns it.
+  double stepped(const BodyState& part, const ImplicitExtras& d) {
+    if (d.damping == 0 && d.rot_damping == 0) return 0;
+    const double u = config_.coupling.metres_per_unit;
+    const double period = 1.0 / config_.rate_hz;
+    const double removed = period * (d.damping * (u * part.velocity).squaredNorm() +
+                                     d.rot_damping * part.angular_velocity.squaredNorm());
+    budget_ = std::min(0.0, budget_ + removed);
+    return removed;
+  }
+
+  void invalidate() { valid_ = false; }
+
+ private:
+  static constexpr double kDecay = 0.995;  // the stiffness estimate's memory: ~200 frames
+  const LoopConfig& config_;
+  bool valid_ = false;
+  Pose pose_;
+  double potential_ = 0;
+  std::size_t modes_ = 0;
+  Wrench wrench_;
+  double budget_ = 0;  // <= 0: energy created by the steps and not yet removed, J
+  double stiffness_ = 0, rot_stiffness_ = 0;  // N / m, N m / rad
+};
+
 }  // namespace
 
 LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, const LoopConfig& config,
@@ -119,6 +203,7 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
   if (config.keep_log) report.log.reserve(expected);
 
   Wrench geometric;  // held over missed ticks
+  PassivityController passivity(config);
   std::optional<BodyState> last_good_handle;
   std::size_t tick = 0, frame = 0;
   const double start = clock.now();
@@ -144,11 +229,19 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     } else {
       ++report.flagged_frames;
     }
-    // 3. One fixed step; 4. the coupling's reaction to the device.
-    step_body(part, handle, geometric, config.coupling, period);
+    // 3. One fixed step (with the passivity controller's damping); 4. the coupling's
+    // reaction to the device.
+    passivity.observe(part.pose, q, geometric);
+    const ImplicitExtras extra = passivity.extras(part);
+    step_body(part, handle, geometric, config.coupling, period, extra);
+    if (const double removed = passivity.stepped(part, extra); removed > 0) {
+      ++report.passivity_frames;
+      report.passivity_dissipated_j += removed;
+    }
     if (!finite_state(part)) {  // cannot happen with finite inputs; never propagate it
       ++report.part_resets;
       part = handle;
+      passivity.invalidate();
     }
     const Wrench on_part = coupling_wrench(part, handle, config.coupling);
     const Wrench sent = clamp_to_limits(Wrench{-on_part.force, -on_part.torque}, limits);
@@ -173,6 +266,7 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
         if (config.duration_s > 0 && t * period >= config.duration_s - 1e-12) break;
         step_body(part, device.read(t * period), geometric, config.coupling, period);
         ++report.skipped_ticks;
+        passivity.invalidate();
       }
     }
     std::string reason;

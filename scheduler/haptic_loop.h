@@ -4,7 +4,8 @@
 //   1. read the device pose and velocity;
 //   2. ask the engine for the geometric energy, force and torque at the part's pose;
 //   3. integrate the part one step under the virtual coupling (implicit) and the
-//      geometric wrench scaled by `geometry_gain` (explicit), scheduler/virtual_coupling.h;
+//      geometric wrench scaled by `geometry_gain` (explicit), scheduler/virtual_coupling.h,
+//      with the passivity controller's damping (below);
 //   4. send the coupling's reaction to the device, clamped to its limits.
 // A frame that ends after its deadline (tick i + 1) is a miss: the device kept the last
 // wrench meanwhile, and the ticks that passed are not replayed (no catch-up burst); the
@@ -14,6 +15,19 @@
 // at a time up to the tuned m', only after `up_after_frames` frames without a miss
 // whose p99 frame time, scaled by the cost ratio of the next level, fits
 // `up_headroom` of the budget. Every change is reported.
+//
+// Passivity (issue 7): the geometric wrench is the gradient of the potential
+// V = gain * E * metres_per_unit, but it is held over each step (explicit), which
+// creates energy when the geometry is stiff against the step: dt^2 K_geometric above
+// about 4 m + 2 dt b + dt^2 k makes the loop unstable (measured with the real engine:
+// geometry_strength 32 at a 14.5 kN/m coupling oscillated at 4 m/s for 60 s; 128 blew
+// up). A passivity observer (Hannaford & Ryu 2002) compares, each frame, the work the
+// held wrench did over the last step, F.dx + tau.dtheta, with the drop of V the engine
+// reports at the new pose; the difference is energy the step created. The controller
+// removes it in the next frames with extra damping of the part's velocity (implicit,
+// mass-proportional: beta = alpha m, beta_R = alpha I, alpha dt <= 10), so the created
+// energy not yet removed never exceeds one step's. Frames whose query is flagged, whose
+// m' changed, or that follow a missed frame are not observed (V is not comparable there).
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -61,6 +75,7 @@ struct LoopConfig {
   CouplingParams coupling;
   double geometry_gain = 1;        // N per engine force unit (see scheduler/geometry_gain.h)
   ModePolicy modes;
+  bool passivity_control = true;   // observer + damping controller on the geometric wrench (above)
   bool keep_log = true;            // one FrameRecord per frame
   const std::atomic<bool>* stop = nullptr;
 };
@@ -95,6 +110,8 @@ struct LoopReport {
   std::size_t flagged_frames = 0;  // frames whose query returned flags (zero geometric wrench)
   std::size_t bad_device_reads = 0;  // non-finite device states, replaced by the last good one
   std::size_t part_resets = 0;     // non-finite part states, reset to the device state
+  std::size_t passivity_frames = 0;    // frames in which the passivity controller damped the part
+  double passivity_dissipated_j = 0;   // energy its damping removed, J
   std::vector<double> frame_ms;  // every frame
   std::vector<FrameRecord> log;  // when keep_log
   std::vector<ModeChange> mode_changes;

@@ -68,15 +68,17 @@ double coupling_energy(const BodyState& part, const BodyState& device, const Cou
          0.5 * c.stiffness * d2 + 0.5 * c.rot_stiffness * theta2;
 }
 
-void step_body(BodyState& part, const BodyState& device, const Wrench& external, const CouplingParams& c, double dt) {
+void step_body(BodyState& part, const BodyState& device, const Wrench& external, const CouplingParams& c, double dt,
+               const ImplicitExtras& extra) {
   const double u = c.metres_per_unit;
-  // Translation, backward Euler with x' = x + dt v':
-  //   m (v' - v) = dt [k (x_d - x') - b (v' - v_d) + F]
-  //   v' (m + dt b + dt^2 k) = m v + dt [k (x_d - x) + b v_d + F]      (SI units)
+  // Translation, backward Euler with x' = x + dt v' (beta, K: the extras' damping and
+  // external stiffness, F(x') ~ F(x) - K dt v'):
+  //   m (v' - v) = dt [k (x_d - x') - b (v' - v_d) - beta v' + F(x')]
+  //   v' (m + dt (b + beta) + dt^2 (k + K)) = m v + dt [k (x_d - x) + b v_d + F(x)]      (SI units)
   const Eigen::Vector3d v = u * part.velocity;
   const Eigen::Vector3d d = u * (device.pose.translation - part.pose.translation);
   const Eigen::Vector3d v_new = (c.mass_kg * v + dt * (c.stiffness * d + c.damping * u * device.velocity + external.force)) /
-                                (c.mass_kg + dt * c.damping + dt * dt * c.stiffness);
+                                (c.mass_kg + dt * (c.damping + extra.damping) + dt * dt * (c.stiffness + extra.stiffness));
   part.velocity = v_new / u;
   part.pose.translation += dt * part.velocity;
 
@@ -86,7 +88,7 @@ void step_body(BodyState& part, const BodyState& device, const Wrench& external,
   part.angular_velocity =
       (c.inertia_kg_m2 * part.angular_velocity +
        dt * (c.rot_stiffness * theta + c.rot_damping * device.angular_velocity + external.torque)) /
-      (c.inertia_kg_m2 + dt * c.rot_damping + dt * dt * c.rot_stiffness);
+      (c.inertia_kg_m2 + dt * (c.rot_damping + extra.rot_damping) + dt * dt * (c.rot_stiffness + extra.rot_stiffness));
   part.pose.rotation = (rotation_exp(dt * part.angular_velocity) * part.pose.rotation).normalized();
 }
 

@@ -64,8 +64,22 @@ Wrench coupling_wrench(const BodyState& part, const BodyState& device, const Cou
 // at rest (J): 1/2 m v^2 + 1/2 I w^2 + 1/2 k d^2 + 1/2 k_R theta^2. For passivity checks.
 double coupling_energy(const BodyState& part, const BodyState& device, const CouplingParams& c);
 
+// Implicit extras of one step, on top of the coupling (scheduler/haptic_loop.h's
+// passivity measures use them): damping of the part's own velocity (relative to part 1,
+// not to the device), and the stiffness of the external wrench, linearised over the
+// step, F(x') ~ F(x) - K (x' - x), so a stiff external force is integrated implicitly
+// too. Both enter the backward-Euler denominators only: any non-negative values are
+// stable, and they can only remove energy.
+struct ImplicitExtras {
+  double damping = 0;        // N s / m
+  double rot_damping = 0;    // N m s / rad
+  double stiffness = 0;      // N / m
+  double rot_stiffness = 0;  // N m / rad
+};
+
 // Advances the part by dt seconds under the coupling to `device` (implicit) and the
-// external wrench (explicit, held over the step).
-void step_body(BodyState& part, const BodyState& device, const Wrench& external, const CouplingParams& c, double dt);
+// external wrench (held over the step; explicit unless `extra` gives its stiffness).
+void step_body(BodyState& part, const BodyState& device, const Wrench& external, const CouplingParams& c, double dt,
+               const ImplicitExtras& extra = {});
 
 }  // namespace snapfit
