@@ -119,8 +119,12 @@ TEST_CASE("stability meshes: degenerate, sliver, duplicated, flipped and open me
                          flip = fields_of(flipped, grid), one = fields_of(one_flipped, grid), op = fields_of(open, grid);
   for (const auto* f : {&deg, &sl, &dup, &flip, &one, &op}) CHECK(all_finite(*f));
 
-  // Zero-area triangles contribute nothing; slivers tile the same surface.
-  CHECK(excess(deg.winding, deg.winding_bound, ref.winding, ref.winding_bound, 1, 1e-5) <= 0);
+  // Zero-area triangles contribute nothing; slivers tile the same surface. The clean
+  // peg's w comes exact from sign propagation (engine/winding_propagation.h); the
+  // degenerate mesh is not a closed cycle, so its w comes from the full kernel, whose
+  // float rounding in the exact near-field solid angles is not in its bound (up to
+  // 7.5e-5 measured on hole_block, tests/test_winding_propagation.cpp): slack 1e-4.
+  CHECK(excess(deg.winding, deg.winding_bound, ref.winding, ref.winding_bound, 1, 1e-4) <= 0);
   CHECK(excess(deg.skeletal_density, deg.density_bound, ref.skeletal_density, ref.density_bound, 1, 1e-4) <= 0);
   // Slivers: the reported bounds cover the hierarchy's truncation, not float round-off in
   // the exact near-field solid angles, and a needle seen nearly edge-on has a solid angle
