@@ -112,7 +112,7 @@ void run_main_job(const RunOptions& opt) {
 
   // m' for this device: the tuning file, else a measured sweep (scheduler/auto_tune.h).
   std::cout << "[6/7] m' for a " << scene.frame_budget_ms << " ms frame on this device\n";
-  TuningKey key = tuning_key_for(device.info, variant, *spectra, scene.frame_budget_ms, opt.margin);
+  TuningKey key = tuning_key_for(device.info, variant, *spectra, scene.frame_budget_ms, opt.margin, scene.loop_rate_hz);
   TuningResult tuning;
   PoseQueryEngine* loop_engine = &engine;
   // Other devices, when the user did not pick one: the loop goes to the lowest tuned latency.
@@ -148,7 +148,7 @@ void run_main_job(const RunOptions& opt) {
           if (!run_device_check(*other_ctx, false).passed) continue;
           std::cout << "    also tuning " << describe_device(other.info) << "\n";
           auto other_engine = std::make_unique<PoseQueryEngine>(*other_ctx, *spectra, variant);
-          keys.push_back(tuning_key_for(other.info, variant, *spectra, scene.frame_budget_ms, opt.margin));
+          keys.push_back(tuning_key_for(other.info, variant, *spectra, scene.frame_budget_ms, opt.margin, scene.loop_rate_hz));
           tunings.push_back(tune_on(*other_engine, keys.back()));
           names.push_back(other.info.name);
           other_contexts.push_back(std::move(other_ctx));

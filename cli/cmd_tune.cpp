@@ -54,7 +54,7 @@ void run_tune(const TuneCommandOptions& opt) {
     if (!bar) bar = std::make_unique<Progress>("tuning m'", total);
     bar->advance(done - bar->done());
   };
-  const TuningKey key = tuning_key_for(device.info, variant, pair.spectra, budget, opt.margin);
+  const TuningKey key = tuning_key_for(device.info, variant, pair.spectra, budget, opt.margin, scene.loop_rate_hz);
   const EngineTuning tuned = tune_engine(engine, key, poses, tune, true,
                                          [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; });
   if (bar) bar->finish();

@@ -139,7 +139,7 @@ int main(int argc, char** argv) try {
 
   // The auto-tuner's point for the scene's budget (tricubic, oversampling 2, float).
   PoseQueryEngine tuned_engine(ctx, pair.spectra, scene_variant);
-  const TuningKey key = tuning_key_for(device.info, scene_variant, pair.spectra, scene.frame_budget_ms, 0.25);
+  const TuningKey key = tuning_key_for(device.info, scene_variant, pair.spectra, scene.frame_budget_ms, 0.25, scene.loop_rate_hz);
   TuneOptions tune;
   if (quick) tune.repetitions = 100;
   const EngineTuning tuned = tune_engine(tuned_engine, key, sample_trajectory(t, 100.0), tune, false, nullptr);

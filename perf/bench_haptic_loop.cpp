@@ -51,7 +51,7 @@ int main(int argc, char** argv) try {
   const QueryVariant variant = query_variant_for(scene, Interpolation::tricubic);
   PoseQueryEngine engine(ctx, pair.spectra, variant);
   const double margin = 0.25;
-  const TuningKey key = tuning_key_for(device.info, variant, pair.spectra, scene.frame_budget_ms, margin);
+  const TuningKey key = tuning_key_for(device.info, variant, pair.spectra, scene.frame_budget_ms, margin, scene.loop_rate_hz);
   const EngineTuning tuned = tune_engine(engine, key, sample_trajectory(scene.trajectory, 100.0), TuneOptions{},
                                          retune, [](const std::string& m) { std::cerr << m << "\n"; });
   std::cout << "tuned m' = " << tuned.result.chosen_modes << (tuned.from_file ? " (tuning file)" : " (measured)")
@@ -71,7 +71,10 @@ int main(int argc, char** argv) try {
                max = quantile(loop.frame_ms, 1.0);
   std::cout << "frames " << loop.frames << " in " << loop.elapsed_s << " s: " << loop.measured_rate_hz
             << " Hz; frame ms p50 " << p50 << ", p99 " << p99 << ", max " << max << "; misses " << loop.misses
-            << " (" << 100 * loop.miss_rate() << " %, target <= 0.1 %), skipped ticks " << loop.skipped_ticks << "\n"
+            << " (" << 100 * loop.miss_rate() << " %, target <= 0.1 %), of which " << loop.late_wakeup_misses
+            << " from waking late; skipped ticks " << loop.skipped_ticks << "\n"
+            << "wake-up lateness ms p50 " << quantile(loop.wake_late_ms, 0.5) << ", p99 "
+            << quantile(loop.wake_late_ms, 0.99) << ", max " << quantile(loop.wake_late_ms, 1.0) << "\n"
             << "m' tuned " << tuned.result.chosen_modes << ", final " << loop.final_modes << ", "
             << loop.mode_changes.size() << " changes; seed 000 (published, K20c, translation only): 4096\n"
             << "thread priority: nice -10 for " << run.priority.threads << " threads"
@@ -97,6 +100,9 @@ int main(int argc, char** argv) try {
       {"misses", loop.misses},
       {"miss_rate", loop.miss_rate()},
       {"skipped_ticks", loop.skipped_ticks},
+      {"late_wakeup_misses", loop.late_wakeup_misses},
+      {"wake_late_ms", {{"p50", quantile(loop.wake_late_ms, 0.5)}, {"p99", quantile(loop.wake_late_ms, 0.99)},
+                        {"max", quantile(loop.wake_late_ms, 1.0)}}},
       {"frame_ms", {{"p50", p50}, {"p99", p99}, {"max", max}}},
       {"tuned_modes", tuned.result.chosen_modes},
       {"tuning_from_file", tuned.from_file},

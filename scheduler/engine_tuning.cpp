@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "engine/error.h"
+#include "scheduler/haptic_loop.h"
 
 namespace snapfit {
 
@@ -17,7 +18,7 @@ std::string variant_name(const QueryVariant& v) {
 }
 
 TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, const PairSpectra& spectra,
-                         double budget_ms, double margin) {
+                         double budget_ms, double margin, double pace_hz) {
   TuningKey key;
   key.platform = device.platform_name + " " + device.platform_version;
   key.device = device.name;
@@ -29,16 +30,19 @@ TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, 
   key.scene_features = features.str();
   key.budget_ms = budget_ms;
   key.margin = margin;
+  key.pace_hz = pace_hz;
   return key;
 }
 
-QueryTimer engine_query_timer(PoseQueryEngine& engine, std::vector<Pose> poses) {
+QueryTimer engine_query_timer(PoseQueryEngine& engine, std::vector<Pose> poses, double pace_hz) {
   if (poses.empty()) throw Error("auto-tuning: no poses to time queries at");
-  return [&engine, poses = std::move(poses), next = std::size_t(0)](std::size_t modes, std::size_t count) mutable {
+  return [&engine, poses = std::move(poses), pace_hz, next = std::size_t(0)](std::size_t modes, std::size_t count) mutable {
     engine.set_modes(modes);
     std::vector<double> times;
     times.reserve(count);
+    const LoopClock clock = steady_loop_clock();
     for (std::size_t i = 0; i < count; ++i) {
+      if (pace_hz > 0) clock.wait_until((i + 1) / pace_hz);
       const auto t0 = std::chrono::steady_clock::now();
       engine.query(poses[next++ % poses.size()]);
       times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
@@ -60,7 +64,7 @@ EngineTuning tune_engine(PoseQueryEngine& engine, const TuningKey& key, const st
   const std::size_t before = engine.modes();
   options.budget_ms = key.budget_ms;
   options.margin = key.margin;
-  out.result = tune_modes(engine_query_timer(engine, poses), engine.max_modes(), options);
+  out.result = tune_modes(engine_query_timer(engine, poses, key.pace_hz), engine.max_modes(), options);
   engine.set_modes(before);
   try {
     save_tuning(key, out.result);

@@ -16,11 +16,15 @@ namespace snapfit {
 
 std::string variant_name(const QueryVariant& variant);
 
+// pace_hz: the rate queries are timed at (the scene's loop rate; 0: back-to-back).
 TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, const PairSpectra& spectra,
-                         double budget_ms, double margin);
+                         double budget_ms, double margin, double pace_hz);
 
 // Times single queries of `engine` at the given poses (cycled), wall clock around each.
-QueryTimer engine_query_timer(PoseQueryEngine& engine, std::vector<Pose> poses);
+// With pace_hz > 0 the queries are issued on absolute deadlines at that rate, idle in
+// between, as in the haptic loop: an OpenCL runtime whose worker threads fall asleep
+// between frames shows its wake-up cost here, which back-to-back queries would hide.
+QueryTimer engine_query_timer(PoseQueryEngine& engine, std::vector<Pose> poses, double pace_hz = 0);
 
 struct EngineTuning {
   TuningResult result;
@@ -31,6 +35,7 @@ struct EngineTuning {
 // Loads the tuning for `key`, or (when absent, stale, corrupt, or `retune`) measures it
 // with `engine` at `poses` and saves it. A save failure is reported through `note` and
 // the fresh result is still returned.
+// The queries are paced at key.pace_hz (engine_query_timer; 0: back-to-back).
 EngineTuning tune_engine(PoseQueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses,
                          TuneOptions options, bool retune, const std::function<void(const std::string&)>& note);
 

@@ -59,7 +59,9 @@ class ModeGovernor {
   ModeGovernor(const ModePolicy& p, double budget_ms) : p_(p), budget_ms_(budget_ms), level_(p.levels.size() - 1) {}
   std::size_t modes() const { return p_.levels[level_]; }
 
-  // Returns the new m' when it changes, 0 otherwise; `reason` says why.
+  // After each frame, with its own work time (wake-up to wrench sent) and whether it
+  // missed because of that work. Returns the new m' when it changes, 0 otherwise;
+  // `reason` says why.
   std::size_t after_frame(std::size_t frame, double frame_ms, bool missed, std::string& reason) {
     if (missed) misses_.push_back(frame);
     while (!misses_.empty() && misses_.front() + p_.miss_window <= frame) misses_.pop_front();
@@ -212,6 +214,7 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     if (config.duration_s > 0 && tick_time >= config.duration_s - 1e-12) break;
     if (config.stop && config.stop->load()) break;
     clock.wait_until(start + tick_time);
+    const double woke = clock.now() - start;  // later than the tick when the OS wakes us late
 
     // 1-2. Device pose, geometric wrench at the part's pose. A non-finite reading is
     // replaced by the last good one: a NaN must not reach the simulation or the hand.
@@ -249,8 +252,14 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
 
     const double end = clock.now() - start;
     const double frame_ms = 1e3 * (end - tick_time);
+    const double compute_ms = 1e3 * (end - woke);
     const bool missed = end > tick_time + period;
+    // A miss whose own work fit in the headroom share of the budget came from waking
+    // late (the OS), which a smaller m' cannot fix: it is counted, not acted on.
+    const bool compute_miss = missed && compute_ms > config.modes.up_headroom * config.budget_ms;
+    if (missed && !compute_miss) ++report.late_wakeup_misses;
     report.frame_ms.push_back(frame_ms);
+    report.wake_late_ms.push_back(1e3 * (woke - tick_time));
     if (config.keep_log)
       report.log.push_back(FrameRecord{tick_time, frame_ms, handle.pose, part.pose, q.energy, geometric, sent,
                                        q.modes, q.flags, missed});
@@ -271,7 +280,7 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     }
     std::string reason;
     const std::size_t before = governor.modes();
-    if (const std::size_t m = governor.after_frame(frame, frame_ms, missed, reason)) {
+    if (const std::size_t m = governor.after_frame(frame, compute_ms, compute_miss, reason)) {
       report.mode_changes.push_back(ModeChange{tick_time, frame, before, m, reason});
       if (engine.set_modes) engine.set_modes(m);
     }

@@ -10,8 +10,10 @@
 // A frame that ends after its deadline (tick i + 1) is a miss: the device kept the last
 // wrench meanwhile, and the ticks that passed are not replayed (no catch-up burst); the
 // part is integrated over them with the held geometric wrench (the physics stays on
-// the fixed step). When misses repeat (`misses_to_step_down` within `miss_window`
-// frames), m' steps down one level of the ladder at once; it steps up again, one level
+// the fixed step). A miss whose own work (wake-up to wrench sent) fit in `up_headroom`
+// of the budget is a late wake-up, which m' cannot fix; it is counted, not acted on.
+// When work-bound misses repeat (`misses_to_step_down` within `miss_window` frames),
+// m' steps down one level of the ladder at once; it steps up again, one level
 // at a time up to the tuned m', only after `up_after_frames` frames without a miss
 // whose p99 frame time, scaled by the cost ratio of the next level, fits
 // `up_headroom` of the budget. Every change is reported.
@@ -112,7 +114,9 @@ struct LoopReport {
   std::size_t part_resets = 0;     // non-finite part states, reset to the device state
   std::size_t passivity_frames = 0;    // frames in which the passivity controller damped the part
   double passivity_dissipated_j = 0;   // energy its damping removed, J
-  std::vector<double> frame_ms;  // every frame
+  std::size_t late_wakeup_misses = 0;  // misses whose own work fit: the thread woke late
+  std::vector<double> frame_ms;  // every frame: tick to wrench sent
+  std::vector<double> wake_late_ms;  // every frame: how late the thread woke after its tick
   std::vector<FrameRecord> log;  // when keep_log
   std::vector<ModeChange> mode_changes;
   BodyState final_part;

@@ -19,7 +19,7 @@ std::string TuningKey::text() const {
   std::ostringstream s;
   s.precision(17);
   s << "platform=" << platform << "\ndevice=" << device << "\ndriver=" << driver << "\nvariant=" << variant
-    << "\nscene=" << scene_features << "\nbudget_ms=" << budget_ms << "\nmargin=" << margin;
+    << "\nscene=" << scene_features << "\nbudget_ms=" << budget_ms << "\nmargin=" << margin << "\npace_hz=" << pace_hz;
   return s.str();
 }
 

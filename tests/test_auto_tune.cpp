@@ -134,7 +134,7 @@ TEST_CASE("tuning file: round trip, reuse, and re-tune on a key change") {
   CHECK(back->model.per_mode_ms == r.model.per_mode_ms);
 
   // Any field of the key names another file (or, on a hash collision, a stale one).
-  for (int field = 0; field < 7; ++field) {
+  for (int field = 0; field < 8; ++field) {
     TuningKey other = key;
     switch (field) {
       case 0: other.platform += "x"; break;
@@ -144,6 +144,7 @@ TEST_CASE("tuning file: round trip, reuse, and re-tune on a key change") {
       case 4: other.scene_features = "fft 96x64x64 torque_spectra 1 spacing 0.6"; break;
       case 5: other.budget_ms = 0.5; break;
       case 6: other.margin = 0.1; break;
+      case 7: other.pace_hz = 1000; break;
     }
     CAPTURE(field);
     CHECK(other.text() != key.text());

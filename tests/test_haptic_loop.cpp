@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <map>
 
 #include "engine/error.h"
@@ -229,4 +230,23 @@ TEST_CASE("haptic loop: NaN device readings are replaced by the last good one an
   CHECK(r.part_resets == 0);
   CHECK(device.all_finite);
   CHECK((r.final_part.pose.translation - Vector3d(3, 0, 0)).norm() < 1e-3);
+}
+
+TEST_CASE("haptic loop: misses from waking late are counted but do not step m' down") {
+  ManualClock clock;
+  FixedDevice device;
+  CostedEvaluator engine{&clock};
+  LoopClock late = clock.clock();
+  std::size_t waits = 0;
+  // The OS wakes the loop 1.2 ms late at waits 300 and 320: two misses in 100 frames.
+  late.wait_until = [&clock, &waits](double until) {
+    ++waits;
+    clock.t = std::max(clock.t, until) + ((waits == 300 || waits == 320) ? 1.2e-3 : 0.0);
+  };
+  const LoopReport r = run_haptic_loop(device, engine.evaluator(), config(1.0), late, BodyState{});
+  CHECK(r.misses == 2);
+  CHECK(r.late_wakeup_misses == 2);
+  CHECK(r.mode_changes.empty());
+  REQUIRE(r.wake_late_ms.size() == r.frames);
+  CHECK(*std::max_element(r.wake_late_ms.begin(), r.wake_late_ms.end()) == doctest::Approx(1.2));
 }
