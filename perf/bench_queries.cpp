@@ -173,47 +173,10 @@ Args parse_args(int argc, char** argv) {
 using snapfit::bench::load1;
 using snapfit::bench::read_loadavg;
 
-// CPU time used by the whole machine (non-idle, all cores) and by this process (all
-// its threads, the device's worker threads included), in core-seconds: their
-// difference over an interval is what other processes took from the cores meanwhile.
-struct CpuSample {
-  double machine_busy_s = 0, own_s = 0;
-  Clock::time_point at = Clock::now();
-};
-CpuSample cpu_sample() {
-  CpuSample c;
-  const double tick = double(sysconf(_SC_CLK_TCK));
-  {
-    std::ifstream f("/proc/stat");
-    std::string cpu;
-    double user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
-    f >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal;
-    c.machine_busy_s = (user + nice + system + irq + softirq + steal) / tick;
-  }
-  {
-    std::ifstream f("/proc/self/stat");
-    std::string line;
-    std::getline(f, line);
-    const auto close = line.rfind(')');
-    if (close != std::string::npos) {
-      std::istringstream in(line.substr(close + 2));
-      std::string field;
-      double utime = 0, stime = 0;
-      for (int i = 3; i <= 15 && in >> field; ++i) {  // fields 3.. after "pid (comm)"
-        if (i == 14) utime = std::stod(field);
-        if (i == 15) stime = std::stod(field);
-      }
-      c.own_s = (utime + stime) / tick;
-    }
-  }
-  return c;
-}
-// Cores kept busy by other processes between two samples (0 on a quiet machine).
-double other_cores(const CpuSample& a, const CpuSample& b) {
-  const double wall = std::chrono::duration<double>(b.at - a.at).count();
-  if (wall <= 0) return 0;
-  return std::max(0.0, ((b.machine_busy_s - a.machine_busy_s) - (b.own_s - a.own_s)) / wall);
-}
+// Contention: cores other processes kept busy during an interval (perf/bench_common.h).
+using snapfit::bench::cpu_sample;
+using snapfit::bench::CpuSample;
+using snapfit::bench::other_cores;
 
 // Re-measures a point while other processes took more than `threshold` cores during
 // it (this is a shared 2-core machine): waits `wait_s` and tries again, up to
