@@ -4,7 +4,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <chrono>
+#include <cmath>
 #include <ctime>
+#include <iomanip>
+#include <nlohmann/json.hpp>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -96,5 +100,34 @@ inline double other_cores(const CpuSample& a, const CpuSample& b) {
   if (wall <= 0) return 0;
   return std::max(0.0, ((b.machine_busy_s - a.machine_busy_s) - (b.own_s - a.own_s)) / wall);
 }
+
+// An integer option's value in [lo, hi]; snapfit::Error naming the option otherwise.
+inline long integer_option(const std::string& name, const std::string& text, long lo, long hi) {
+  std::size_t used = 0;
+  long n = 0;
+  try {
+    n = std::stol(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty() || n < lo || n > hi)
+    throw snapfit::Error(name + ": expected an integer >= " + std::to_string(lo) + " (got '" + text + "')");
+  return n;
+}
+
+// Table formatting shared by the benchmarks' console reports.
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+inline std::string fixed(double v, int prec = 1) {
+  if (!std::isfinite(v)) return "-";
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(prec) << v;
+  return os.str();
+}
+inline std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s : std::string(w - s.size(), ' ') + s; }
+inline std::string padr(const std::string& s, std::size_t w) { return s.size() >= w ? s : s + std::string(w - s.size(), ' '); }
+// A finite number as JSON, anything else as null (JSON has no NaN or Inf).
+inline nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 }  // namespace snapfit::bench

@@ -90,6 +90,12 @@
 
 namespace {
 
+using snapfit::bench::fixed;
+using snapfit::bench::num;
+using snapfit::bench::pad;
+using snapfit::bench::padr;
+using snapfit::bench::seconds_since;
+
 using Clock = std::chrono::steady_clock;
 using snapfit::Mesh;
 using snapfit::Pose;
@@ -142,17 +148,7 @@ Args parse_args(int argc, char** argv) {
       a.out = value("--out");
       if (a.out.empty()) throw snapfit::Error("--out: must not be empty");
     } else if (is("--poses")) {
-      const std::string v = value("--poses");
-      std::size_t used = 0;
-      long n = 0;
-      try {
-        n = std::stol(v, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != v.size() || n < 2 || n > 1000000)
-        throw snapfit::Error("--poses: expected an integer >= 2 (got '" + v + "')");
-      a.poses = static_cast<int>(n);
+      a.poses = static_cast<int>(snapfit::bench::integer_option("--poses", value("--poses"), 2, 1000000));
     } else {
       throw snapfit::Error("unknown argument '" + s + "' (see --help)");
     }
@@ -162,17 +158,7 @@ Args parse_args(int argc, char** argv) {
 
 // ---------------------------------------------------------------- small helpers
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-std::string fixed(double v, int prec = 1) {
-  if (!std::isfinite(v)) return "-";
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(prec) << v;
-  return os.str();
-}
-std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s : std::string(w - s.size(), ' ') + s; }
-std::string padr(const std::string& s, std::size_t w) { return s.size() >= w ? s : s + std::string(w - s.size(), ' '); }
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();

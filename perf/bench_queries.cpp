@@ -77,6 +77,12 @@
 
 namespace {
 
+using snapfit::bench::fixed;
+using snapfit::bench::num;
+using snapfit::bench::pad;
+using snapfit::bench::padr;
+using snapfit::bench::seconds_since;
+
 using snapfit::Interpolation;
 using snapfit::Pose;
 using snapfit::PoseQueryEngine;
@@ -150,17 +156,7 @@ Args parse_args(int argc, char** argv) {
       std::stringstream in(value("--variants"));
       for (std::string item; std::getline(in, item, ',');) a.variants.push_back(item);
     } else if (is("--repeats")) {
-      const std::string v = value("--repeats");
-      std::size_t used = 0;
-      long n = 0;
-      try {
-        n = std::stol(v, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != v.size() || n < 1 || n > 10000000)
-        throw snapfit::Error("--repeats: expected an integer >= 1 (got '" + v + "')");
-      a.repeats = static_cast<int>(n);
+      a.repeats = static_cast<int>(snapfit::bench::integer_option("--repeats", value("--repeats"), 1, 10000000));
     } else {
       throw snapfit::Error("unknown argument '" + s + "' (see --help)");
     }
@@ -217,14 +213,6 @@ std::string fmt(double v, int prec = 3) {
   os << std::setprecision(prec) << v;
   return os.str();
 }
-std::string fixed(double v, int prec = 1) {
-  if (!std::isfinite(v)) return "-";
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(prec) << v;
-  return os.str();
-}
-std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s : std::string(w - s.size(), ' ') + s; }
-std::string padr(const std::string& s, std::size_t w) { return s.size() >= w ? s : s + std::string(w - s.size(), ' '); }
 
 // Nearest-rank percentile of sorted values.
 double percentile(const std::vector<double>& sorted, double q) {
@@ -237,9 +225,7 @@ double median(std::vector<double> v) {
   return percentile(v, 0.5);
 }
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 // ---------------------------------------------------------------- variants and cost model
 
