@@ -126,13 +126,9 @@ void run_main_job(const RunOptions& opt) {
     const std::vector<Pose> poses = tuning_poses(scene);
     const auto tune_on = [&](PoseQueryEngine& e, const TuningKey& k) {
       TuneOptions tune_options;
-      std::unique_ptr<Progress> bar;
-      tune_options.progress = [&bar](std::uint64_t done, std::uint64_t total) {
-        if (!bar) bar = std::make_unique<Progress>("    tuning m'", total);
-        bar->advance(done - bar->done());
-      };
+      const auto bars = pass_progress_bars();  // one bar, finished when the sweep ends
+      tune_options.progress = [bars](std::uint64_t done, std::uint64_t total) { bars("    tuning m'", done, total); };
       const EngineTuning tuned = tune_engine(e, k, poses, tune_options, opt.retune, note);
-      if (bar) bar->finish();
       std::cout << "    " << (tuned.from_file ? "from the tuning file " : "measured and saved to ") << tuned.path
                 << "\n" << tuning_table(tuned.result);
       return tuned.result;

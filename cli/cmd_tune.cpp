@@ -49,15 +49,11 @@ void run_tune(const TuneCommandOptions& opt) {
                                       : sample_trajectory(scene.trajectory, 100.0);
   TuneOptions tune;
   tune.repetitions = opt.repetitions;
-  std::unique_ptr<Progress> bar;
-  tune.progress = [&bar](std::uint64_t done, std::uint64_t total) {
-    if (!bar) bar = std::make_unique<Progress>("tuning m'", total);
-    bar->advance(done - bar->done());
-  };
+  const auto bars = pass_progress_bars();  // one bar, finished when the sweep ends
+  tune.progress = [bars](std::uint64_t done, std::uint64_t total) { bars("tuning m'", done, total); };
   const TuningKey key = tuning_key_for(device.info, variant, pair.spectra, budget, opt.margin, scene.loop_rate_hz);
   const EngineTuning tuned = tune_engine(engine, key, poses, tune, true,
                                          [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; });
-  if (bar) bar->finish();
   std::cout << tuning_table(tuned.result) << "saved to " << tuned.path << "\n";
   if (!opt.png.empty()) {
     write_chart_png(opt.png, tuning_chart(tuned.result, device.info.name));

@@ -74,7 +74,10 @@ class ModeGovernor {
       reason = std::to_string(misses_.size()) + " misses in the last " + std::to_string(p_.miss_window) + " frames";
       return change(level_ - 1);
     }
-    if (level_ + 1 < p_.levels.size() && since_change_ >= p_.up_after_frames && recent_.size() >= p_.up_after_frames) {
+    // Step-up is judged once per miss window, not every frame: the p99 of the recent
+    // frames is a sort of up_after_frames values, too much for the per-frame path.
+    if (level_ + 1 < p_.levels.size() && since_change_ >= p_.up_after_frames &&
+        recent_.size() >= p_.up_after_frames && since_change_ % std::max<std::size_t>(1, p_.miss_window) == 0) {
       const double p99 = quantile(std::vector<double>(recent_.begin(), recent_.end()), 0.99);
       const std::size_t next = p_.levels[level_ + 1];
       const double ratio = p_.predicted_ms ? p_.predicted_ms(next) / std::max(1e-9, p_.predicted_ms(modes()))

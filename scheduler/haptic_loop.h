@@ -15,7 +15,7 @@
 // When work-bound misses repeat (`misses_to_step_down` within `miss_window` frames),
 // m' steps down one level of the ladder at once; it steps up again, one level
 // at a time up to the tuned m', only after `up_after_frames` frames without a miss
-// whose p99 frame time, scaled by the cost ratio of the next level, fits
+// (judged every `miss_window` frames) whose p99 frame time, scaled by the cost ratio of the next level, fits
 // `up_headroom` of the budget. Every change is reported.
 //
 // Passivity (issue 7): the geometric wrench is the gradient of the potential
