@@ -19,14 +19,15 @@ struct ChunkIo {
   std::vector<float>* host;
 };
 
-// Runs `kernel` over `count` work items (the grid points, or a list of them) chunk by
-// chunk. Arguments 0..5 (first item, item count, origin, spacing, nx, ny) are set here,
-// the rest by the caller beforehand. Inputs are written from their host arrays before
-// each launch, outputs read back after it. Progress is reported in grid points (a list
-// of items counts as the whole grid, in proportion).
+// Runs `kernel` over `count` items (the grid points, or a list of them) chunk by chunk,
+// `lanes` items per work item (count and the chunk size are multiples of it). Arguments
+// 0..5 (first item, item count, origin, spacing, nx, ny) are set here, the rest by the
+// caller beforehand. Inputs are written from their host arrays before each launch,
+// outputs read back after it. Progress is reported in grid points (a list of items
+// counts as the whole grid, in proportion).
 void run_pass(const ComputeContext& ctx, const GridSpec& grid, const DescriptorOptions& options, cl::Kernel& kernel,
               const std::vector<ChunkIo>& inputs, const std::vector<ChunkIo>& outputs, const std::string& pass,
-              std::size_t count) {
+              std::size_t count, std::size_t chunk_items, std::size_t lanes = 1) {
   const cl_float3 origin{{static_cast<float>(grid.origin.x()), static_cast<float>(grid.origin.y()),
                           static_cast<float>(grid.origin.z()), 0.0f}};
   kernel.setArg(2, origin);
@@ -38,16 +39,16 @@ void run_pass(const ComputeContext& ctx, const GridSpec& grid, const DescriptorO
     if (options.progress) options.progress(pass, done == count ? points : done * points / count, points);
   };
   report(0);  // starts the clock before the first chunk
-  for (std::size_t first = 0; first < count; first += options.chunk_points) {
-    const std::size_t n = std::min(options.chunk_points, count - first);
+  for (std::size_t first = 0; first < count; first += chunk_items) {
+    const std::size_t n = std::min(chunk_items, count - first);
     kernel.setArg(0, static_cast<cl_long>(first));
     kernel.setArg(1, static_cast<cl_long>(n));
     for (const ChunkIo& in : inputs)
       ctx.queue.enqueueWriteBuffer(in.buffer, CL_FALSE, 0, sizeof(float) * n, in.host->data() + first);
-    std::size_t global = n;
+    std::size_t global = (n + lanes - 1) / lanes;
     cl::NDRange local = cl::NullRange;
     if (options.work_group_size > 0) {
-      global = (n + options.work_group_size - 1) / options.work_group_size * options.work_group_size;
+      global = (global + options.work_group_size - 1) / options.work_group_size * options.work_group_size;
       local = cl::NDRange(options.work_group_size);
     }
     ctx.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), local);
@@ -56,6 +57,13 @@ void run_pass(const ComputeContext& ctx, const GridSpec& grid, const DescriptorO
     ctx.queue.finish();
     report(first + n);
   }
+}
+
+// Points per work item of the density kernel: options.density_lanes, or 8 on CPU
+// devices (SIMD across a brick of points) and 1 elsewhere (a work item per point).
+int density_lanes(const ComputeContext& ctx, const DescriptorOptions& options) {
+  if (options.density_lanes != 0) return options.density_lanes;
+  return ctx.device.info.type == "cpu" ? 8 : 1;
 }
 
 cl::Kernel make_kernel(const ComputeContext& ctx, const std::string& name, int stack_size,
@@ -135,7 +143,7 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
       distance_kernel.setArg(6, nodes);
       distance_kernel.setArg(7, triangles);
       distance_kernel.setArg(8, chunk_a);
-      run_pass(ctx, grid, options, distance_kernel, {}, {{chunk_a, &distance}}, "distance", count);
+      run_pass(ctx, grid, options, distance_kernel, {}, {{chunk_a, &distance}}, "distance", count, chunk);
       out.distance_seconds = seconds_since(t);
     }
     t = std::chrono::steady_clock::now();
@@ -159,13 +167,13 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
       winding_kernel.setArg(11, id_buffer);
       std::vector<float> seed_winding(seeds), seed_bound(seeds);
       run_pass(ctx, grid, options, winding_kernel, {}, {{chunk_a, &seed_winding}, {chunk_b, &seed_bound}},
-               "winding number", seeds);
+               "winding number", seeds, chunk);
       propagate_winding(components, seed_winding, seed_bound, out.winding, out.winding_bound);
       out.winding_method = "sign propagation";
       out.winding_kernel_points = seeds;
     } else {
       run_pass(ctx, grid, options, winding_kernel, {}, {{chunk_a, &out.winding}, {chunk_b, &out.winding_bound}},
-               "winding number", count);
+               "winding number", count, chunk);
       out.winding_kernel_points = count;
     }
     out.winding_seconds = seconds_since(t);
@@ -173,22 +181,46 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
 
     // 3. Skeletal density s and its error bound, from |xi|.
     if (skeletal) {
-      out.skeletal_density.resize(count);
-      out.density_bound.resize(count);
+      // Points in packets of `lanes` grid neighbours (kernels/skeletal_density.cl), with
+      // |xi| gathered into packet order and s and its bound scattered back.
+      const int lanes = density_lanes(ctx, options);
+      const std::vector<long long> order = brick_point_order(grid, lanes);
+      std::vector<float> ordered_distance(order.size(), 1.0f), ordered_density(order.size()),
+          ordered_bound(order.size());
+      for (std::size_t i = 0; i < order.size(); ++i)
+        if (order[i] >= 0) ordered_distance[i] = distance[static_cast<std::size_t>(order[i])];
+      static_assert(sizeof(long long) == sizeof(cl_long), "point ids are OpenCL longs");
+      cl::Buffer id_buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_long) * order.size(),
+                           const_cast<long long*>(order.data()));
+      const std::size_t packet_chunk = (std::min(options.chunk_points, order.size()) + lanes - 1) / lanes * lanes;
+      cl::Buffer in_distance(ctx.context, CL_MEM_READ_ONLY, sizeof(float) * packet_chunk);
+      cl::Buffer out_density(ctx.context, CL_MEM_WRITE_ONLY, sizeof(float) * packet_chunk);
+      cl::Buffer out_bound(ctx.context, CL_MEM_WRITE_ONLY, sizeof(float) * packet_chunk);
       cl::Kernel density_kernel =
           make_kernel(ctx, "skeletal_density", stack_size, options,
-                      options.brute_force_density ? " -D BRUTE_FORCE -D MAX_SPLIT_DEPTH=40" : "");
+                      " -D LANES=" + std::to_string(lanes) +
+                          (options.brute_force_density ? " -D BRUTE_FORCE -D MAX_SPLIT_DEPTH=40" : ""));
       density_kernel.setArg(6, density_nodes);
       density_kernel.setArg(7, density_triangles);
-      density_kernel.setArg(8, chunk_c);
+      density_kernel.setArg(8, in_distance);
       density_kernel.setArg(9, static_cast<float>(options.min_distance_fraction * grid.spacing));
       density_kernel.setArg(10, static_cast<float>(params.sigma));
       density_kernel.setArg(11, static_cast<float>(params.tolerance));
       density_kernel.setArg(12, static_cast<cl_int>(density_bvh.triangles.size() / 3));
-      density_kernel.setArg(13, chunk_a);
-      density_kernel.setArg(14, chunk_b);
-      run_pass(ctx, grid, options, density_kernel, {{chunk_c, &distance}},
-               {{chunk_a, &out.skeletal_density}, {chunk_b, &out.density_bound}}, "skeletal density", count);
+      density_kernel.setArg(13, out_density);
+      density_kernel.setArg(14, out_bound);
+      density_kernel.setArg(15, id_buffer);
+      run_pass(ctx, grid, options, density_kernel, {{in_distance, &ordered_distance}},
+               {{out_density, &ordered_density}, {out_bound, &ordered_bound}}, "skeletal density", order.size(),
+               packet_chunk, static_cast<std::size_t>(lanes));
+      out.skeletal_density.resize(count);
+      out.density_bound.resize(count);
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        if (order[i] < 0) continue;
+        out.skeletal_density[static_cast<std::size_t>(order[i])] = ordered_density[i];
+        out.density_bound[static_cast<std::size_t>(order[i])] = ordered_bound[i];
+      }
+      out.density_lanes = lanes;
       out.density_seconds = seconds_since(t);
     }
   } catch (const cl::Error& e) {

@@ -40,6 +40,11 @@ struct DescriptorOptions {
   // cross between grid neighbours and copy it to the region (engine/winding_propagation.h);
   // false: the full kernel at every point (for checks). Open meshes always use the full pass.
   bool winding_sign_propagation = true;
+  // Grid points per work item of the skeletal density kernel (1, 4, 8 or 16: a brick of
+  // neighbours evaluated in SIMD, kernels/skeletal_density.cl); 0: 8 on CPU devices, 1
+  // on others. The fields do not depend on it (each point sums the same terms in the
+  // same order).
+  int density_lanes = 0;
   std::size_t chunk_points = 16384;  // points per kernel launch (progress granularity)
   std::size_t work_group_size = 0;   // 0: let the OpenCL runtime choose
   int bvh_leaf_size = 4;
@@ -61,6 +66,7 @@ struct DescriptorFields {
   // How w was computed: "sign propagation" (closed mesh: the kernel at one seed per
   // component, engine/winding_propagation.h) or "full" (the kernel at every point).
   std::string winding_method = "full";
+  int density_lanes = 0;                  // points per density work item (0: not computed here)
   std::size_t winding_kernel_points = 0;  // points where the winding kernel ran (not known from the cache)
   double seconds = 0;                   // wall time of the computation
   double refine_seconds = 0, bvh_seconds = 0;  // host work on TBB

@@ -48,3 +48,32 @@ double common_spacing(const GridParams& params, const std::vector<Eigen::Aligned
 }
 
 }  // namespace snapfit
+
+namespace snapfit {
+
+std::vector<long long> brick_point_order(const GridSpec& grid, int lanes) {
+  Eigen::Vector3i brick;
+  switch (lanes) {
+    case 1: brick = {1, 1, 1}; break;
+    case 4: brick = {2, 2, 1}; break;
+    case 8: brick = {2, 2, 2}; break;
+    case 16: brick = {4, 2, 2}; break;
+    default: throw Error("point packets of " + std::to_string(lanes) + " lanes: expected 1, 4, 8 or 16");
+  }
+  const Eigen::Vector3i bricks = (grid.dims + brick - Eigen::Vector3i::Ones()).cwiseQuotient(brick);
+  std::vector<long long> order;
+  order.reserve(static_cast<std::size_t>(bricks.prod()) * static_cast<std::size_t>(lanes));
+  for (int bk = 0; bk < bricks.z(); ++bk)
+    for (int bj = 0; bj < bricks.y(); ++bj)
+      for (int bi = 0; bi < bricks.x(); ++bi)
+        for (int dk = 0; dk < brick.z(); ++dk)
+          for (int dj = 0; dj < brick.y(); ++dj)
+            for (int di = 0; di < brick.x(); ++di) {
+              const int i = bi * brick.x() + di, j = bj * brick.y() + dj, k = bk * brick.z() + dk;
+              const bool inside = i < grid.dims.x() && j < grid.dims.y() && k < grid.dims.z();
+              order.push_back(inside ? static_cast<long long>(grid.index(i, j, k)) : -1);
+            }
+  return order;
+}
+
+}  // namespace snapfit

@@ -38,4 +38,10 @@ namespace snapfit {
 // or the longest padded extent over all boxes divided by (resolution - 1).
 double common_spacing(const GridParams& params, const std::vector<Eigen::AlignedBox3d>& boxes);
 
+// The grid's point indices in packets of `lanes` (1, 4, 8 or 16) neighbours: bricks of
+// 1x1x1, 2x2x1, 2x2x2 or 4x2x2 points, brick after brick in grid order, the points of a
+// brick in grid order. Bricks cut by the grid's far faces are padded with -1, so the
+// list's length is a multiple of `lanes`. Throws snapfit::Error for another lane count.
+std::vector<long long> brick_point_order(const GridSpec& grid, int lanes);
+
 }  // namespace snapfit

@@ -24,173 +24,263 @@
 // Pieces still rejected at MAX_SPLIT_DEPTH use the exact solid angle times g(x_c),
 // with error at most max|g(x) - g(x_c)| * |Omega|. The sum of all accepted bounds is
 // written per point: a rigorous bound on |s_computed - s| (up to float rounding).
+//
+// Point packets (-D LANES=1, 4, 8 or 16). A work item evaluates LANES grid points at
+// once, in SIMD: the points of one small brick of the grid (engine/descriptors.cpp
+// orders them), which mostly accept and open the same clusters. Every cluster and
+// triangle piece is tested per lane; a lane adds the clusters it accepts and goes on
+// only into those it rejects (a mask travels with each stack entry), so each point sums
+// exactly what it would alone, in the same order. A lane whose point id is negative is
+// padding (a brick cut by the grid's edge) and does nothing. LANES=1 is the plain
+// per-point kernel (GPUs, where a work item per point is what the hardware wants).
 
 #ifndef MAX_SPLIT_DEPTH
 #define MAX_SPLIT_DEPTH 16
 #endif
+#ifndef LANES
+#define LANES 1
+#endif
+
+// A value per lane (real_v), a lane mask (mask_v: relational results, all bits set in a
+// true vector lane, 1 in a scalar) and the point ids (long_v).
+#if LANES == 1
+#define real_v float
+#define mask_v int
+#define long_v long
+#define ANY(m) ((m) != 0)
+#define LOAD_V(i, p) ((p)[i])
+#define STORE_V(v, i, p) ((p)[i] = (v))
+#define convert_real_v convert_float
+#define convert_mask_v convert_int
+#elif LANES == 4 || LANES == 8 || LANES == 16
+#define VEC_(t, n) t##n
+#define VEC(t, n) VEC_(t, n)
+#define real_v VEC(float, LANES)
+#define mask_v VEC(int, LANES)
+#define long_v VEC(long, LANES)
+#define ANY(m) any(m)
+#define LOAD_V VEC(vload, LANES)
+#define STORE_V VEC(vstore, LANES)
+#define convert_real_v VEC(convert_float, LANES)
+#define convert_mask_v VEC(convert_int, LANES)
+#else
+#error "LANES must be 1, 4, 8 or 16"
+#endif
+// Lanes of m not in a (either mask kind: a true lane is 1 or all bits).
+#define AND_NOT(m, a) ((m) & ~(a))
 
 typedef struct {
   float sigma, inv_sigma2, g0;
 } Gaussian;
 
-inline float gauss(const Gaussian g, const float x) { return g.g0 * exp(-0.5f * x * x * g.inv_sigma2); }
+// The grid points of a packet, one per lane.
+typedef struct {
+  real_v x, y, z, xi;  // position and clamped |xi|
+} Points;
 
-// Maxima of g, |g'| and |g''| over [lo, hi]. g'(x) = -x/s^2 g, g''(x) = (x^2/s^2 - 1)/s^2 g:
-// |g'| peaks at |x| = s, |g''| at x = 0 and |x| = sqrt(3) s; otherwise at the ends.
-inline float3 gauss_maxima(const Gaussian g, const float lo, const float hi) {
-  const float glo = gauss(g, lo), ghi = gauss(g, hi);
-  const bool has0 = lo <= 0.0f && hi >= 0.0f;
-  const float s = g.sigma, s3 = 1.7320508f * g.sigma;
-  float m0 = has0 ? g.g0 : fmax(glo, ghi);
-  float m1 = fmax(fabs(lo) * glo, fabs(hi) * ghi) * g.inv_sigma2;
-  if ((lo <= s && hi >= s) || (lo <= -s && hi >= -s)) m1 = g.g0 * 0.60653066f / s;  // e^-1/2
-  float m2 = fmax(fabs(lo * lo * g.inv_sigma2 - 1.0f) * glo, fabs(hi * hi * g.inv_sigma2 - 1.0f) * ghi) * g.inv_sigma2;
-  if (has0) m2 = fmax(m2, g.g0 * g.inv_sigma2);
-  if ((lo <= s3 && hi >= s3) || (lo <= -s3 && hi >= -s3)) m2 = fmax(m2, 0.44626032f * g.g0 * g.inv_sigma2);  // 2e^-3/2
-  return (float3)(m0, m1, m2);
-}
+inline real_v gauss(const Gaussian g, const real_v x) { return g.g0 * exp(-0.5f * x * x * g.inv_sigma2); }
 
-// (1/2) K2 I, with K2 from the maxima m = (max g, max|g'|, max|g''|), for a cluster
-// at distance d with radius r and second moment I (requires d > r).
-inline float cluster_error_with(const float3 m, const float d, const float r, const float second, const float xi) {
-  const float inv = 1.0f / (d - r);
-  const float k2 = m.z * inv * inv / (xi * xi) + 5.0f * m.y * inv * inv * inv / xi + 6.0f * m.x * inv * inv * inv * inv;
+// (1/2) K2 I, with K2 from the maxima (m0, m1, m2) = (max g, max|g'|, max|g''|), for a
+// cluster at distance d with radius r and second moment I (requires d > r).
+inline real_v cluster_error_with(const real_v m0, const real_v m1, const real_v m2, const real_v d, const float r,
+                                 const float second, const real_v xi) {
+  const real_v inv = 1.0f / (d - r);
+  const real_v k2 = m2 * inv * inv / (xi * xi) + 5.0f * m1 * inv * inv * inv / xi + 6.0f * m0 * inv * inv * inv * inv;
   return 0.5f * k2 * second;
 }
 
-inline bool acceptable(const Gaussian g, const float err, const float area, const float dm, const float tolerance) {
+inline mask_v acceptable(const Gaussian g, const real_v err, const float area, const real_v dm, const float tolerance) {
   return err <= tolerance * g.g0 * area / (dm * dm);
 }
 
-// Error bound of a cluster if it is acceptable, else -1. The global maxima of g, |g'|,
-// |g''| are tried first (no exp); the maxima over the cluster's x range only when needed.
-inline float accepted_error(const Gaussian g, const float d, const float r, const float area, const float second,
-                            const float xi, const float tolerance) {
-  const float dm = d - r;
-  const float3 global_max = (float3)(g.g0, g.g0 * 0.60653066f / g.sigma, g.g0 * g.inv_sigma2);
-  float err = cluster_error_with(global_max, d, r, second, xi);
-  if (acceptable(g, err, area, dm, tolerance)) return err;
-  const float lo = dm / xi - 1.0f, hi = (d + r) / xi - 1.0f;
-  // A range holding [0, sigma] has the global maxima (g at 0, |g'| at sigma, |g''| at 0):
-  // the test would fail again, skip its two exp().
-  if (lo <= 0.0f && hi >= g.sigma) return -1.0f;
-  err = cluster_error_with(gauss_maxima(g, lo, hi), d, r, second, xi);
-  return acceptable(g, err, area, dm, tolerance) ? err : -1.0f;
+// Error bound of a cluster per lane, or -1 where it is not acceptable. The global maxima
+// of g, |g'|, |g''| are tried first (no exp); the maxima over the cluster's x range only
+// for the lanes that need them. Lanes outside `active` may hold anything.
+inline real_v accepted_error(const Gaussian g, const mask_v active, const real_v d, const float r, const float area,
+                             const float second, const real_v xi, const float tolerance) {
+  const real_v dm = d - r;
+  real_v err = cluster_error_with((real_v)(g.g0), (real_v)(g.g0 * 0.60653066f / g.sigma), (real_v)(g.g0 * g.inv_sigma2),
+                                  d, r, second, xi);
+  const mask_v ok = acceptable(g, err, area, dm, tolerance);
+  err = select((real_v)(-1.0f), err, ok);
+  // Maxima over [lo, hi]: g'(x) = -x/s^2 g, g''(x) = (x^2/s^2 - 1)/s^2 g; |g'| peaks at
+  // |x| = s, |g''| at x = 0 and |x| = sqrt(3) s; otherwise at the ends. A range holding
+  // [0, sigma] has the global maxima (g at 0, |g'| at sigma, |g''| at 0): skip it.
+  const real_v lo = dm / xi - 1.0f, hi = (d + r) / xi - 1.0f;
+  const mask_v retry = AND_NOT(AND_NOT(active, ok), (lo <= 0.0f) & (hi >= g.sigma));
+  if (!ANY(retry)) return err;
+  const real_v glo = gauss(g, lo), ghi = gauss(g, hi);
+  const float s = g.sigma, s3 = 1.7320508f * g.sigma;
+  const mask_v has0 = (lo <= 0.0f) & (hi >= 0.0f);
+  const real_v m0 = select(fmax(glo, ghi), (real_v)(g.g0), has0);
+  real_v m1 = fmax(fabs(lo) * glo, fabs(hi) * ghi) * g.inv_sigma2;
+  m1 = select(m1, (real_v)(g.g0 * 0.60653066f / s), ((lo <= s) & (hi >= s)) | ((lo <= -s) & (hi >= -s)));  // e^-1/2
+  real_v m2 = fmax(fabs(lo * lo * g.inv_sigma2 - 1.0f) * glo, fabs(hi * hi * g.inv_sigma2 - 1.0f) * ghi) * g.inv_sigma2;
+  m2 = select(m2, fmax(m2, g.g0 * g.inv_sigma2), has0);
+  m2 = select(m2, fmax(m2, 0.44626032f * g.g0 * g.inv_sigma2), ((lo <= s3) & (hi >= s3)) | ((lo <= -s3) & (hi >= -s3)));  // 2e^-3/2
+  const real_v err2 = cluster_error_with(m0, m1, m2, d, r, second, xi);
+  return select(err, err2, retry & acceptable(g, err2, area, dm, tolerance));
 }
 
-// One triangle, split adaptively. Adds to *s and *bound.
-inline void integrate_triangle(const float3 p, const float xi, const Gaussian g, const float tolerance,
-                               float3 a0, float3 b0, float3 c0, float* s, float* bound) {
+// Signed solid angle of triangle (a, b, c) seen from each lane's point (the per-lane
+// form of geometry.cl's triangle_solid_angle, same formula and same edge-on rule).
+inline real_v triangle_solid_angle_v(const Points p, const float3 va, const float3 vb, const float3 vc) {
+  const real_v ax = va.x - p.x, ay = va.y - p.y, az = va.z - p.z;
+  const real_v bx = vb.x - p.x, by = vb.y - p.y, bz = vb.z - p.z;
+  const real_v cx = vc.x - p.x, cy = vc.y - p.y, cz = vc.z - p.z;
+  const real_v la = sqrt(ax * ax + ay * ay + az * az), lb = sqrt(bx * bx + by * by + bz * bz),
+               lc = sqrt(cx * cx + cy * cy + cz * cz);
+  const real_v det = ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx);
+  const real_v div = la * lb * lc + (ax * bx + ay * by + az * bz) * lc + (ax * cx + ay * cy + az * cz) * lb +
+                     (bx * cx + by * cy + bz * cz) * la;
+  return select(2.0f * atan2(det, div), (real_v)(0.0f), fabs(det) <= 1e-6f * la * lb * lc);
+}
+
+// One triangle for the lanes in `active`, split adaptively. Adds to *s and *bound.
+inline void integrate_triangle(const Points p, const mask_v active, const Gaussian g, const float tolerance,
+                               float3 a0, float3 b0, float3 c0, real_v* s, real_v* bound) {
   float3 sa[MAX_SPLIT_DEPTH + 1], sb[MAX_SPLIT_DEPTH + 1], sc[MAX_SPLIT_DEPTH + 1];
   int sdepth[MAX_SPLIT_DEPTH + 1];
-  int top = 0;
-  sa[0] = a0; sb[0] = b0; sc[0] = c0; sdepth[0] = 0;
-  top = 1;
+  mask_v smask[MAX_SPLIT_DEPTH + 1];
+  sa[0] = a0; sb[0] = b0; sc[0] = c0; sdepth[0] = 0; smask[0] = active;
+  int top = 1;
   while (top > 0) {
     --top;
     const float3 a = sa[top], b = sb[top], c = sc[top];
     const int depth = sdepth[top];
+    const mask_v live = smask[top];
     const float3 cen = (a + b + c) * (1.0f / 3.0f);
     const float3 an = 0.5f * cross(b - a, c - a);  // A n
     const float area = length(an);
     if (area == 0.0f) continue;
     const float ra2 = dot(a - cen, a - cen), rb2 = dot(b - cen, b - cen), rc2 = dot(c - cen, c - cen);
     const float r = sqrt(fmax(fmax(ra2, rb2), rc2));
-    const float3 u = cen - p;
-    const float d = length(u);
-    const float xc = d / xi - 1.0f;
-    if (d > r) {
+    const real_v ux = cen.x - p.x, uy = cen.y - p.y, uz = cen.z - p.z;
+    const real_v d = sqrt(ux * ux + uy * uy + uz * uz);
+    const real_v xc = d / p.xi - 1.0f;
+    const mask_v outside = live & (d > r);
+    mask_v rest = live;
+    if (ANY(outside)) {
       // Second moment of the piece about its centroid, grown by a float step.
       const float second = area * (ra2 + rb2 + rc2) * (1.0f / 12.0f) * 1.00001f;
-      const float err = accepted_error(g, d, r, area, second, xi, tolerance);
-      if (err >= 0.0f) {
-        *s += gauss(g, xc) * dot(u, an) / (d * d * d);  // midpoint rule, M = 0
-        *bound += err;
-        continue;
+      const real_v err = accepted_error(g, outside, d, r, area, second, p.xi, tolerance);
+      const mask_v take = outside & (err >= 0.0f);
+      if (ANY(take)) {
+        const real_v term = gauss(g, xc) * (ux * an.x + uy * an.y + uz * an.z) / (d * d * d);  // midpoint rule, M = 0
+        *s += select((real_v)(0.0f), term, take);
+        *bound += select((real_v)(0.0f), err, take);
+        rest = AND_NOT(live, take);
+        if (!ANY(rest)) continue;
       }
     }
     if (depth >= MAX_SPLIT_DEPTH) {
       // Exact solid angle times g at the centroid: error <= max|g(x) - g(x_c)| |Omega|.
-      const float omega = triangle_solid_angle(p, a, b, c);
-      const float lo = fmax(d - r, 0.0f) / xi - 1.0f, hi = (d + r) / xi - 1.0f;
-      const float gc = gauss(g, xc);
-      float dev = fmax(fabs(gauss(g, lo) - gc), fabs(gauss(g, hi) - gc));
-      if (lo <= 0.0f && hi >= 0.0f) dev = fmax(dev, g.g0 - gc);
-      *s += gc * omega;
-      *bound += dev * fabs(omega);
+      const real_v omega = triangle_solid_angle_v(p, a, b, c);
+      const real_v lo = fmax(d - r, 0.0f) / p.xi - 1.0f, hi = (d + r) / p.xi - 1.0f;
+      const real_v gc = gauss(g, xc);
+      real_v dev = fmax(fabs(gauss(g, lo) - gc), fabs(gauss(g, hi) - gc));
+      dev = select(dev, fmax(dev, g.g0 - gc), (lo <= 0.0f) & (hi >= 0.0f));
+      *s += select((real_v)(0.0f), gc * omega, rest);
+      *bound += select((real_v)(0.0f), dev * fabs(omega), rest);
       continue;
     }
-    // Split the longest edge; the two halves go on the stack.
+    // Split the longest edge; the two halves go on the stack for the lanes still open.
     const float lab = dot(b - a, b - a), lbc = dot(c - b, c - b), lca = dot(a - c, a - c);
     float3 x0, x1, x2;  // x0-x1 is the longest edge
     if (lab >= lbc && lab >= lca) { x0 = a; x1 = b; x2 = c; }
     else if (lbc >= lca) { x0 = b; x1 = c; x2 = a; }
     else { x0 = c; x1 = a; x2 = b; }
     const float3 mid = 0.5f * (x0 + x1);
-    sa[top] = x0; sb[top] = mid; sc[top] = x2; sdepth[top] = depth + 1; ++top;
-    sa[top] = mid; sb[top] = x1; sc[top] = x2; sdepth[top] = depth + 1; ++top;
+    sa[top] = x0; sb[top] = mid; sc[top] = x2; sdepth[top] = depth + 1; smask[top] = rest; ++top;
+    sa[top] = mid; sb[top] = x1; sc[top] = x2; sdepth[top] = depth + 1; smask[top] = rest; ++top;
   }
 }
 
-__kernel void skeletal_density(const long first_point, const long point_count, const float3 origin,
+// Work item i evaluates the LANES points point_ids[first_item + LANES i + lane] (a
+// negative id: padding); distance_in and the outputs hold the chunk's items in that order.
+__kernel void skeletal_density(const long first_item, const long item_count, const float3 origin,
                                const float spacing, const int nx, const int ny,
                                __global const BvhNode* nodes, __global const float4* triangles,
-                               __global const float* distance, const float min_distance,
+                               __global const float* distance_in, const float min_distance,
                                const float sigma, const float tolerance, const int triangle_count,
-                               __global float* density_out, __global float* bound_out) {
+                               __global float* density_out, __global float* bound_out,
+                               __global const long* point_ids) {
   const long gid = get_global_id(0);
-  if (gid >= point_count) return;
-  const float3 p = grid_point(first_point + gid, origin, spacing, nx, ny);
-  const float xi = fmax(distance[gid], min_distance);
+  if (gid * LANES >= item_count) return;
+  const long_v id = LOAD_V(0, point_ids + first_item + gid * LANES);
+  const mask_v valid = convert_mask_v(id >= 0);
+  const long_v cell = max(id, (long_v)(0));
+  Points p;
+  p.x = origin.x + spacing * convert_real_v(cell % nx);
+  p.y = origin.y + spacing * convert_real_v((cell / nx) % ny);
+  p.z = origin.z + spacing * convert_real_v(cell / ((long)nx * ny));
+  p.xi = fmax(LOAD_V(gid, distance_in), min_distance);
   Gaussian g;
   g.sigma = sigma;
   g.inv_sigma2 = 1.0f / (sigma * sigma);
   g.g0 = 0.39894228f / sigma;  // 1/(sqrt(2 pi) sigma)
-  float s = 0.0f, bound = 0.0f;
+  real_v s = 0.0f, bound = 0.0f;
 #ifdef BRUTE_FORCE
   // The paper's O(m n) sum (seed 000 sec. 3.1): every triangle, split adaptively, no
   // hierarchy. `nodes` is unused; `triangle_count` triangles are read in order.
   for (int t = 0; t < triangle_count; ++t)
-    integrate_triangle(p, xi, g, tolerance, triangles[3 * t].xyz, triangles[3 * t + 1].xyz, triangles[3 * t + 2].xyz,
-                       &s, &bound);
+    integrate_triangle(p, valid, g, tolerance, triangles[3 * t].xyz, triangles[3 * t + 1].xyz,
+                       triangles[3 * t + 2].xyz, &s, &bound);
 #else
   int stack[STACK_SIZE];
+  mask_v stack_mask[STACK_SIZE];
   int top = 0;
-  stack[top++] = 0;
+  stack[top] = 0;
+  stack_mask[top++] = valid;
   while (top > 0) {
-    const int n = stack[--top];
+    --top;
+    const int n = stack[top];
+    const mask_v live = stack_mask[top];
     __global const BvhNode* node = nodes + n;
-    const float3 u = node->centroid.xyz - p;
-    const float d = length(u);
+    const float3 c = node->centroid.xyz;
+    const real_v ux = c.x - p.x, uy = c.y - p.y, uz = c.z - p.z;
+    const real_v d = sqrt(ux * ux + uy * uy + uz * uz);
     const float r = node->bbox_max.w, area = node->bbox_min.w;
-    if (d > r && area > 0.0f) {
-      const float err = accepted_error(g, d, r, area, node->centroid.w, xi, tolerance);
-      if (err >= 0.0f) {
-        const float inv_d = 1.0f / d;
-        const float inv_d3 = inv_d * inv_d * inv_d;
-        const float3 u_hat = u * inv_d;
-        const float xc = d / xi - 1.0f;
-        const float gc = gauss(g, xc);
-        const float dgc = -xc * g.inv_sigma2 * gc;  // g'(x_c)
-        const float3 mu = (float3)(dot(node->moment[0].xyz, u_hat), dot(node->moment[1].xyz, u_hat),
-                                   dot(node->moment[2].xyz, u_hat));
-        s += gc * (dot(u, node->area_normal.xyz) * inv_d3 + first_order_term(u_hat, inv_d3, node)) +
-             dgc / xi * dot(u, mu) * inv_d3;
-        bound += err;
-        continue;
+    mask_v rest = live;
+    const mask_v outside = live & (d > r);
+    if (area > 0.0f && ANY(outside)) {
+      const real_v err = accepted_error(g, outside, d, r, area, node->centroid.w, p.xi, tolerance);
+      const mask_v take = outside & (err >= 0.0f);
+      if (ANY(take)) {
+        const real_v inv_d = 1.0f / d;
+        const real_v inv_d3 = inv_d * inv_d * inv_d;
+        const real_v hx = ux * inv_d, hy = uy * inv_d, hz = uz * inv_d;  // u^
+        const real_v xc = d / p.xi - 1.0f;
+        const real_v gc = gauss(g, xc);
+        const real_v dgc = -xc * g.inv_sigma2 * gc;  // g'(x_c)
+        const float3 m0 = node->moment[0].xyz, m1 = node->moment[1].xyz, m2 = node->moment[2].xyz;
+        const float3 an = node->area_normal.xyz;
+        const real_v mu0 = m0.x * hx + m0.y * hy + m0.z * hz;  // M u^
+        const real_v mu1 = m1.x * hx + m1.y * hy + m1.z * hz;
+        const real_v mu2 = m2.x * hx + m2.y * hy + m2.z * hz;
+        // sum_ij J_ij M_ij, J = (I - 3 u^ u^T)/|u|^3 (geometry.cl, first_order_term).
+        const real_v first = (m0.x + m1.y + m2.z - 3.0f * (hx * mu0 + hy * mu1 + hz * mu2)) * inv_d3;
+        const real_v term = gc * ((ux * an.x + uy * an.y + uz * an.z) * inv_d3 + first) +
+                            dgc / p.xi * (ux * mu0 + uy * mu1 + uz * mu2) * inv_d3;
+        s += select((real_v)(0.0f), term, take);
+        bound += select((real_v)(0.0f), err, take);
+        rest = AND_NOT(live, take);
+        if (!ANY(rest)) continue;
       }
     }
     const int4 links = node->links;
     if (links.x < 0) {
       for (int t = links.y; t < links.y + links.z; ++t)
-        integrate_triangle(p, xi, g, tolerance, triangles[3 * t].xyz, triangles[3 * t + 1].xyz,
+        integrate_triangle(p, rest, g, tolerance, triangles[3 * t].xyz, triangles[3 * t + 1].xyz,
                            triangles[3 * t + 2].xyz, &s, &bound);
       continue;
     }
-    stack[top++] = links.x;
-    stack[top++] = n + 1;
+    stack[top] = links.x;
+    stack_mask[top++] = rest;
+    stack[top] = n + 1;
+    stack_mask[top++] = rest;
   }
 #endif
-  density_out[gid] = s;
-  bound_out[gid] = bound;
+  STORE_V(s, gid, density_out);
+  STORE_V(bound, gid, bound_out);
 }

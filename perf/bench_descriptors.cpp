@@ -86,6 +86,7 @@ struct Args {
   std::string command_line;
   int headline_side = 0;          // 0: 128 (24 with --quick)
   double headline_triangles = 0;  // 0: 2e5 (1e4 with --quick)
+  int density_lanes = 0;          // DescriptorOptions::density_lanes (0: the device's default)
 };
 
 const std::set<std::string> kCases = {"m_sweep", "n_sweep", "brute", "headline", "tolerance"};
@@ -99,7 +100,9 @@ void usage(std::ostream& os) {
         "  --only CASES    comma-separated subset of m_sweep,n_sweep,brute,headline,tolerance\n"
         "  --plots-only    redraw the charts from DIR/descriptors.json, measure nothing\n"
         "  --headline-side S       headline grid of about S^3 points (default 128; for iterating)\n"
-        "  --headline-triangles N  headline triangle target (default 2e5)\n";
+        "  --headline-triangles N  headline triangle target (default 2e5)\n"
+        "  --density-lanes L       grid points per density work item, 1, 4, 8 or 16 (default: 8 on\n"
+        "                          CPU devices, 1 elsewhere)\n";
 }
 
 Args parse_args(int argc, char** argv) {
@@ -127,6 +130,10 @@ Args parse_args(int argc, char** argv) {
     } else if (is("--headline-triangles")) {
       a.headline_triangles = std::stod(value("--headline-triangles"));
       if (!(a.headline_triangles >= 100)) throw snapfit::Error("--headline-triangles: must be at least 100");
+    } else if (is("--density-lanes")) {
+      a.density_lanes = std::stoi(value("--density-lanes"));
+      if (a.density_lanes != 1 && a.density_lanes != 4 && a.density_lanes != 8 && a.density_lanes != 16)
+        throw snapfit::Error("--density-lanes: must be 1, 4, 8 or 16");
     } else if (is("--only")) {
       std::stringstream list(value("--only"));
       std::string item;
@@ -271,6 +278,7 @@ struct Row {
   std::size_t refined_triangles = 0;
   double tolerance = 0, sigma = 0;
   std::string variant;  // "hierarchical" or "brute_force"
+  int lanes = 1;        // grid points per density work item
   double cpu_s = 0;  // process CPU seconds of the kept run (robust to other load)
   double seconds = 0, distance_s = 0, winding_s = 0, density_s = 0, refine_s = 0, bvh_s = 0;
   double max_bound = 0, mean_bound = 0, mean_abs_s = 0, median_bound = 0;
@@ -286,12 +294,13 @@ struct Measured {
 
 Measured measure(const snapfit::ComputeContext& ctx, const std::string& case_name, const std::string& m_label,
                  const Mesh& mesh, int segments, const Grid& grid, double tolerance, double sigma, bool brute,
-                 bool progress, bool quiet_repeat = false) {
+                 int lanes, bool progress, bool quiet_repeat = false) {
   DescriptorParams params;
   params.tolerance = tolerance;
   params.sigma = sigma;
   DescriptorOptions options;
   options.brute_force_density = brute;
+  options.density_lanes = lanes;
   if (progress) options.progress = snapfit::pass_progress_bars(std::cerr);
 
   // Kernels are compiled with the BVH depth in their flags (STACK_SIZE), which depends on
@@ -332,6 +341,7 @@ Measured measure(const snapfit::ComputeContext& ctx, const std::string& case_nam
   r.tolerance = tolerance;
   r.sigma = sigma;
   r.variant = brute ? "brute_force" : "hierarchical";
+  r.lanes = f.density_lanes;
   r.seconds = f.seconds;
   r.distance_s = f.distance_seconds;
   r.winding_s = f.winding_seconds;
@@ -438,10 +448,10 @@ void print_rows(const std::string& title, const std::vector<Row>& rows) {
   for (const Row& r : rows)
     t.push_back({r.m_label, dims_string(r.grid), std::to_string(r.grid.count()), std::to_string(r.n_triangles),
                  std::to_string(r.refined_triangles), fmt(r.tolerance), r.variant == "brute_force" ? "brute" : "hier",
-                 fixed(r.seconds), fixed(r.cpu_s, 1), fixed(r.distance_s), fixed(r.winding_s), fixed(r.density_s), fixed(r.refine_s),
+                 std::to_string(r.lanes), fixed(r.seconds), fixed(r.cpu_s, 1), fixed(r.distance_s), fixed(r.winding_s), fixed(r.density_s), fixed(r.refine_s),
                  fixed(r.bvh_s), fmt(r.max_bound), fmt(r.mean_bound), fmt(r.median_bound),
                  fmt(r.mean_abs_s), fmt(r.mean_bound / r.mean_abs_s), std::to_string(r.runs), fixed(r.load_before, 1)});
-  print_table({"m", "dims", "points", "n", "refined", "tol", "variant", "total s", "cpu s", "dist s", "wind s", "dens s",
+  print_table({"m", "dims", "points", "n", "refined", "tol", "variant", "lanes", "total s", "cpu s", "dist s", "wind s", "dens s",
                "refine s", "bvh s", "max bound", "mean bound", "p50 bound", "mean|s|", "bnd/|s|", "runs", "load"},
               t);
 }
@@ -460,6 +470,7 @@ nlohmann::json row_json(const Row& r) {
           {"tolerance", r.tolerance},
           {"sigma", r.sigma},
           {"variant", r.variant},
+          {"lanes", r.lanes},
           {"seconds", r.seconds},
           {"cpu_s", r.cpu_s},
           {"distance_s", r.distance_s},
@@ -483,7 +494,7 @@ void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) 
   std::ofstream f(path);
   f << "case,m,dims,n_triangles,tolerance,sigma,variant,seconds,distance_s,winding_s,density_s,refine_s,bvh_s,"
        "max_bound,mean_bound,mean_abs_s,m_label,spacing,segments,refined_triangles,max_winding_bound,"
-       "mean_winding_bound,runs,load_before,load_after,median_bound,cpu_s\n";
+       "mean_winding_bound,runs,load_before,load_after,median_bound,cpu_s,lanes\n";
   f << std::setprecision(6);
   for (const Row& r : rows)
     f << r.case_name << ',' << r.grid.count() << ',' << dims_string(r.grid) << ',' << r.n_triangles << ','
@@ -491,7 +502,7 @@ void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) 
       << r.winding_s << ',' << r.density_s << ',' << r.refine_s << ',' << r.bvh_s << ',' << r.max_bound << ','
       << r.mean_bound << ',' << r.mean_abs_s << ',' << r.m_label << ',' << r.grid.spacing << ',' << r.segments
       << ',' << r.refined_triangles << ',' << r.max_winding_bound << ',' << r.mean_winding_bound << ',' << r.runs
-      << ',' << r.load_before << ',' << r.load_after << ',' << r.median_bound << ',' << r.cpu_s << '\n';
+      << ',' << r.load_before << ',' << r.load_after << ',' << r.median_bound << ',' << r.cpu_s << ',' << r.lanes << '\n';
   if (!f) throw snapfit::Error(path.string() + ": cannot write");
 }
 
@@ -630,7 +641,7 @@ int run(const Args& args) {
       const Grid g = grid_for(mesh, side);
       std::cerr << "m_sweep: " << label(side) << " (" << dims_string(g.spec) << "), n " << mesh.triangles.size()
                 << "\n";
-      m_rows.push_back(measure(ctx, "m_sweep", label(side), mesh, seg, g, default_tol, sigma, false,
+      m_rows.push_back(measure(ctx, "m_sweep", label(side), mesh, seg, g, default_tol, sigma, false, args.density_lanes,
                                long_case(g.spec.count(), mesh.triangles.size()))
                            .row);
     }
@@ -651,7 +662,7 @@ int run(const Args& args) {
       const Grid g = grid_for(mesh, side);
       std::cerr << "n_sweep: n " << mesh.triangles.size() << " (segments " << seg << "), " << dims_string(g.spec)
                 << "\n";
-      n_rows.push_back(measure(ctx, "n_sweep", label(side), mesh, seg, g, default_tol, sigma, false,
+      n_rows.push_back(measure(ctx, "n_sweep", label(side), mesh, seg, g, default_tol, sigma, false, args.density_lanes,
                                long_case(g.spec.count(), mesh.triangles.size()))
                            .row);
     }
@@ -676,8 +687,8 @@ int run(const Args& args) {
       const Grid g = grid_for(mesh, s.side);
       std::cerr << "brute: " << label(s.side) << " (" << dims_string(g.spec) << "), n " << mesh.triangles.size()
                 << "\n";
-      const Measured h = measure(ctx, "brute_vs_hier", label(s.side), mesh, seg, g, default_tol, sigma, false, false);
-      const Measured b = measure(ctx, "brute_vs_hier", label(s.side), mesh, seg, g, default_tol, sigma, true,
+      const Measured h = measure(ctx, "brute_vs_hier", label(s.side), mesh, seg, g, default_tol, sigma, false, args.density_lanes, false);
+      const Measured b = measure(ctx, "brute_vs_hier", label(s.side), mesh, seg, g, default_tol, sigma, true, args.density_lanes,
                                  !args.quick, true);
       comparisons.push_back(compare(h, b));
       b_rows.push_back(h.row);
@@ -707,7 +718,7 @@ int run(const Args& args) {
     std::cerr << "headline: " << label(side) << " (" << dims_string(g.spec) << " = " << g.spec.count()
               << " points, spacing " << g.spec.spacing << " mm), n " << mesh.triangles.size() << " (segments "
               << seg << "), tolerance " << default_tol << ", sigma " << sigma << "\n";
-    const Measured m = measure(ctx, "headline", label(side), mesh, seg, g, default_tol, sigma, false, !args.quick, true);
+    const Measured m = measure(ctx, "headline", label(side), mesh, seg, g, default_tol, sigma, false, args.density_lanes, !args.quick, true);
     const Row& r = m.row;
     print_rows("d. headline: m = " + label(side) + " points, n ~ " + fmt(n_target) + " triangles", {r});
     std::cout << "   grid " << dims_string(r.grid) << " = " << r.grid.count() << " points, spacing "
@@ -741,7 +752,7 @@ int run(const Args& args) {
     std::vector<Row> t_rows;
     for (double tol : {0.2, 0.1, 0.05}) {
       std::cerr << "tolerance: " << tol << ", " << dims_string(g.spec) << ", n " << mesh.triangles.size() << "\n";
-      t_rows.push_back(measure(ctx, "tolerance", label(side), mesh, seg, g, tol, sigma, false, false).row);
+      t_rows.push_back(measure(ctx, "tolerance", label(side), mesh, seg, g, tol, sigma, false, args.density_lanes, false).row);
     }
     print_rows("e. tolerance sweep (m = " + label(side) + ", n = " + std::to_string(mesh.triangles.size()) + ")",
                t_rows);

@@ -858,11 +858,16 @@ TEST_CASE("descriptors: work-group size and chunk size do not change the fields"
   const DescriptorFields ref = compute(m, grid, params, base);
   struct Variant {
     std::size_t work_group, chunk;
+    int lanes;  // density points per work item (0: the device's default)
   };
-  for (const Variant v : {Variant{1, 16384}, Variant{64, 16384}, Variant{0, 333}, Variant{8, 500}}) {
+  // 11^3 points: bricks of 2 and 4 are cut by the grid's far faces (padding lanes), and
+  // the odd chunk sizes are not multiples of the lanes.
+  for (const Variant v : {Variant{1, 16384, 0}, Variant{64, 16384, 0}, Variant{0, 333, 0}, Variant{8, 500, 0},
+                          Variant{0, 16384, 1}, Variant{0, 333, 4}, Variant{4, 500, 8}, Variant{0, 1000, 16}}) {
     DescriptorOptions o = base;
     o.work_group_size = v.work_group;
     o.chunk_points = v.chunk;
+    o.density_lanes = v.lanes;
     // Progress: every pass reports increasing counts up to the grid size, in order.
     std::vector<std::string> passes;
     std::uint64_t last_done = 0;
@@ -879,26 +884,40 @@ TEST_CASE("descriptors: work-group size and chunk size do not change the fields"
     const DescriptorFields f = compute(m, grid, params, o);
     CHECK(passes == std::vector<std::string>{"distance", "winding number", "skeletal density"});
     CHECK(last_done == grid.count());
-    // Every work item computes its point alone with the same code: the results were
-    // bit-identical on PoCL's CPU device, and that is what is asserted (the largest
-    // difference is reported in any case).
+    // Every point sums the same terms in the same order whatever the launch shape or the
+    // lanes of its packet. With the same lanes the results were bit-identical on PoCL's CPU
+    // device, and that is what is asserted. One lane (scalar code) against SIMD packets
+    // differs in the last bit of exp() and fused multiply-adds: there the density and its
+    // bound may differ by a few float ulps of the largest value.
     auto max_diff = [](const std::vector<float>& a, const std::vector<float>& b) {
       REQUIRE(a.size() == b.size());
       double d = 0;
       for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, static_cast<double>(std::abs(a[i] - b[i])));
       return d;
     };
+    auto max_abs = [](const std::vector<float>& a) {
+      double m = 0;
+      for (const float x : a) m = std::max(m, static_cast<double>(std::abs(x)));
+      return m;
+    };
     const double dw = max_diff(f.winding, ref.winding), dwb = max_diff(f.winding_bound, ref.winding_bound);
     const double dx = max_diff(f.signed_distance, ref.signed_distance);
     const double ds = max_diff(f.skeletal_density, ref.skeletal_density);
     const double db = max_diff(f.density_bound, ref.density_bound);
-    MESSAGE("work group " << v.work_group << ", chunk " << v.chunk << ": max differences w " << dw << ", w bound "
-                          << dwb << ", xi " << dx << ", s " << ds << ", s bound " << db);
+    MESSAGE("work group " << v.work_group << ", chunk " << v.chunk << ", lanes " << f.density_lanes
+                          << ": max differences w " << dw << ", w bound " << dwb << ", xi " << dx << ", s " << ds
+                          << ", s bound " << db);
     CHECK(f.winding == ref.winding);
     CHECK(f.winding_bound == ref.winding_bound);
     CHECK(f.signed_distance == ref.signed_distance);
-    CHECK(f.skeletal_density == ref.skeletal_density);
-    CHECK(f.density_bound == ref.density_bound);
+    if (f.density_lanes == ref.density_lanes) {
+      CHECK(f.skeletal_density == ref.skeletal_density);
+      CHECK(f.density_bound == ref.density_bound);
+    } else {
+      const double ulp = std::numeric_limits<float>::epsilon();
+      CHECK(ds <= 8 * ulp * max_abs(ref.skeletal_density));
+      CHECK(db <= 8 * ulp * max_abs(ref.density_bound));
+    }
   }
 }
 

@@ -184,3 +184,36 @@ TEST_CASE("grid: common_spacing") {
   CHECK_THROWS_AS(common_spacing(with_resolution(1, 0.0), boxes), Error);
   CHECK_THROWS_AS(common_spacing(with_resolution(0, 0.0), boxes), Error);
 }
+
+TEST_CASE("grid: brick_point_order lists every point once, in bricks of neighbours") {
+  GridSpec grid;
+  grid.dims = Eigen::Vector3i(5, 3, 7);  // odd: bricks of 2 and 4 are cut at the far faces
+  for (const int lanes : {1, 4, 8, 16}) {
+    CAPTURE(lanes);
+    const std::vector<long long> order = brick_point_order(grid, lanes);
+    REQUIRE(order.size() % lanes == 0);
+    std::vector<int> seen(grid.count(), 0);
+    bool packets_compact = true;
+    for (std::size_t first = 0; first < order.size(); first += lanes) {
+      Eigen::Vector3i lo(1 << 30, 1 << 30, 1 << 30), hi(-1, -1, -1);
+      for (int l = 0; l < lanes; ++l) {
+        const long long id = order[first + l];
+        if (id < 0) continue;
+        REQUIRE(id < static_cast<long long>(grid.count()));
+        ++seen[static_cast<std::size_t>(id)];
+        const Eigen::Vector3i ijk(static_cast<int>(id % 5), static_cast<int>(id / 5 % 3), static_cast<int>(id / 15));
+        lo = lo.cwiseMin(ijk);
+        hi = hi.cwiseMax(ijk);
+      }
+      // A packet spans at most its brick: 1x1x1, 2x2x1, 2x2x2 or 4x2x2 points.
+      const Eigen::Vector3i extent = hi - lo + Eigen::Vector3i::Ones();
+      packets_compact = packets_compact && extent.prod() <= lanes;
+    }
+    CHECK(packets_compact);
+    CHECK(std::count(seen.begin(), seen.end(), 1) == static_cast<long>(grid.count()));
+  }
+  // One lane is plain grid order.
+  const std::vector<long long> plain = brick_point_order(grid, 1);
+  for (std::size_t i = 0; i < plain.size(); ++i) REQUIRE(plain[i] == static_cast<long long>(i));
+  CHECK_THROWS_WITH_AS(brick_point_order(grid, 3), doctest::Contains("1, 4, 8 or 16"), Error);
+}
