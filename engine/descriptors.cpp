@@ -76,11 +76,23 @@ cl::Kernel make_kernel(const ComputeContext& ctx, const std::string& name, int s
 
 }  // namespace
 
-DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh, const GridSpec& grid,
+DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& scene_mesh, const GridSpec& scene_grid,
                                      const DescriptorParams& params, const DescriptorOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  if (mesh.empty()) throw Error("cannot compute descriptors of an empty mesh");
-  if (grid.count() == 0) throw Error("cannot compute descriptors on an empty grid");
+  if (scene_mesh.empty()) throw Error("cannot compute descriptors of an empty mesh");
+  if (scene_grid.count() == 0) throw Error("cannot compute descriptors on an empty grid");
+  if (!(scene_grid.spacing > 0) || !std::isfinite(scene_grid.spacing) || !scene_grid.origin.allFinite())
+    throw Error("cannot compute descriptors on a grid with a non-finite origin or a non-positive spacing");
+  // Everything below works in grid units: vertices (v - origin) / spacing, computed in
+  // double, and grid points at integer coordinates. Float round-off is then relative to
+  // the grid whatever the scene's scale (the same part in micrometres and in kilometres
+  // gives the same fields), and a vertex on a grid plane lands exactly on it. Only |xi|
+  // has a length unit; it is scaled back at the end. The density is dimensionless.
+  Mesh mesh = scene_mesh;
+  for (Eigen::Vector3d& v : mesh.vertices) v = (v - scene_grid.origin) / scene_grid.spacing;
+  GridSpec grid = scene_grid;
+  grid.origin = Eigen::Vector3d::Zero();
+  grid.spacing = 1.0;
   if (options.chunk_points == 0) throw Error("descriptor chunk size must be positive");
   if (!(params.tolerance > 0 && params.tolerance < 1)) throw Error("descriptor tolerance must be in (0, 1)");
   const bool skeletal = params.kind == DescriptorKind::skeletal_density;
@@ -112,7 +124,7 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
   // A traversal holds at most depth + 1 nodes on its stack.
   const int stack_size = std::max(bvh.depth, density_bvh.depth) + 8;
 
-  out.grid = grid;
+  out.grid = scene_grid;
   out.params = params;
   const std::size_t count = grid.count();
   std::vector<float> distance(compute_distance ? count : 0);
@@ -231,7 +243,10 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh
   // xi: negative inside (w >= 1/2).
   if (need_distance) {
     out.signed_distance.resize(count);
-    for (std::size_t i = 0; i < count; ++i) out.signed_distance[i] = out.winding[i] >= 0.5f ? -distance[i] : distance[i];
+    for (std::size_t i = 0; i < count; ++i) {
+      const float xi = static_cast<float>(distance[i] * scene_grid.spacing);
+      out.signed_distance[i] = out.winding[i] >= 0.5f ? -xi : xi;
+    }
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

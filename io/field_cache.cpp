@@ -12,7 +12,8 @@
 namespace snapfit {
 namespace {
 
-constexpr std::uint32_t kFieldCacheVersion = 2;
+// 3: fields computed in grid units (engine/descriptors.cpp).
+constexpr std::uint32_t kFieldCacheVersion = 3;
 // Mask bit (above the field bits) set when w came from sign propagation.
 constexpr std::uint32_t kSignPropagationBit = 1u << 16;
 constexpr const char* kKind = "descriptor-fields";
