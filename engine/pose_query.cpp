@@ -11,6 +11,7 @@
 
 #include "engine/error.h"
 #include "engine/kernel_sources.h"
+#include "engine/mode_order.h"
 
 namespace snapfit {
 
@@ -27,6 +28,10 @@ struct PoseQueryEngine::Impl {
   cl::Buffer modes, cube, poses, partials;
   cl::Buffer line_weights, line_rank;  // translation only: dense x-lines (kernels/pose_query.cl)
   std::vector<int> table_half;  // max |k| over all axes of modes [0, i]: the phase tables' reach
+  // 6-DOF records (a mode, or a folded conjugate pair): modes held by records [0, j], and
+  // record j's first mode alone (weight W, unfolded).
+  std::vector<std::size_t> record_modes;
+  std::vector<cl_float4> first_of_record;
   std::vector<float> partial_host;
   // Part 2's spectra (host), the |w| of every mode in order, and the radius (in |w|)
   // the device cube currently covers.
@@ -105,10 +110,22 @@ struct PoseQueryEngine::Impl {
     partial_host.resize(8 * std::max(groups, partial_host.size() / 8));
   }
 
-  // Work-groups per pose: one per `modes_per_group` modes, at most max_groups (on a CPU
-  // device a work-group runs on one core; more groups than cores only add overhead).
-  std::size_t groups_per_pose() const {
-    return std::clamp<std::size_t>((mode_count + modes_per_group - 1) / modes_per_group, 1, max_groups);
+  // The records that hold the first mode_count modes: all of records [0, n), and when
+  // mode_count cuts a pair, `extra` = the pair's first mode alone (else a zero weight).
+  std::size_t record_count(cl_float4* extra) const {
+    if (variant.translation_only) return mode_count;
+    const std::size_t n = static_cast<std::size_t>(
+        std::upper_bound(record_modes.begin(), record_modes.end(), mode_count) - record_modes.begin());
+    const std::size_t held = n == 0 ? 0 : record_modes[n - 1];
+    *extra = cl_float4{};
+    if (held < mode_count) *extra = first_of_record[n];
+    return n;
+  }
+
+  // Work-groups per pose: one per `modes_per_group` records, at most max_groups (on a
+  // CPU device a work-group runs on one core; more groups than cores only add overhead).
+  std::size_t groups_per_pose(std::size_t records) const {
+    return std::clamp<std::size_t>((records + modes_per_group - 1) / modes_per_group, 1, max_groups);
   }
 
   // Round to nearest even; subnormal halves kept (IEEE 754 binary16).
@@ -173,50 +190,64 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
   for (std::size_t n : dims)
     if (n > 65534) throw Error("FFT grid axis of " + std::to_string(n) + " points is beyond the query kernel's 16-bit mode indices");
 
-  // Every node, by increasing |w| (the low-pass ball grows with m').
-  std::vector<Eigen::Vector3f> w(total);
-  std::vector<float> norm2(total);
-  for (std::size_t z = 0; z < dims[2]; ++z)
-    for (std::size_t y = 0; y < dims[1]; ++y)
-      for (std::size_t x = 0; x < dims[0]; ++x) {
-        const std::size_t k = x + dims[0] * (y + dims[1] * z);
-        w[k] = Eigen::Vector3f(float(spectra.frequency(0, x)), float(spectra.frequency(1, y)), float(spectra.frequency(2, z)));
-        norm2[k] = w[k].squaredNorm();
-      }
-  std::vector<std::size_t> order(total);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return norm2[a] < norm2[b]; });
-
-  // dw = 1 / (L_x L_y L_z) (DESIGN.md), folded into the weights. One float4 per mode:
-  // (Re W, Im W, (kx, ky) as two shorts, kz as an int), w_k = k / L in the kernel.
-  const double dw = 1.0 / (spectra.length.x() * spectra.length.y() * spectra.length.z());
-  std::vector<cl_float4> mode_data(total);
-  m.table_half.resize(total);
-  int reach = 0;
+  // Every node, by increasing |w| (the low-pass ball grows with m'), conjugate pairs
+  // adjacent (engine/mode_order.h).
+  const std::vector<std::size_t> order = mode_order(spectra);
   auto signed_k = [](std::size_t k, std::size_t n) { return k <= n / 2 ? int(k) : int(k) - int(n); };
+  auto mode_k = [&](std::size_t k) {
+    return std::array<int, 3>{signed_k(k % dims[0], dims[0]), signed_k((k / dims[0]) % dims[1], dims[1]),
+                              signed_k(k / (dims[0] * dims[1]), dims[2])};
+  };
+  m.table_half.resize(total);
+  m.mode_radius.resize(total);
+  int reach = 0;
   for (std::size_t i = 0; i < total; ++i) {
-    const std::size_t k = order[i];
-    const int kx = signed_k(k % dims[0], dims[0]), ky = signed_k((k / dims[0]) % dims[1], dims[1]),
-              kz = signed_k(k / (dims[0] * dims[1]), dims[2]);
-    reach = std::max({reach, std::abs(kx), std::abs(ky), std::abs(kz)});
+    const std::array<int, 3> k = mode_k(order[i]);
+    reach = std::max({reach, std::abs(k[0]), std::abs(k[1]), std::abs(k[2])});
     m.table_half[i] = reach;
-    Complex weight = spectra.part1.rho[k] * static_cast<float>(dw);
-    if (variant.translation_only) {
-      // rho2^(-w_k) at the node -k: S2(-w) e^{-2 pi i (-w).c2} folds into the phase tau.
-      const std::size_t x = k % dims[0], y = (k / dims[0]) % dims[1], z = k / (dims[0] * dims[1]);
-      const std::size_t neg = (dims[0] - x) % dims[0] + dims[0] * ((dims[1] - y) % dims[1] + dims[1] * ((dims[2] - z) % dims[2]));
-      weight *= spectra.part2.rho[neg];
-    }
-    const cl_short2 kxy{{cl_short(kx), cl_short(ky)}};
-    const cl_int kzi = kz;
-    cl_float4& out = mode_data[i];
+    const float wx = float(spectra.frequency(0, order[i] % dims[0])),
+                wy = float(spectra.frequency(1, (order[i] / dims[0]) % dims[1])),
+                wz = float(spectra.frequency(2, order[i] / (dims[0] * dims[1])));
+    m.mode_radius[i] = std::sqrt(wx * wx + wy * wy + wz * wz);
+  }
+
+  // dw = 1 / (L_x L_y L_z) (DESIGN.md), folded into the weights. One float4 per record:
+  // (Re W, Im W, (kx, ky) as two shorts, (kz, folded) as two shorts), w_k = k / L in
+  // the kernel. With a real correlation (PairSpectra::conjugate_pairs) the 6-DOF terms
+  // at w and -w are complex conjugates: one record holds the pair, weight 2 W, and adds
+  // only to the real parts (Re f, F, T; the pair's Im f is 0). Records follow the mode
+  // order; record_modes[j] is the number of modes the first j + 1 records hold.
+  const double dw = 1.0 / (spectra.length.x() * spectra.length.y() * spectra.length.z());
+  auto record = [&](std::size_t k, Complex weight, bool folded) {
+    const std::array<int, 3> kk = mode_k(k);
+    const cl_short2 kxy{{cl_short(kk[0]), cl_short(kk[1])}}, kzf{{cl_short(kk[2]), cl_short(folded ? 1 : 0)}};
+    cl_float4 out;
     out.s[0] = weight.real();
     out.s[1] = weight.imag();
     std::memcpy(&out.s[2], &kxy, 4);
-    std::memcpy(&out.s[3], &kzi, 4);
+    std::memcpy(&out.s[3], &kzf, 4);
+    return out;
+  };
+  const bool fold = !variant.translation_only && variant.fold_conjugate_pairs && spectra.conjugate_pairs() == 1;
+  std::vector<cl_float4> mode_data;
+  if (!variant.translation_only) {
+    mode_data.reserve(total);
+    m.record_modes.reserve(total);
+    m.first_of_record.reserve(total);
+    for (std::size_t i = 0; i < total;) {
+      const std::size_t k = order[i];
+      const std::size_t neg = negated_node(dims, k);
+      const Complex weight = spectra.part1.rho[k] * static_cast<float>(dw);
+      const bool pair = fold && neg != kNoNode && neg != k && i + 1 < total && order[i + 1] == neg;
+      mode_data.push_back(record(k, pair ? 2.0f * weight : weight, pair));
+      m.first_of_record.push_back(record(k, weight, false));  // the mode alone, for an m' that cuts the pair
+      i += pair ? 2 : 1;
+      m.record_modes.push_back(i);
+    }
   }
-  // Translation only: W_k in a dense box of x-lines with each node's rank in the |w|
-  // order (kernels/pose_query.cl translation_lines); rows padded by 8 nodes (rank max).
+  // Translation only: W_k = S1(w_k) S2(-w_k) dw in a dense box of x-lines with each
+  // node's rank in the mode order (kernels/pose_query.cl translation_lines); rows
+  // padded by 8 nodes (rank max).
   std::vector<Complex> line_w;
   std::vector<cl_int> line_rank;
   int dense_min[3] = {0, 0, 0}, dense_max[3] = {0, 0, 0}, dense_dims[3] = {0, 0, 0};
@@ -230,20 +261,19 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
     line_w.assign(dense, Complex(0, 0));
     line_rank.assign(dense, std::numeric_limits<cl_int>::max());
     for (std::size_t i = 0; i < total; ++i) {
-      cl_short2 kxy;
-      cl_int kz;
-      std::memcpy(&kxy, &mode_data[i].s[2], 4);
-      std::memcpy(&kz, &mode_data[i].s[3], 4);
-      const std::size_t node = std::size_t(kxy.s[0] - dense_min[0]) +
-                               std::size_t(dense_dims[0]) * (std::size_t(kxy.s[1] - dense_min[1]) + std::size_t(dense_dims[1]) * std::size_t(kz - dense_min[2]));
-      line_w[node] = Complex(mode_data[i].s[0], mode_data[i].s[1]);
+      const std::size_t k = order[i];
+      // rho2^(-w_k) at the node -k: S2(-w) e^{-2 pi i (-w).c2} folds into the phase tau.
+      const std::size_t x = k % dims[0], y = (k / dims[0]) % dims[1], z = k / (dims[0] * dims[1]);
+      const std::size_t neg = (dims[0] - x) % dims[0] + dims[0] * ((dims[1] - y) % dims[1] + dims[1] * ((dims[2] - z) % dims[2]));
+      const std::array<int, 3> kk = mode_k(k);
+      const std::size_t node = std::size_t(kk[0] - dense_min[0]) +
+                               std::size_t(dense_dims[0]) * (std::size_t(kk[1] - dense_min[1]) + std::size_t(dense_dims[1]) * std::size_t(kk[2] - dense_min[2]));
+      line_w[node] = spectra.part1.rho[k] * static_cast<float>(dw) * spectra.part2.rho[neg];
       line_rank[node] = static_cast<cl_int>(std::min<std::size_t>(i, std::numeric_limits<cl_int>::max() - 1));
     }
   }
   m.mode_total = total;
   m.mode_count = total;
-  m.mode_radius.resize(total);
-  for (std::size_t i = 0; i < total; ++i) m.mode_radius[i] = std::sqrt(norm2[order[i]]);
 
   try {
     m.queue = cl::CommandQueue(ctx.context, ctx.device.device, 0);
@@ -291,12 +321,13 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
       m.kernel.setArg(5, cl_float16{});
       m.kernel.setArg(12, inv_length);
     } else {
-      m.modes = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * total, mode_data.data());
+      m.modes = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * mode_data.size(), mode_data.data());
       m.kernel.setArg(0, m.modes);
       m.kernel.setArg(4, cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
       m.kernel.setArg(5, cl_float4{{1.0f, 1.0f, 0.0f, 0.0f}});
       m.kernel.setArg(6, cl_float16{});
       m.kernel.setArg(13, inv_length);
+      m.kernel.setArg(14, cl_float4{});
     }
     m.ensure_capacity(1, m.max_groups);
   } catch (const cl::Error& e) {
@@ -349,7 +380,9 @@ std::vector<QueryResult> PoseQueryEngine::query_batch(const std::vector<Pose>& p
     rotations.push_back(R);
   }
   if (!slot.empty()) {
-    const std::size_t groups_per_pose = m.groups_per_pose();
+    cl_float4 extra{};
+    const std::size_t records = m.record_count(&extra);
+    const std::size_t groups_per_pose = m.groups_per_pose(records);
     const std::size_t groups = groups_per_pose * slot.size();
     try {
       m.ensure_capacity(slot.size(), groups);
@@ -362,7 +395,8 @@ std::vector<QueryResult> PoseQueryEngine::query_batch(const std::vector<Pose>& p
         m.queue.enqueueWriteBuffer(m.poses, CL_FALSE, 0, sizeof(cl_float16) * packed.size(), packed.data());
       }
       m.kernel.setArg(8 - shift, static_cast<cl_int>(slot.size()));
-      m.kernel.setArg(9 - shift, static_cast<cl_int>(m.mode_count));
+      m.kernel.setArg(9 - shift, static_cast<cl_int>(records));
+      if (!m.variant.translation_only) m.kernel.setArg(14, extra);
       m.kernel.setArg(10 - shift, static_cast<cl_int>(groups_per_pose));
       m.kernel.setArg(11 - shift, static_cast<cl_int>(m.table_half[m.mode_count - 1]));
       m.queue.enqueueNDRangeKernel(m.kernel, cl::NullRange, cl::NDRange(groups * m.wg), cl::NDRange(m.wg));

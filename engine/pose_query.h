@@ -36,6 +36,12 @@ struct QueryVariant {
   // float cube's results (tests/test_pose_query.cpp measures it, bound 5e-5): below the
   // interpolation error of both schemes at oversampling 2. Ignored for translation only.
   bool half_cube = false;
+  // When both parts' samples are real or both imaginary (the affinity i * rho always is:
+  // PairSpectra::conjugate_pairs), the 6-DOF terms at w and -w are complex conjugates, so
+  // each retained pair is evaluated once with twice the weight: half the work for the
+  // same m' and the same result (Re f, F, T; Im f is 0 for every complete pair). False
+  // sums every mode (for checks). Translation-only queries sum every mode.
+  bool fold_conjugate_pairs = true;
 };
 
 enum QueryFlags : std::uint32_t {

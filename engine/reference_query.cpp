@@ -47,21 +47,6 @@ struct Sums {
 
 }  // namespace
 
-std::vector<std::size_t> mode_order(const PairSpectra& s) {
-  const auto& d = s.dims;
-  std::vector<float> norm2(d[0] * d[1] * d[2]);
-  for (std::size_t z = 0; z < d[2]; ++z)
-    for (std::size_t y = 0; y < d[1]; ++y)
-      for (std::size_t x = 0; x < d[0]; ++x) {
-        const float wx = float(s.frequency(0, x)), wy = float(s.frequency(1, y)), wz = float(s.frequency(2, z));
-        norm2[x + d[0] * (y + d[1] * z)] = wx * wx + wy * wy + wz * wz;
-      }
-  std::vector<std::size_t> order(norm2.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return norm2[a] < norm2[b]; });
-  return order;
-}
-
 QueryResult reference_query(const PairSpectra& s, const Pose& pose, const ReferenceOptions& options,
                             const std::vector<std::size_t>* order_in) {
   const auto start = std::chrono::steady_clock::now();

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "engine/mode_order.h"
 #include "engine/pose_query.h"
 #include "engine/spectra.h"
 
@@ -14,14 +15,10 @@ namespace snapfit {
 
 struct ReferenceOptions {
   Interpolation interpolation = Interpolation::tricubic;
-  std::size_t modes = 0;  // m': the modes of smallest |w| (mode_order); 0 = every mode
+  std::size_t modes = 0;  // m': the first modes of mode_order (engine/mode_order.h); 0 = every mode
   bool force = true;
   bool torque = true;     // needs spectra with torque terms
 };
-
-// Every FFT node (index x + nx (y + ny z)) by increasing |w|, ties in index order: the
-// order in which PoseQueryEngine retains modes.
-std::vector<std::size_t> mode_order(const PairSpectra& spectra);
 
 // The result for part 2 at `pose` in part 1's frame, with the engine's frames, signs
 // and flags (query_outside_grid, query_bad_pose). `order` may be passed to avoid

@@ -1,5 +1,7 @@
 #include "engine/spectra.h"
 
+#include <algorithm>
+
 #include <chrono>
 #include <cmath>
 
@@ -91,6 +93,14 @@ PairSpectra compute_pair_spectra(const FftLibrary& library, const ComputeContext
   };
   out.part1.half_extent = half_extent(grid1, p1.centre);
   out.part2.half_extent = half_extent(grid2, p2.centre);
+  // +1 real, -1 imaginary, 0 general (an all-zero field counts as real).
+  auto parity = [](const std::vector<Complex>& v) {
+    const bool real = std::all_of(v.begin(), v.end(), [](const Complex& c) { return c.imag() == 0.0f; });
+    const bool imaginary = std::all_of(v.begin(), v.end(), [](const Complex& c) { return c.real() == 0.0f; });
+    return real ? 1 : imaginary ? -1 : 0;
+  };
+  out.part1.sample_parity = parity(rho1);
+  out.part2.sample_parity = parity(rho2);
   out.part1.rho = centred_spectrum(ctx, fft, grid1, p1, [&](std::size_t i, int, int, int) { return rho1[i]; });
   out.part2.rho = centred_spectrum(ctx, fft, grid2, p2, [&](std::size_t i, int, int, int) { return rho2[i]; });
   if (torque) {

@@ -34,6 +34,10 @@ struct PartSpectrum {
   Eigen::Vector3d half_extent = Eigen::Vector3d::Zero();  // samples lie within c +- this
   std::vector<Complex> rho;                           // S(w_k), FFT order (k_x fastest, negative k wrapped)
   std::array<std::vector<Complex>, 3> moments;        // SQ_a(w_k); empty unless torque
+  // +1: the samples were real, -1: imaginary (the affinity i * rho), 0: general complex.
+  // Real samples give S(-w) = conj S(w), imaginary ones S(-w) = -conj S(w) (the torque
+  // samples q * rho share rho's), which lets queries fold conjugate pairs of modes.
+  int sample_parity = 0;
 };
 
 struct PairSpectra {
@@ -45,6 +49,9 @@ struct PairSpectra {
   double seconds = 0;
   // Frequency of FFT index k along axis a (negative for k > dims/2): w = k' / L_a.
   double frequency(int axis, std::size_t k) const;
+  // +1 when the terms of the correlation sum at w and -w are complex conjugates (both
+  // parts' samples real, or both imaginary, so the correlation is real); else 0.
+  int conjugate_pairs() const { return part1.sample_parity * part2.sample_parity == 1 ? 1 : 0; }
 };
 
 // Forward FFTs of Im-affinity fields i * rho (engine/descriptors.h affinity_imaginary),

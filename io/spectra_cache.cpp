@@ -11,7 +11,8 @@
 namespace snapfit {
 namespace {
 
-constexpr std::uint32_t kSpectraCacheVersion = 1;
+// 2: each part's sample parity (engine/spectra.h).
+constexpr std::uint32_t kSpectraCacheVersion = 2;
 constexpr const char* kKind = "pair-spectra";
 
 std::uint64_t field_hash(const DescriptorFields& f) {
@@ -101,6 +102,7 @@ std::optional<PairSpectra> load_cached_spectra(const std::string& key, const std
   for (PartSpectrum* part : {&s.part1, &s.part2}) {
     part->centre = get_vector(r);
     part->half_extent = get_vector(r);
+    part->sample_parity = r.get<std::int8_t>();
     part->rho = r.get_array();
     for (auto& m : part->moments) m = r.get_array();
   }
@@ -121,6 +123,7 @@ void save_cached_spectra(const std::string& key, const PairSpectra& s, const std
   for (const PartSpectrum* part : {&s.part1, &s.part2}) {
     put_vector(w, part->centre);
     put_vector(w, part->half_extent);
+    w.put<std::int8_t>(static_cast<std::int8_t>(part->sample_parity));
     w.put_array(part->rho);
     for (const auto& m : part->moments) w.put_array(m);
   }

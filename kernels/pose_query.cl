@@ -16,9 +16,12 @@
 // sc-se the rest tau_a / L_a - hi ("lo"). A single query passes it as the argument
 // `pose_arg` (no buffer write); a batch reads poses[pose] (pose_count > 1).
 //
-// Each mode is one float4: (Re W_k, Im W_k, (kx, ky) as two shorts, kz as an int),
-// so the mode loop streams 16 bytes per mode from one array, by increasing |w| (any m'
-// is a prefix).
+// Each record is one float4: (Re W_k, Im W_k, (kx, ky) as two shorts, (kz, folded) as
+// two shorts), so the loop streams 16 bytes per record from one array, in the mode order
+// (engine/mode_order.h: any m' is a prefix). A folded record stands for the conjugate
+// pair w, -w of a real correlation: its weight is 2 W_k and it adds to the real parts
+// only (Re f, F, T; the pair's Im f is 0). An m' that cuts a pair passes the pair's first
+// mode alone as `extra_mode` (weight 0 otherwise), added once per pose.
 
 // The spectrum of part 2 near the low-pass ball, as a compact cube (no wrapping):
 // signed FFT index i sits at cube index i + offset. With torque each node holds
@@ -83,8 +86,8 @@ __attribute__((always_inline)) inline void add_mode(const float4 mode, const flo
                      __local const float2* tz, __global const CUBE_T* cube, const int4 cube_dims, const int4 offset,
                      const float4 length, const float4 inv_length, const float4 cube_scale, float2* f,
                      float3* force, float3* torque) {
-  const short2 kxy = as_short2(mode.z);
-  const int3 k = (int3)(kxy.x, kxy.y, as_int(mode.w));
+  const short2 kxy = as_short2(mode.z), kzf = as_short2(mode.w);
+  const int3 k = (int3)(kxy.x, kxy.y, kzf.x);
   const float3 w = convert_float3(k) * inv_length.xyz;  // w_k = k / L
   float2 term = cmul(mode.xy, cmul(tx[k.x], cmul(ty[k.y], tz[k.z])));
 #ifndef TRANSLATION_ONLY
@@ -105,7 +108,7 @@ __attribute__((always_inline)) inline void add_mode(const float4 mode, const flo
 #endif
   term = cmul(term, v);
 #endif
-  *f += term;
+  *f += kzf.y ? (float2)(term.x, 0.0f) : term;
 #ifdef FORCE
   *force += -TWO_PI * term.y * w;  // Re(2 pi i w term)
 #endif
@@ -116,7 +119,7 @@ void pose_query(__global const float4* modes, __global const CUBE_T* cube,
                 const int4 cube_dims, const int4 offset, const float4 length, const float4 cube_scale,
                 const float16 pose_arg, __global const float16* poses, const int pose_count,
                 const int mode_count, const int groups_per_pose, const int table_half,
-                __global float* partials, const float4 inv_length) {
+                __global float* partials, const float4 inv_length, const float4 extra_mode) {
   const int group = get_group_id(0);
   const int pose = group / groups_per_pose;
   const int slice = group % groups_per_pose;
@@ -148,6 +151,9 @@ void pose_query(__global const float4* modes, __global const CUBE_T* cube,
   if (m < mode_count)
     add_mode(modes[m], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f,
              &force, &torque);
+  if (slice == 0 && lid == 0)
+    add_mode(extra_mode, P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f1, &force1,
+             &torque1);
   f += f1;
   force += force1;
   torque += torque1;

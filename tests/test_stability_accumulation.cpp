@@ -13,6 +13,7 @@
 #include <iostream>
 #include <numeric>
 
+#include "engine/mode_order.h"
 #include "tests/stability_support.h"
 
 using namespace snapfit;
@@ -69,23 +70,6 @@ std::array<double, 8> kernel_order_float_sum(const std::vector<std::array<double
   return total;
 }
 
-// The engine's mode order (engine/pose_query.cpp): nodes by increasing float |w|^2, stable.
-std::vector<std::size_t> mode_order(const PairSpectra& s) {
-  const auto& d = s.dims;
-  const std::size_t total = d[0] * d[1] * d[2];
-  std::vector<float> norm2(total);
-  for (std::size_t z = 0; z < d[2]; ++z)
-    for (std::size_t y = 0; y < d[1]; ++y)
-      for (std::size_t x = 0; x < d[0]; ++x) {
-        const Eigen::Vector3f w(float(s.frequency(0, x)), float(s.frequency(1, y)), float(s.frequency(2, z)));
-        norm2[x + d[0] * (y + d[1] * z)] = w.squaredNorm();
-      }
-  std::vector<std::size_t> order(total);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return norm2[a] < norm2[b]; });
-  return order;
-}
-
 // Trilinear interpolation (kernels/spectrum_sample.cl) of a spectrum at fractional
 // index u, periodic, in double.
 Cd sample(const std::vector<Complex>& s, const std::array<std::size_t, 3>& d, const Vector3d& u) {
@@ -138,6 +122,20 @@ DoubleSums double_sum(const PairSpectra& s, const std::vector<std::size_t>& orde
   }
   out.energy = -f.real();
   out.torque = R * tq;
+  // The kernel's records: a conjugate pair w, -w (adjacent in the mode order) is one
+  // record, its terms' sum (real parts doubled, Im f zero), as the engine folds them
+  // (QueryVariant::fold_conjugate_pairs; both parts' samples are imaginary here).
+  std::vector<std::array<double, 8>> records;
+  for (std::size_t i = 0; i < modes;) {
+    const std::size_t neg = negated_node(d, order[i]);
+    const bool pair = neg != kNoNode && neg != order[i] && i + 1 < modes && order[i + 1] == neg;
+    std::array<double, 8> r = terms[i];
+    if (pair)
+      for (int j = 0; j < 8; ++j) r[j] += terms[i + 1][j];
+    records.push_back(r);
+    i += pair ? 2 : 1;
+  }
+  terms = std::move(records);
   const std::array<double, 8> fl = kernel_order_float_sum(terms, wg, max_groups);
   out.float_energy = -fl[0];
   out.float_force = Vector3d(fl[2], fl[3], fl[4]);
@@ -227,11 +225,13 @@ TEST_CASE("stability accumulation: float32 sums in the query kernel against a do
             << " (|T| at m' <= 32768: " << worst_t_haptic << "); float accumulation alone: E " << worst_acc_e << ", |F| "
             << worst_acc_f << ", |T| " << worst_acc_t << "; Kahan work items: E " << worst_k_e << ", |F| " << worst_k_f
             << ", |T| " << worst_k_t << "\n";
-  // Measured (this machine, PoCL): engine E 1.3e-4 (free space, where the sum cancels
-  // 2,400-fold), |F| 2.8e-6, |T| 6.3e-3 at all 421,875 modes (2e-4 at 131,072, 6e-5 at
-  // m' <= 32,768); the float accumulation alone, in the kernel's order, accounts for it.
-  // Kahan-compensated work items (host model in the kernel's order) would cut the worst
-  // errors to E 1.1e-5, |F| 2.9e-7, |T| 3.2e-4: 8x, 8x and 21x (see the table).
+  // Measured (this machine, PoCL, conjugate pairs folded): engine E 9.0e-5 (free space,
+  // where the sum cancels 2,600-fold), |F| 3.6e-6, |T| 4.0e-3 at all 421,875 modes
+  // (2.3e-5 at m' <= 32,768); the float accumulation alone, in the kernel's order,
+  // accounts for it (E 5.0e-5, |F| 2.8e-6, |T| 4.2e-3). Kahan-compensated work items
+  // (host model in the kernel's order) would cut the worst errors to E 1.2e-5, |F| 1.9e-7,
+  // |T| 3.2e-4: 4x, 15x and 13x (see the table). Before the folding (twice the float
+  // additions): engine E 1.3e-4, |F| 2.8e-6, |T| 6.3e-3.
   CHECK(worst_e < 5e-4);
   CHECK(worst_f < 2e-5);
   CHECK(worst_t < 3e-2);
