@@ -3,23 +3,30 @@
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <unistd.h>
 
 #include <Eigen/Core>
 #include <Eigen/LU>  // determinant
+#include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <new>
+#include <optional>
 #include <sstream>
 #include <system_error>
 #include <utility>
 #include <vector>
 
 #include "engine/error.h"
+#include "io/isolated_import.h"
 
 namespace snapfit {
 namespace {
@@ -219,7 +226,8 @@ void check_x_uncompressed(const std::string& path) {
 }
 
 // Missing, not a regular file, empty or unreadable: say so before Assimp guesses.
-void check_input_file(const std::string& path) {
+// Returns the file's size.
+std::uintmax_t check_input_file(const std::string& path) {
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
   if (ec || !fs::exists(st)) {
@@ -235,6 +243,7 @@ void check_input_file(const std::string& path) {
   check_off_counts(path, size);
   check_ply_complete(path, size);
   check_x_uncompressed(path);
+  return size;
 }
 
 // aiMatrix4x4 is row-major: a1..a4 is the first row.
@@ -309,16 +318,8 @@ void walk_node(const Walk& w, const aiNode& node, const Eigen::Matrix4d& parent)
     if (node.mChildren[c] != nullptr) walk_node(w, *node.mChildren[c], global);
 }
 
-}  // namespace
-
-Mesh load_mesh(const std::string& path, double scale) {
-  if (!std::isfinite(scale) || scale <= 0.0) {
-    std::ostringstream msg;
-    msg << "scale must be finite and > 0 (got " << scale << ")";
-    fail(path, msg.str());
-  }
-  check_input_file(path);
-
+// Assimp's import and the walk over its scene, in this process.
+Mesh import_mesh(const std::string& path, double scale) {
   // No aiProcess_FindDegenerates: degenerate triangles are reported, not removed.
   // ValidateDataStructure rejects out-of-range indices and similar broken data.
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
@@ -327,12 +328,18 @@ Mesh load_mesh(const std::string& path, double scale) {
   const aiScene* scene = nullptr;
   try {
     scene = importer.ReadFile(path, flags);
+  } catch (const std::bad_alloc&) {
+    throw;  // the import child reports it as its memory limit
   } catch (const std::exception& e) {
     fail(path, std::string("cannot read mesh: ") + e.what());
   } catch (...) {
     fail(path, "cannot read mesh: unknown error in the importer");
   }
-  if (scene == nullptr) fail(path, std::string("cannot read mesh: ") + importer.GetErrorString());
+  if (scene == nullptr) {
+    // Assimp catches exceptions itself and keeps only the message (assimp/BaseImporter.h).
+    if (std::string(importer.GetErrorString()) == std::bad_alloc().what()) throw std::bad_alloc();
+    fail(path, std::string("cannot read mesh: ") + importer.GetErrorString());
+  }
 
   Mesh mesh;
   if (scene->mRootNode != nullptr) {
@@ -341,6 +348,107 @@ Mesh load_mesh(const std::string& path, double scale) {
   }
   if (mesh.triangles.empty()) fail(path, "contains no triangles");
   return mesh;
+}
+
+// The import child's reply: vertex and triangle counts (uint64), then the vertices'
+// doubles and the triangles' ints as they lie in memory (one program on both ends).
+static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double) && sizeof(Eigen::Vector3i) == 3 * sizeof(int));
+
+std::string encode_mesh(const Mesh& m) {
+  const std::uint64_t counts[2] = {m.vertices.size(), m.triangles.size()};
+  const std::size_t vb = m.vertices.size() * sizeof(Eigen::Vector3d), tb = m.triangles.size() * sizeof(Eigen::Vector3i);
+  std::string out(sizeof counts + vb + tb, '\0');
+  std::memcpy(out.data(), counts, sizeof counts);
+  if (vb > 0) std::memcpy(out.data() + sizeof counts, m.vertices.data(), vb);
+  if (tb > 0) std::memcpy(out.data() + sizeof counts + vb, m.triangles.data(), tb);
+  return out;
+}
+
+Mesh decode_mesh(const std::string& path, const std::string& bytes) {
+  std::uint64_t counts[2] = {0, 0};
+  if (bytes.size() >= sizeof counts) std::memcpy(counts, bytes.data(), sizeof counts);
+  const std::uint64_t max = bytes.size();  // bounds the counts before they are multiplied
+  if (bytes.size() < sizeof counts || counts[0] > max || counts[1] > max ||
+      bytes.size() != sizeof counts + counts[0] * sizeof(Eigen::Vector3d) + counts[1] * sizeof(Eigen::Vector3i))
+    fail(path, "cannot read mesh: malformed reply from the importer (" + std::to_string(bytes.size()) + " bytes)");
+  Mesh m;
+  m.vertices.resize(counts[0]);
+  m.triangles.resize(counts[1]);
+  const std::size_t vb = m.vertices.size() * sizeof(Eigen::Vector3d), tb = m.triangles.size() * sizeof(Eigen::Vector3i);
+  if (vb > 0) std::memcpy(static_cast<void*>(m.vertices.data()), bytes.data() + sizeof counts, vb);
+  if (tb > 0) std::memcpy(static_cast<void*>(m.triangles.data()), bytes.data() + sizeof counts + vb, tb);
+  return m;
+}
+
+// Limits of the import child (issue 7: Assimp allocated 4.2 GB on a 2.8 kB .x file and
+// 18.9 GB on an 8.5 kB .dae file). Assimp's own need, from perf/bench_mesh_import (a
+// torus, imported in-process; peak address space above the start, 2026-11-22, 2 cores):
+//   1e6 triangles: binary STL, 47.7 MiB: +1681 MiB (peak RSS +1425 MiB), 1.8-2.7 s CPU
+//                  OBJ, 50.1 MiB:        +1201 MiB (peak RSS  +556 MiB), 1.1 s CPU
+//   3e6 triangles: STL 143 MiB: +5042 MiB, 6.3 s; OBJ 155 MiB: +3636 MiB, 3.8 s
+// so up to 35x the file size, linearly. Memory: 1 GiB + 64x the file size (4.0 GiB for
+// the 1e6-triangle STL, 2.4x its need; 1 GiB for the fuzzed files, which then stop within
+// a second), at most half the physical memory. CPU: 60 s + 1 s per MiB of file (108 s
+// for the STL, 40x its need), and 3x that of wall time. SNAPFIT_IMPORT_MEMORY_MIB sets
+// the memory limit; 0 or "inprocess" imports in this process, without limits (for
+// debugging).
+std::optional<ChildLimits> import_limits(const std::string& path, std::uintmax_t file_size) {
+  const std::uint64_t file_mib = (file_size + (1u << 20) - 1) >> 20;
+  ChildLimits limits;
+  limits.memory_mib = 1024 + 64 * file_mib;
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
+  if (pages > 0 && page_size > 0)
+    limits.memory_mib = std::min<std::uint64_t>(limits.memory_mib, (static_cast<std::uint64_t>(pages) * page_size >> 20) / 2);
+  limits.seconds = static_cast<unsigned>(std::min<std::uint64_t>(60 + file_mib, 1u << 30));
+  limits.wall_seconds = 3.0 * limits.seconds;  // a loaded machine, or a child that waits
+  if (const char* env = std::getenv("SNAPFIT_IMPORT_MEMORY_MIB")) {
+    const std::string v = env;
+    if (!(v == "inprocess" || (is_count(v) && v.size() <= 9)))
+      fail(path, "SNAPFIT_IMPORT_MEMORY_MIB must be a whole number of MiB, 0 or 'inprocess' (got '" + v + "')");
+    if (v == "inprocess" || std::stoull(v) == 0) return std::nullopt;
+    limits.memory_mib = std::stoull(v);
+  }
+  return limits;
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::string& path, double scale) {
+  if (!std::isfinite(scale) || scale <= 0.0) {
+    std::ostringstream msg;
+    msg << "scale must be finite and > 0 (got " << scale << ")";
+    fail(path, msg.str());
+  }
+  const std::uintmax_t file_size = check_input_file(path);
+  const std::optional<ChildLimits> limits = import_limits(path, file_size);
+  if (!limits) {
+    try {
+      return import_mesh(path, scale);
+    } catch (const std::bad_alloc&) {
+      fail(path, "cannot read mesh: out of memory (std::bad_alloc)");
+    }
+  }
+
+  ChildResult r = run_in_child([&] { return encode_mesh(import_mesh(path, scale)); }, *limits);
+  switch (r.status) {
+    case ChildResult::Status::ok:
+      return decode_mesh(path, r.bytes);
+    case ChildResult::Status::error:
+      throw Error(r.bytes);  // the child's snapfit::Error, unchanged
+    case ChildResult::Status::exception:
+      fail(path, "cannot read mesh: " + r.bytes);
+    case ChildResult::Status::out_of_memory:
+      fail(path, "cannot read mesh: the importer exceeded its memory limit of " + std::to_string(limits->memory_mib) +
+                     " MiB (SNAPFIT_IMPORT_MEMORY_MIB sets it)");
+    case ChildResult::Status::crashed:
+      fail(path, "cannot read mesh: the importer crashed (signal " + std::to_string(r.signal) + ", " +
+                     strsignal(r.signal) + ")");
+    case ChildResult::Status::timed_out:
+      fail(path, "cannot read mesh: the importer took longer than " + std::to_string(limits->seconds) + " s");
+    case ChildResult::Status::bad_reply:
+      break;
+  }
+  fail(path, "cannot read mesh: the importer " + r.bytes);
 }
 
 }  // namespace snapfit

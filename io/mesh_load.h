@@ -10,6 +10,9 @@ namespace snapfit {
 // into one triangle soup, each coordinate multiplied by `scale` (file units -> scene
 // units). Throws snapfit::Error naming the file and the problem for a missing,
 // unreadable, empty or malformed file, a file with no triangles, or non-finite coordinates.
+// Assimp runs in a child process under a memory and time limit (io/mesh_load.cpp gives
+// the defaults; SNAPFIT_IMPORT_MEMORY_MIB sets the memory limit in MiB, 0 or "inprocess"
+// imports in this process): an importer that exceeds them or crashes is an Error too.
 Mesh load_mesh(const std::string& path, double scale = 1.0);
 
 }  // namespace snapfit

@@ -25,21 +25,32 @@ struct TempDir {
   std::string file(const std::string& name) const { return (path / name).string(); }
 };
 
+// Sets (or, given nullptr, unsets) an environment variable; restores the old value after.
+struct EnvScope {
+  std::string name;
+  std::optional<std::string> previous;
+  EnvScope(const std::string& var, const char* value) : name(var) {
+    if (const char* old = std::getenv(name.c_str())) previous = old;
+    if (value)
+      ::setenv(name.c_str(), value, 1);
+    else
+      ::unsetenv(name.c_str());
+  }
+  EnvScope(const EnvScope&) = delete;
+  EnvScope& operator=(const EnvScope&) = delete;
+  ~EnvScope() {
+    if (previous)
+      ::setenv(name.c_str(), previous->c_str(), 1);
+    else
+      ::unsetenv(name.c_str());
+  }
+};
+
 // Points SNAPFIT_CACHE_DIR (io/cache_file.h cache_root()) at a fresh temporary folder;
 // restores the old value after.
 struct CacheDirScope {
   TempDir dir;
-  std::optional<std::string> previous;
-  CacheDirScope() {
-    if (const char* old = std::getenv("SNAPFIT_CACHE_DIR")) previous = old;
-    ::setenv("SNAPFIT_CACHE_DIR", dir.path.string().c_str(), 1);
-  }
-  ~CacheDirScope() {
-    if (previous)
-      ::setenv("SNAPFIT_CACHE_DIR", previous->c_str(), 1);
-    else
-      ::unsetenv("SNAPFIT_CACHE_DIR");
-  }
+  EnvScope env{"SNAPFIT_CACHE_DIR", dir.path.string().c_str()};
   std::filesystem::path folder(const std::string& name) const { return dir.path / name; }
 };
 
