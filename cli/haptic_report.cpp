@@ -142,7 +142,7 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Scene
           {"final_error", {{"position", run.final_error.position}, {"angle_deg", run.final_error.angle_deg}}},
           {"tolerance", {{"position", run.position_tolerance}, {"angle_deg", run.angle_tolerance_deg}}},
           {"assembled", run.assembled},
-          {"priority", {{"threads_raised", run.priority.threads}, {"failed", run.priority.failed},
+          {"priority", {{"threads_raised", run.priority.threads}, {"realtime", run.priority.realtime}, {"failed", run.priority.failed},
                         {"reason", run.priority.reason}}}};
 }
 

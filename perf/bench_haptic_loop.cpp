@@ -77,9 +77,7 @@ int main(int argc, char** argv) try {
             << quantile(loop.wake_late_ms, 0.99) << ", max " << quantile(loop.wake_late_ms, 1.0) << "\n"
             << "m' tuned " << tuned.result.chosen_modes << ", final " << loop.final_modes << ", "
             << loop.mode_changes.size() << " changes; seed 000 (published, K20c, translation only): 4096\n"
-            << "thread priority: nice -10 for " << run.priority.threads << " threads"
-            << (run.priority.failed ? ", failed for " + std::to_string(run.priority.failed) + " (" + run.priority.reason + ")" : "")
-            << "\n"
+            << "thread priority: " << run.priority.describe() << "\n"
             << "load average: start " << load_start << ", end " << load_end << "\n";
 
   fs::create_directories(out_dir);
@@ -109,7 +107,8 @@ int main(int argc, char** argv) try {
       {"final_modes", loop.final_modes},
       {"mode_changes", changes},
       {"seed000_published_modes", 4096},
-      {"priority", {{"threads_raised", run.priority.threads}, {"failed", run.priority.failed}}},
+      {"priority", {{"threads_raised", run.priority.threads}, {"realtime", run.priority.realtime},
+                    {"failed", run.priority.failed}, {"described", run.priority.describe()}}},
       {"load_average", {{"start", load_start}, {"end", load_end}}}};
   std::ofstream(fs::path(out_dir) / "haptic_loop.json") << report.dump(2) << "\n";
   Chart hist = histogram_chart("Haptic loop frame time, " + std::to_string(loop.frames) + " frames, m' = " +

@@ -42,10 +42,14 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, 
   part.pose = device.read(0).pose;  // the part starts in the user's hand
   WrenchEvaluator evaluator{[&engine](const Pose& p) { return engine.query(p); },
                             [&engine](std::size_t m) { engine.set_modes(m); }};
-  if (options.nice != 0 && !options.simulated_time) out.priority = raise_process_priority(options.nice);
-  HapticLoopThread loop(device, evaluator, config, part,
-                        options.simulated_time ? simulated_loop_clock() : steady_loop_clock());
-  out.loop = loop.join();
+  const bool raise = (options.priority.nice_value != 0 || options.priority.realtime_priority > 0) && !options.simulated_time;
+  if (raise) out.priority = raise_process_priority(options.priority);
+  {
+    HapticLoopThread loop(device, evaluator, config, part,
+                          options.simulated_time ? simulated_loop_clock() : steady_loop_clock());
+    out.loop = loop.join();
+  }
+  if (raise) restore_process_priority(out.priority);
   out.final_error = pose_error(out.loop.final_part.pose, out.target);
   out.assembled = out.final_error.within(out.position_tolerance, out.angle_tolerance_deg);
   return out;

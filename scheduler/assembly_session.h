@@ -20,7 +20,9 @@ struct SessionOptions {
   bool loop_back = false;            // replay the trajectory back and forth (long runs)
   bool keep_log = true;
   bool simulated_time = false;       // scheduler/haptic_loop.h simulated_loop_clock (deterministic)
-  int nice = -10;                    // scheduler/thread_priority.h for the run's threads; 0 leaves them
+  // The run's threads during the loop (scheduler/thread_priority.h), restored after it:
+  // SCHED_FIFO 10 where allowed, else nice -10. {0, 0} leaves them.
+  PriorityRequest priority{-10, 10};
 };
 
 struct SessionResult {

@@ -4,17 +4,38 @@
 // device), so raising only the loop thread would not help: this raises every thread
 // of the process that exists now (the runtime's workers are created with the context).
 #include <string>
+#include <vector>
 
 namespace snapfit {
 
-struct PriorityChange {
-  int threads = 0;     // threads whose priority was raised
-  int failed = 0;      // threads it could not change (no CAP_SYS_NICE, or gone)
-  std::string reason;  // why some failed, for the report
+struct PriorityRequest {
+  int nice_value = -10;       // setpriority(2), -20 highest .. 19; 0 leaves the nice value
+  // SCHED_FIFO priority (1-99) tried first, above every normally scheduled task (the
+  // kernel's real-time throttling still leaves 5% of each second to them); 0: nice only.
+  int realtime_priority = 0;
 };
 
-// setpriority(2) to `nice_value` (-20 highest .. 19) for every thread of this process.
-// Linux only; elsewhere nothing changes and `reason` says so.
-PriorityChange raise_process_priority(int nice_value);
+struct PriorityChange {
+  int threads = 0;     // threads whose priority was raised
+  int realtime = 0;    // of those, threads now SCHED_FIFO (the others got the nice value)
+  int failed = 0;      // threads it could not change (no CAP_SYS_NICE, or gone)
+  std::string reason;  // why some failed, for the report
+  // What each changed thread had before, for restore_process_priority.
+  struct Previous {
+    int tid = 0, policy = 0, priority = 0, nice = 0;
+  };
+  std::vector<Previous> previous;
+  std::string describe() const;  // e.g. "SCHED_FIFO 10 for 4 threads" or "nice -10 for 4 threads"
+  int realtime_priority = 0, nice_value = 0;
+};
+
+// Raises every thread of this process: SCHED_FIFO at request.realtime_priority when
+// asked and allowed (CAP_SYS_NICE), else the nice value. Linux only; elsewhere nothing
+// changes and `reason` says so.
+PriorityChange raise_process_priority(const PriorityRequest& request);
+
+// Puts back the policy and nice value each changed thread had (threads gone since are
+// skipped).
+void restore_process_priority(const PriorityChange& change);
 
 }  // namespace snapfit
