@@ -61,7 +61,7 @@ int main(int argc, char** argv) try {
   SessionOptions session;
   session.duration_s = seconds;
   session.loop_back = true;
-  session.keep_log = false;
+  session.keep_log = true;  // the missed frames' details below
   const SessionResult run = run_scripted_assembly(scene, pair.parts.part2.mesh, pair.spectra.spacing, engine,
                                                   tuned.result, session);
   const LoopReport& loop = run.loop;
@@ -79,6 +79,27 @@ int main(int argc, char** argv) try {
             << loop.mode_changes.size() << " changes; seed 000 (published, K20c, translation only): 4096\n"
             << "thread priority: " << run.priority.describe() << "\n"
             << "load average: start " << load_start << ", end " << load_end << "\n";
+
+  // Every missed frame: its work (wake-up to wrench sent) against the tuner's p99 model
+  // at the m' it ran with. Work within 1.5x of the model is the tail of that m'; far
+  // beyond it (4x) is a stall of the machine that a smaller m' would not have avoided.
+  nlohmann::json missed = nlohmann::json::array();
+  std::size_t tail = 0, slow = 0, stall = 0, late = 0;
+  for (std::size_t i = 0; i < loop.log.size(); ++i) {
+    const FrameRecord& f = loop.log[i];
+    if (!f.missed) continue;
+    const double wake = loop.wake_late_ms[i], work = f.frame_ms - wake;
+    const double predicted = tuned.result.model.predict_ms(f.modes);
+    const double ratio = work / predicted;
+    if (work <= 0.6 * scene.frame_budget_ms) ++late;
+    else if (ratio <= 1.5) ++tail;
+    else if (ratio <= 4) ++slow;
+    else ++stall;
+    missed.push_back({{"time_s", f.time_s}, {"frame_ms", f.frame_ms}, {"wake_late_ms", wake}, {"work_ms", work},
+                      {"modes", f.modes}, {"model_p99_ms", predicted}});
+  }
+  std::cout << "missed frames by their work against the model p99 at their m': woke late " << late
+            << ", within 1.5x " << tail << ", 1.5-4x " << slow << ", beyond 4x (stalls) " << stall << "\n";
 
   fs::create_directories(out_dir);
   nlohmann::json changes = nlohmann::json::array();
@@ -106,6 +127,8 @@ int main(int argc, char** argv) try {
       {"tuning_from_file", tuned.from_file},
       {"final_modes", loop.final_modes},
       {"mode_changes", changes},
+      {"missed_frames", missed},
+      {"missed_by_work", {{"woke_late", late}, {"within_1_5x_model", tail}, {"1_5x_to_4x", slow}, {"beyond_4x", stall}}},
       {"seed000_published_modes", 4096},
       {"priority", {{"threads_raised", run.priority.threads}, {"realtime", run.priority.realtime},
                     {"failed", run.priority.failed}, {"described", run.priority.describe()}}},
