@@ -340,6 +340,11 @@ PoseQueryEngine::~PoseQueryEngine() = default;
 
 std::size_t PoseQueryEngine::max_modes() const { return impl_->mode_total; }
 std::size_t PoseQueryEngine::modes() const { return impl_->mode_count; }
+std::size_t PoseQueryEngine::evaluated_terms() const {
+  cl_float4 extra{};
+  const std::size_t records = impl_->record_count(&extra);
+  return records + (extra.s[0] != 0.0f || extra.s[1] != 0.0f ? 1 : 0);
+}
 void PoseQueryEngine::set_modes(std::size_t m) {
   impl_->mode_count = std::clamp<std::size_t>(m, 1, impl_->mode_total);
   impl_->ensure_cube(impl_->mode_radius[impl_->mode_count - 1]);

@@ -72,6 +72,9 @@ class PoseQueryEngine {
 
   std::size_t max_modes() const;  // every mode of the FFT grid, by increasing |w|
   std::size_t modes() const;
+  // Terms the kernel evaluates per query at the current m': m' with conjugate pairs
+  // folded (about m' / 2, see QueryVariant::fold_conjugate_pairs), else m'.
+  std::size_t evaluated_terms() const;
   void set_modes(std::size_t m);  // clamped to [1, max_modes()]
 
   QueryResult query(const Pose& pose);
