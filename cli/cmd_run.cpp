@@ -178,7 +178,8 @@ void run_main_job(const RunOptions& opt) {
     std::cout << "    " << loop.frames << " frames, measured " << loop.measured_rate_hz << " Hz; frame time p50 "
               << quantile(loop.frame_ms, 0.5) << " ms, p99 " << quantile(loop.frame_ms, 0.99) << " ms, max "
               << quantile(loop.frame_ms, 1.0) << " ms; " << loop.misses << " misses (" << 100 * loop.miss_rate()
-              << " %), " << loop.mode_changes.size() << " m' changes\n";
+              << " %; " << loop.late_wakeup_misses << " late wake-ups, " << loop.stall_misses << " stalls), "
+              << loop.mode_changes.size() << " m' changes; threads: " << session->priority.describe() << "\n";
     for (const ModeChange& c : loop.mode_changes)
       std::cout << "      t = " << c.time_s << " s: m' " << c.from << " -> " << c.to << " (" << c.reason << ")\n";
     std::cout << "    final pose error " << session->final_error.position << " " << scene.units << ", "

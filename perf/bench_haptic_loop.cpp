@@ -10,6 +10,7 @@
 // --quick: 3 s of loop (CI proves it runs; no timing is checked).
 #include <filesystem>
 #include <fstream>
+#include <sys/resource.h>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -62,8 +63,15 @@ int main(int argc, char** argv) try {
   session.duration_s = seconds;
   session.loop_back = true;
   session.keep_log = true;  // the missed frames' details below
+  auto major_faults = [] {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return static_cast<long>(u.ru_majflt);
+  };
+  const long faults_before = major_faults();
   const SessionResult run = run_scripted_assembly(scene, pair.parts.part2.mesh, pair.spectra.spacing, engine,
                                                   tuned.result, session);
+  const long loop_major_faults = major_faults() - faults_before;
   const LoopReport& loop = run.loop;
   const std::string load_end = bench::read_loadavg();
 
@@ -72,12 +80,14 @@ int main(int argc, char** argv) try {
   std::cout << "frames " << loop.frames << " in " << loop.elapsed_s << " s: " << loop.measured_rate_hz
             << " Hz; frame ms p50 " << p50 << ", p99 " << p99 << ", max " << max << "; misses " << loop.misses
             << " (" << 100 * loop.miss_rate() << " %, target <= 0.1 %), of which " << loop.late_wakeup_misses
-            << " from waking late; skipped ticks " << loop.skipped_ticks << "\n"
+            << " from waking late and " << loop.stall_misses << " stalls (not acted on); skipped ticks "
+            << loop.skipped_ticks << "\n"
             << "wake-up lateness ms p50 " << quantile(loop.wake_late_ms, 0.5) << ", p99 "
             << quantile(loop.wake_late_ms, 0.99) << ", max " << quantile(loop.wake_late_ms, 1.0) << "\n"
             << "m' tuned " << tuned.result.chosen_modes << ", final " << loop.final_modes << ", "
             << loop.mode_changes.size() << " changes; seed 000 (published, K20c, translation only): 4096\n"
-            << "thread priority: " << run.priority.describe() << "\n"
+            << "thread priority: " << run.priority.describe() << "; major page faults during the loop: "
+            << loop_major_faults << "\n"
             << "load average: start " << load_start << ", end " << load_end << "\n";
 
   // Every missed frame: its work (wake-up to wrench sent) against the tuner's p99 model
@@ -120,6 +130,7 @@ int main(int argc, char** argv) try {
       {"miss_rate", loop.miss_rate()},
       {"skipped_ticks", loop.skipped_ticks},
       {"late_wakeup_misses", loop.late_wakeup_misses},
+      {"stall_misses", loop.stall_misses},
       {"wake_late_ms", {{"p50", quantile(loop.wake_late_ms, 0.5)}, {"p99", quantile(loop.wake_late_ms, 0.99)},
                         {"max", quantile(loop.wake_late_ms, 1.0)}}},
       {"frame_ms", {{"p50", p50}, {"p99", p99}, {"max", max}}},
@@ -128,6 +139,7 @@ int main(int argc, char** argv) try {
       {"final_modes", loop.final_modes},
       {"mode_changes", changes},
       {"missed_frames", missed},
+      {"major_page_faults", loop_major_faults},
       {"missed_by_work", {{"woke_late", late}, {"within_1_5x_model", tail}, {"1_5x_to_4x", slow}, {"beyond_4x", stall}}},
       {"seed000_published_modes", 4096},
       {"priority", {{"threads_raised", run.priority.threads}, {"realtime", run.priority.realtime},

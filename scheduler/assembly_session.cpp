@@ -45,6 +45,11 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, 
   const bool raise = (options.priority.nice_value != 0 || options.priority.realtime_priority > 0) && !options.simulated_time;
   if (raise) out.priority = raise_process_priority(options.priority);
   {
+    // Warm-up at the loop's m' and the first pose, as a haptics program does before it
+    // engages the device: the runtime's threads, now at their new priority, and the
+    // caches see the query once before the first deadline.
+    if (!options.simulated_time)
+      for (int i = 0; i < options.warmup_queries; ++i) engine.query(part.pose);
     HapticLoopThread loop(device, evaluator, config, part,
                           options.simulated_time ? simulated_loop_clock() : steady_loop_clock());
     out.loop = loop.join();

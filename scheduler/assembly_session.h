@@ -23,6 +23,7 @@ struct SessionOptions {
   // The run's threads during the loop (scheduler/thread_priority.h), restored after it:
   // SCHED_FIFO 10 where allowed, else nice -10. {0, 0} leaves them.
   PriorityRequest priority{-10, 10};
+  int warmup_queries = 50;  // queries at the first pose before the loop starts
 };
 
 struct SessionResult {

@@ -62,13 +62,17 @@ class ModeGovernor {
   // After each frame, with its own work time (wake-up to wrench sent) and whether it
   // missed because of that work. Returns the new m' when it changes, 0 otherwise;
   // `reason` says why.
-  std::size_t after_frame(std::size_t frame, double frame_ms, bool missed, std::string& reason) {
+  std::size_t after_frame(std::size_t frame, double frame_ms, bool missed, bool stall, std::string& reason) {
+    if (stall) stalls_.push_back(frame);
+    while (!stalls_.empty() && stalls_.front() + p_.miss_window <= frame) stalls_.pop_front();
+    // Stalls filling more than half the window: not stalls, a slower machine.
+    if (stall && 2 * stalls_.size() > p_.miss_window) missed = true;
     if (missed) misses_.push_back(frame);
     while (!misses_.empty() && misses_.front() + p_.miss_window <= frame) misses_.pop_front();
     recent_.push_back(frame_ms);
     if (recent_.size() > p_.up_after_frames) recent_.pop_front();
     ++since_change_;
-    if (missed) since_change_ = 0, recent_.clear();
+    if (missed || stall) since_change_ = 0, recent_.clear();
 
     if (misses_.size() >= p_.misses_to_step_down && level_ > 0) {
       reason = std::to_string(misses_.size()) + " misses in the last " + std::to_string(p_.miss_window) + " frames";
@@ -102,7 +106,7 @@ class ModeGovernor {
   const ModePolicy& p_;
   double budget_ms_;
   std::size_t level_;
-  std::deque<std::size_t> misses_;
+  std::deque<std::size_t> misses_, stalls_;
   std::deque<double> recent_;
   std::size_t since_change_ = 0;
 };
@@ -261,6 +265,10 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     // late (the OS), which a smaller m' cannot fix: it is counted, not acted on.
     const bool compute_miss = missed && compute_ms > config.modes.up_headroom * config.budget_ms;
     if (missed && !compute_miss) ++report.late_wakeup_misses;
+    const double predicted = config.modes.predicted_ms ? config.modes.predicted_ms(governor.modes()) : 0.0;
+    const bool stall = compute_miss && config.modes.stall_factor > 0 && predicted > 0 &&
+                       compute_ms > config.modes.stall_factor * predicted;
+    if (stall) ++report.stall_misses;
     report.frame_ms.push_back(frame_ms);
     report.wake_late_ms.push_back(1e3 * (woke - tick_time));
     if (config.keep_log)
@@ -283,7 +291,7 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     }
     std::string reason;
     const std::size_t before = governor.modes();
-    if (const std::size_t m = governor.after_frame(frame, compute_ms, compute_miss, reason)) {
+    if (const std::size_t m = governor.after_frame(frame, compute_ms, compute_miss && !stall, stall, reason)) {
       report.mode_changes.push_back(ModeChange{tick_time, frame, before, m, reason});
       if (engine.set_modes) engine.set_modes(m);
     }

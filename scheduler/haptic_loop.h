@@ -12,6 +12,11 @@
 // part is integrated over them with the held geometric wrench (the physics stays on
 // the fixed step). A miss whose own work (wake-up to wrench sent) fit in `up_headroom`
 // of the budget is a late wake-up, which m' cannot fix; it is counted, not acted on.
+// So is a stall: a miss whose work took more than `stall_factor` times the cost model's
+// p99 at its m' (`predicted_ms`), which a smaller m' would not have avoided (the
+// machine stopped: measured here as a few ms of work at an m' whose p99 is 0.2-0.6 ms),
+// unless stalls fill more than half of the last `miss_window` frames, when the machine
+// is simply slower than tuned and they count as work-bound misses.
 // When work-bound misses repeat (`misses_to_step_down` within `miss_window` frames),
 // m' steps down one level of the ladder at once; it steps up again, one level
 // at a time up to the tuned m', only after `up_after_frames` frames without a miss
@@ -68,6 +73,7 @@ struct ModePolicy {
   std::size_t misses_to_step_down = 2;
   std::size_t up_after_frames = 2000;
   double up_headroom = 0.6;
+  double stall_factor = 4;  // work beyond this multiple of predicted_ms(m') is a stall (0: none)
 };
 
 struct LoopConfig {
@@ -115,6 +121,7 @@ struct LoopReport {
   std::size_t passivity_frames = 0;    // frames in which the passivity controller damped the part
   double passivity_dissipated_j = 0;   // energy its damping removed, J
   std::size_t late_wakeup_misses = 0;  // misses whose own work fit: the thread woke late
+  std::size_t stall_misses = 0;        // misses whose work was far beyond the model (ModePolicy::stall_factor)
   std::vector<double> frame_ms;  // every frame: tick to wrench sent
   std::vector<double> wake_late_ms;  // every frame: how late the thread woke after its tick
   std::vector<FrameRecord> log;  // when keep_log

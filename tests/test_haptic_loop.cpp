@@ -250,3 +250,49 @@ TEST_CASE("haptic loop: misses from waking late are counted but do not step m' d
   REQUIRE(r.wake_late_ms.size() == r.frames);
   CHECK(*std::max_element(r.wake_late_ms.begin(), r.wake_late_ms.end()) == doctest::Approx(1.2));
 }
+
+TEST_CASE("haptic loop: stalls far beyond the cost model are counted but do not step m' down, unless they persist") {
+  // Model: 0.02 ms per 1000 modes, as the evaluator costs (0.33 ms at 16384).
+  auto with_model = [](LoopConfig c) {
+    c.modes.predicted_ms = [](std::size_t m) { return 0.02 * double(m) / 1000.0; };
+    return c;
+  };
+  {
+    // Two 3 ms stalls within 100 frames: work ~10x the model's 0.33 ms.
+    ManualClock clock;
+    FixedDevice device;
+    CostedEvaluator engine{&clock};
+    engine.extra[200] = 3.0;
+    engine.extra[240] = 3.0;
+    const LoopReport r = run_haptic_loop(device, engine.evaluator(), with_model(config(1.0)), clock.clock(), BodyState{});
+    CHECK(r.misses == 2);
+    CHECK(r.stall_misses == 2);
+    CHECK(r.mode_changes.empty());
+  }
+  {
+    // The same two misses with 0.9 ms of extra work (1.23 ms, 3.75x the model): work-bound.
+    ManualClock clock;
+    FixedDevice device;
+    CostedEvaluator engine{&clock};
+    engine.extra[200] = 0.9;
+    engine.extra[240] = 0.9;
+    const LoopReport r = run_haptic_loop(device, engine.evaluator(), with_model(config(1.0)), clock.clock(), BodyState{});
+    CHECK(r.misses == 2);
+    CHECK(r.stall_misses == 0);
+    REQUIRE(!r.mode_changes.empty());
+    CHECK(r.mode_changes[0].to == 8192);
+    CHECK(r.mode_changes[0].frame == 240);
+  }
+  {
+    // A machine 8x slower than tuned from frame 100 on: every frame "stalls"; once they
+    // fill half the window they count as misses and m' steps down.
+    ManualClock clock;
+    FixedDevice device;
+    CostedEvaluator engine{&clock};
+    for (std::size_t q = 100; q < 400; ++q) engine.extra[q] = 2.4;
+    const LoopReport r = run_haptic_loop(device, engine.evaluator(), with_model(config(1.0)), clock.clock(), BodyState{});
+    CHECK(r.stall_misses > 0);
+    REQUIRE(!r.mode_changes.empty());
+    CHECK(r.mode_changes[0].to == 8192);
+  }
+}
