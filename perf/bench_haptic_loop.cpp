@@ -6,7 +6,9 @@
 // and the tuned m' next to seed 000's 4096 on a Tesla K20c (published, not measured).
 //
 //   ./build/perf/bench_haptic_loop [--scene scenes/default.json] [--seconds 60]
-//                                  [--retune] [--quick] [--out results/bench_haptic_loop]
+//                                  [--retune] [--margin 0.25] [--quick] [--out results/bench_haptic_loop]
+// --margin: the tuner keeps the p99 at most (1 - margin) of the frame budget (its own
+// tuning file per margin).
 // --quick: 3 s of loop (CI proves it runs; no timing is checked).
 #include <filesystem>
 #include <fstream>
@@ -28,7 +30,7 @@ namespace fs = std::filesystem;
 
 int main(int argc, char** argv) try {
   std::string scene_path = "scenes/default.json", out_dir = "results/bench_haptic_loop";
-  double seconds = 60;
+  double seconds = 60, margin = 0.25;
   bool retune = false, quick = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -36,11 +38,13 @@ int main(int argc, char** argv) try {
     else if (bench::is_option(a, "--seconds")) seconds = std::stod(bench::option_value(argc, argv, i, "--seconds"));
     else if (bench::is_option(a, "--out")) out_dir = bench::option_value(argc, argv, i, "--out");
     else if (a == "--retune") retune = true;
+    else if (bench::is_option(a, "--margin")) margin = std::stod(bench::option_value(argc, argv, i, "--margin"));
     else if (a == "--quick") quick = true;
     else throw Error("unknown option " + a + " (see the comment at the top of perf/bench_haptic_loop.cpp)");
   }
   if (quick) seconds = 3;
   if (!(seconds > 0)) throw Error("--seconds: must be > 0");
+  if (!(margin >= 0 && margin < 1)) throw Error("--margin: must be in [0, 1)");
   const std::string load_start = bench::read_loadavg();
 
   const Scene scene = load_scene(scene_path);
@@ -51,9 +55,11 @@ int main(int argc, char** argv) try {
   const AssemblyPair pair = build_assembly_pair(scene, ctx, fft);
   const QueryVariant variant = query_variant_for(scene, Interpolation::tricubic);
   PoseQueryEngine engine(ctx, pair.spectra, variant);
-  const double margin = 0.25;
   const TuningKey key = tuning_key_for(device.info, variant, pair.spectra, scene.frame_budget_ms, margin, scene.loop_rate_hz);
-  const EngineTuning tuned = tune_engine(engine, key, sample_trajectory(scene.trajectory, 100.0), TuneOptions{},
+  TuneOptions tune_options;
+  tune_options.budget_ms = scene.frame_budget_ms;
+  tune_options.margin = margin;
+  const EngineTuning tuned = tune_engine(engine, key, sample_trajectory(scene.trajectory, 100.0), tune_options,
                                          retune, [](const std::string& m) { std::cerr << m << "\n"; });
   std::cout << "tuned m' = " << tuned.result.chosen_modes << (tuned.from_file ? " (tuning file)" : " (measured)")
             << ", model p99 " << tuned.result.model.predict_ms(tuned.result.chosen_modes) << " ms\n"
