@@ -2,7 +2,10 @@
 // Shared by the stability tests (tests/test_stability_*.cpp): the default peg-and-hole
 // scene made small and coarse so that the real engine (descriptors, spectra, queries)
 // runs in about a second, with descriptor parameters overridable for the stiff cases.
+#include <cmath>
 #include <string>
+
+#include <Eigen/Geometry>
 
 #include "engine/assembly_pair.h"
 #include "io/scene.h"
@@ -39,6 +42,14 @@ inline Scene small_peg_hole_scene(const SmallPairParams& p = {}) {
   if (s.assembled_pose) s.assembled_pose->translation *= p.scale;
   for (Keyframe& k : s.trajectory.keyframes) k.pose.translation *= p.scale;
   return s;
+}
+
+// Part 2 at translation t, turned `deg` degrees about `axis`.
+inline Pose pose_at(const Eigen::Vector3d& t, double deg = 0, const Eigen::Vector3d& axis = Eigen::Vector3d::UnitY()) {
+  Pose p;
+  p.translation = t;
+  p.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(deg * M_PI / 180, axis.normalized()));
+  return p;
 }
 
 inline AssemblyPair build_small_pair(const Scene& scene, double oversampling = 2) {

@@ -252,31 +252,27 @@ TEST_CASE("haptic loop: misses from waking late are counted but do not step m' d
 }
 
 TEST_CASE("haptic loop: stalls far beyond the cost model are counted but do not step m' down, unless they persist") {
-  // Model: 0.02 ms per 1000 modes, as the evaluator costs (0.33 ms at 16384).
-  auto with_model = [](LoopConfig c) {
-    c.modes.predicted_ms = [](std::size_t m) { return 0.02 * double(m) / 1000.0; };
-    return c;
-  };
-  {
-    // Two 3 ms stalls within 100 frames: work ~10x the model's 0.33 ms.
+  // Model: 0.02 ms per 1000 modes, as the evaluator costs (0.33 ms at 16384); `extra`
+  // adds ms of work at given queries.
+  auto run = [](const std::map<std::size_t, double>& extra) {
     ManualClock clock;
     FixedDevice device;
     CostedEvaluator engine{&clock};
-    engine.extra[200] = 3.0;
-    engine.extra[240] = 3.0;
-    const LoopReport r = run_haptic_loop(device, engine.evaluator(), with_model(config(1.0)), clock.clock(), BodyState{});
+    engine.extra = extra;
+    LoopConfig c = config(1.0);
+    c.modes.predicted_ms = [](std::size_t m) { return 0.02 * double(m) / 1000.0; };
+    return run_haptic_loop(device, engine.evaluator(), c, clock.clock(), BodyState{});
+  };
+  {
+    // Two 3 ms stalls within 100 frames: work ~10x the model's 0.33 ms.
+    const LoopReport r = run({{200, 3.0}, {240, 3.0}});
     CHECK(r.misses == 2);
     CHECK(r.stall_misses == 2);
     CHECK(r.mode_changes.empty());
   }
   {
     // The same two misses with 0.9 ms of extra work (1.23 ms, 3.75x the model): work-bound.
-    ManualClock clock;
-    FixedDevice device;
-    CostedEvaluator engine{&clock};
-    engine.extra[200] = 0.9;
-    engine.extra[240] = 0.9;
-    const LoopReport r = run_haptic_loop(device, engine.evaluator(), with_model(config(1.0)), clock.clock(), BodyState{});
+    const LoopReport r = run({{200, 0.9}, {240, 0.9}});
     CHECK(r.misses == 2);
     CHECK(r.stall_misses == 0);
     REQUIRE(!r.mode_changes.empty());
@@ -286,11 +282,9 @@ TEST_CASE("haptic loop: stalls far beyond the cost model are counted but do not 
   {
     // A machine 8x slower than tuned from frame 100 on: every frame "stalls"; once they
     // fill half the window they count as misses and m' steps down.
-    ManualClock clock;
-    FixedDevice device;
-    CostedEvaluator engine{&clock};
-    for (std::size_t q = 100; q < 400; ++q) engine.extra[q] = 2.4;
-    const LoopReport r = run_haptic_loop(device, engine.evaluator(), with_model(config(1.0)), clock.clock(), BodyState{});
+    std::map<std::size_t, double> slow;
+    for (std::size_t q = 100; q < 400; ++q) slow[q] = 2.4;
+    const LoopReport r = run(slow);
     CHECK(r.stall_misses > 0);
     REQUIRE(!r.mode_changes.empty());
     CHECK(r.mode_changes[0].to == 8192);

@@ -15,16 +15,7 @@
 #include "tests/stability_support.h"
 
 namespace snapfit {
-namespace {
-
-Pose pose_at(const Eigen::Vector3d& t, double deg, const Eigen::Vector3d& axis) {
-  Pose p;
-  p.translation = t;
-  p.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(deg * M_PI / 180, axis.normalized()));
-  return p;
-}
-
-}  // namespace
+using test::pose_at;
 
 TEST_CASE("pair folding: mode order keeps w and -w adjacent, and a prefix cuts at most one pair") {
   const AssemblyPair pair = test::build_small_pair(test::small_peg_hole_scene());

@@ -21,6 +21,8 @@ using Eigen::Vector3d;
 
 namespace {
 
+using test::pose_at;
+
 using Cd = std::complex<double>;
 
 struct DoubleSums {
@@ -145,13 +147,6 @@ DoubleSums double_sum(const PairSpectra& s, const std::vector<std::size_t>& orde
   out.kahan_force = Vector3d(ka[2], ka[3], ka[4]);
   out.kahan_torque = R * Vector3d(ka[5], ka[6], ka[7]);
   return out;
-}
-
-Pose pose_at(const Vector3d& t, double deg = 0, const Vector3d& axis = Vector3d::UnitY()) {
-  Pose p;
-  p.translation = t;
-  p.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(deg * M_PI / 180, axis.normalized()));
-  return p;
 }
 
 }  // namespace

@@ -21,12 +21,7 @@ using Eigen::Vector3d;
 
 namespace {
 
-Pose pose_at(const Vector3d& t, double deg = 0, const Vector3d& axis = Vector3d::UnitY()) {
-  Pose p;
-  p.translation = t;
-  p.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(deg * M_PI / 180, axis.normalized()));
-  return p;
-}
+using test::pose_at;
 
 struct Differences {
   QueryResult at;
