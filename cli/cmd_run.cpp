@@ -136,6 +136,7 @@ void run_main_job(const RunOptions& opt) {
     std::vector<TuningResult> tunings{tune_on(engine, key)};
     std::vector<TuningKey> keys{key};
     std::vector<std::string> names{device.info.name};
+    std::vector<bool> in_caller_thread{device.info.runs_in_caller_thread()};
     if (device_spec_from(opt.device).empty())
       for (const Device& other : enumerate_devices()) {
         if (other.info.index == device.info.index) continue;
@@ -147,16 +148,19 @@ void run_main_job(const RunOptions& opt) {
           keys.push_back(tuning_key_for(other.info, variant, *spectra, scene.frame_budget_ms, opt.margin, scene.loop_rate_hz));
           tunings.push_back(tune_on(*other_engine, keys.back()));
           names.push_back(other.info.name);
+          in_caller_thread.push_back(other.info.runs_in_caller_thread());
           other_contexts.push_back(std::move(other_ctx));
           other_engines.push_back(std::move(other_engine));
         } catch (const Error& e) {
           note("device " + other.info.name + " left out of the loop choice: " + e.what());
         }
       }
-    const std::size_t pick = lowest_latency(tunings);
+    const std::size_t pick = loop_device(tunings, in_caller_thread);
     if (tunings.size() > 1)
-      std::cout << "    the loop runs on " << names[pick] << " (lowest tuned latency of " << tunings.size()
-                << " devices)\n";
+      std::cout << "    the loop runs on " << names[pick] << " (of " << tunings.size() << " tuned devices: "
+                << (in_caller_thread[pick] ? "runs kernels in the loop's own thread, "
+                                           : "")
+                << "m' " << tunings[pick].chosen_modes << ", scheduler/device_choice.h)\n";
     if (pick > 0) loop_engine = other_engines[pick - 1].get();
     tuning = tunings[pick];
     key = keys[pick];

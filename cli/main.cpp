@@ -1,11 +1,18 @@
 // snapfit: haptic guidance for rigid-part assembly. One executable, one subcommand
 // per task; `snapfit SUBCOMMAND --help` describes each.
+#include <cstdlib>
 #include <iostream>
 
 #include "cli/commands.h"
 #include "engine/error.h"
 
 int main(int argc, char** argv) {
+  // PoCL exposes only its multi-threaded CPU driver by default. Ask it for the
+  // single-threaded one too, which runs kernels in the calling thread: `snapfit run`
+  // tunes both and runs the haptic loop on the one that suits it
+  // (scheduler/device_choice.h loop_device); everything else still defaults to the
+  // first PoCL CPU device, the multi-threaded one. A POCL_DEVICES set by the user wins.
+  setenv("POCL_DEVICES", "pthread basic", 0);
   CLI::App app{"snapfit: geometric energy, force and torque between two rigid parts for haptic assembly"};
   app.require_subcommand(1);
   snapfit::cli::add_devices_command(app);

@@ -48,6 +48,11 @@ bool DeviceInfo::is_pocl() const {
          lower(platform_version).find("pocl") != std::string::npos;
 }
 
+bool DeviceInfo::runs_in_caller_thread() const {
+  // PoCL names its devices after the driver: "basic-<cpu>", "pthread-<cpu>", ...
+  return is_pocl() && lower(name).rfind("basic", 0) == 0;
+}
+
 std::vector<Device> enumerate_devices() {
   std::vector<Device> out;
   std::vector<cl::Platform> platforms;
@@ -92,6 +97,9 @@ std::size_t select_device_index(const std::vector<DeviceInfo>& devices, const st
   }
   const std::string spec = lower(trimmed(spec_in));
   if (spec.empty()) {
+    // PoCL's multi-threaded CPU driver first (its single-threaded "basic" driver uses one core).
+    for (std::size_t i = 0; i < devices.size(); ++i)
+      if (devices[i].is_pocl() && devices[i].type == "cpu" && !devices[i].runs_in_caller_thread()) return i;
     for (std::size_t i = 0; i < devices.size(); ++i)
       if (devices[i].is_pocl() && devices[i].type == "cpu") return i;
     for (std::size_t i = 0; i < devices.size(); ++i)

@@ -28,6 +28,9 @@ struct DeviceInfo {
   std::size_t max_work_group_size = 0;
   bool fp64 = false;
   bool is_pocl() const;
+  // The runtime runs kernels in the thread that waits for them, with no worker threads
+  // to wake (PoCL's "basic" driver).
+  bool runs_in_caller_thread() const;
 };
 
 struct Device {

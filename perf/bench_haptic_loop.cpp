@@ -6,14 +6,19 @@
 // and the tuned m' next to seed 000's 4096 on a Tesla K20c (published, not measured).
 //
 //   ./build/perf/bench_haptic_loop [--scene scenes/default.json] [--seconds 60]
-//                                  [--retune] [--margin 0.25] [--quick] [--out results/bench_haptic_loop]
+//                                  [--retune] [--margin 0.25] [--device SPEC] [--quick]
+//                                  [--out results/bench_haptic_loop]
+// --device: the OpenCL device (as `snapfit --device`); default: PoCL's single-threaded
+// driver when there is one, which `snapfit run` picks for the loop, else the default.
 // --margin: the tuner keeps the p99 at most (1 - margin) of the frame budget (its own
 // tuning file per margin).
 // --quick: 3 s of loop (CI proves it runs; no timing is checked).
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sys/resource.h>
 #include <iostream>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "engine/assembly_pair.h"
@@ -29,7 +34,7 @@ using namespace snapfit;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) try {
-  std::string scene_path = "scenes/default.json", out_dir = "results/bench_haptic_loop";
+  std::string scene_path = "scenes/default.json", out_dir = "results/bench_haptic_loop", device_spec;
   double seconds = 60, margin = 0.25;
   bool retune = false, quick = false;
   for (int i = 1; i < argc; ++i) {
@@ -38,6 +43,7 @@ int main(int argc, char** argv) try {
     else if (bench::is_option(a, "--seconds")) seconds = std::stod(bench::option_value(argc, argv, i, "--seconds"));
     else if (bench::is_option(a, "--out")) out_dir = bench::option_value(argc, argv, i, "--out");
     else if (a == "--retune") retune = true;
+    else if (bench::is_option(a, "--device")) device_spec = bench::option_value(argc, argv, i, "--device");
     else if (bench::is_option(a, "--margin")) margin = std::stod(bench::option_value(argc, argv, i, "--margin"));
     else if (a == "--quick") quick = true;
     else throw Error("unknown option " + a + " (see the comment at the top of perf/bench_haptic_loop.cpp)");
@@ -48,7 +54,19 @@ int main(int argc, char** argv) try {
   const std::string load_start = bench::read_loadavg();
 
   const Scene scene = load_scene(scene_path);
-  const Device device = select_device(device_spec_from(""));
+  // The loop's device as `snapfit run` picks it (scheduler/device_choice.h): PoCL's
+  // single-threaded driver, which runs kernels in the loop's own thread, when there is
+  // one (main() of the CLI asks PoCL for it as this does); --device overrides.
+  setenv("POCL_DEVICES", "pthread basic", 0);
+  Device device;
+  if (device_spec.empty()) {
+    std::optional<Device> caller_thread;
+    for (const Device& d : enumerate_devices())
+      if (d.info.runs_in_caller_thread() && !caller_thread) caller_thread = d;
+    device = caller_thread ? *caller_thread : select_device(device_spec_from(""));
+  } else {
+    device = select_device(device_spec_from(device_spec));
+  }
   std::cout << "device " << describe_device(device.info) << "\n";
   const FftLibrary fft;
   const ComputeContext ctx = make_compute_context(device);

@@ -1,5 +1,6 @@
 #include "scheduler/device_choice.h"
 
+#include <algorithm>
 #include <limits>
 
 #include "engine/error.h"
@@ -35,6 +36,26 @@ std::size_t lowest_latency(const std::vector<TuningResult>& tunings) {
     if (i == 0 || better) best = i, best_ms = ms;
   }
   return best;
+}
+
+std::size_t loop_device(const std::vector<TuningResult>& tunings, const std::vector<bool>& in_caller_thread) {
+  if (tunings.empty()) throw Error("device choice: no tuned devices to choose from");
+  if (in_caller_thread.size() != tunings.size()) throw Error("device choice: one caller-thread flag per tuning expected");
+  bool any_fits = false;
+  std::size_t largest = 0;
+  for (const TuningResult& t : tunings) any_fits = any_fits || t.fits;
+  for (const TuningResult& t : tunings)
+    if (t.fits || !any_fits) largest = std::max(largest, t.chosen_modes);
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < tunings.size(); ++i)
+    if ((tunings[i].fits || !any_fits) && 2 * tunings[i].chosen_modes >= largest) candidates.push_back(i);
+  std::vector<std::size_t> in_caller;
+  for (const std::size_t i : candidates)
+    if (in_caller_thread[i]) in_caller.push_back(i);
+  const std::vector<std::size_t>& pool = in_caller.empty() ? candidates : in_caller;
+  std::vector<TuningResult> subset;
+  for (const std::size_t i : pool) subset.push_back(tunings[i]);
+  return pool[lowest_latency(subset)];
 }
 
 }  // namespace snapfit

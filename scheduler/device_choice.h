@@ -13,4 +13,14 @@ namespace snapfit {
 // when `tunings` is empty.
 std::size_t lowest_latency(const std::vector<TuningResult>& tunings);
 
+// The device the haptic loop runs on. Among the tunings that fit the budget (all, if
+// none does), those whose chosen m' is at least half the largest chosen m'; of those,
+// the devices that run kernels in the calling thread when there are any
+// (`in_caller_thread`, DeviceInfo::runs_in_caller_thread: PoCL's basic driver, with no
+// worker thread to wake each frame: on the 2-core machine of the README it missed
+// 0.028-0.043 % of frames per minute at m' = 16,384 against 0.077-0.19 % for PoCL's
+// pthread driver at the same m'); then the lowest latency (lowest_latency). Throws
+// snapfit::Error when `tunings` is empty or the flags do not match it.
+std::size_t loop_device(const std::vector<TuningResult>& tunings, const std::vector<bool>& in_caller_thread);
+
 }  // namespace snapfit

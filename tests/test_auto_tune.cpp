@@ -206,3 +206,29 @@ TEST_CASE("device choice: the loop goes to the device with the lowest tuned late
   CHECK(lowest_latency({cpu}) == 0);
   CHECK_THROWS_AS(lowest_latency({}), Error);
 }
+
+TEST_CASE("device choice: the loop prefers a device that runs kernels in its own thread when its m' is close") {
+  TuneOptions opt;
+  opt.repetitions = 50;
+  // pthread-like: low fixed cost; basic-like (caller thread): higher per-mode cost.
+  const TuningResult pthread = tune_modes(linear_timer(0.05, 2e-5), 1 << 18, opt);
+  const TuningResult basic = tune_modes(linear_timer(0.05, 3e-5), 1 << 18, opt);
+  const TuningResult far_slower = tune_modes(linear_timer(0.05, 9e-5), 1 << 18, opt);
+  const TuningResult misfit = tune_modes(linear_timer(0.9, 1e-5), 1 << 18, opt);
+  REQUIRE(pthread.fits);
+  REQUIRE(basic.fits);
+  REQUIRE(2 * basic.chosen_modes >= pthread.chosen_modes);
+  REQUIRE(2 * far_slower.chosen_modes < pthread.chosen_modes);
+  REQUIRE(!misfit.fits);
+  CHECK(lowest_latency({pthread, basic}) == 0);  // by latency alone, pthread
+  CHECK(loop_device({pthread, basic}, {false, true}) == 1);
+  CHECK(loop_device({basic, pthread}, {true, false}) == 0);
+  // Less than half the m': latency decides.
+  CHECK(loop_device({pthread, far_slower}, {false, true}) == 0);
+  // Fitting beats not fitting, caller thread or not.
+  CHECK(loop_device({misfit, pthread}, {true, false}) == 1);
+  // No caller-thread device: lowest latency.
+  CHECK(loop_device({basic, pthread}, {false, false}) == 1);
+  CHECK_THROWS_AS(loop_device({}, {}), Error);
+  CHECK_THROWS_AS(loop_device({pthread}, {true, false}), Error);
+}

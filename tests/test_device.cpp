@@ -42,6 +42,12 @@ TEST_CASE("device selection: the default is PoCL's CPU device, wherever it is li
   CHECK(select_device_index(no_pocl, "") == 1);  // then the first CPU
   std::vector<DeviceInfo> gpu_only = {three_devices()[0]};
   CHECK(select_device_index(gpu_only, "") == 0);  // then device 0
+  // PoCL listing its single-threaded driver first: the multi-threaded one is the default.
+  const std::vector<DeviceInfo> pocl_two = {
+      fake(0, 0, 0, "Portable Computing Language", "basic-skylake-avx512-AMD EPYC", "cpu"),
+      fake(1, 0, 1, "Portable Computing Language", "pthread-skylake-avx512-AMD EPYC", "cpu")};
+  CHECK(select_device_index(pocl_two, "") == 1);
+  CHECK(select_device_index({pocl_two[0]}, "") == 0);  // basic alone is still PoCL's CPU device
 }
 
 TEST_CASE("device selection: by index, platform:device, type and name substring") {
@@ -104,4 +110,17 @@ TEST_CASE("device self-check: every device computes the reference sum, in float 
       CHECK_THROWS_AS(run_device_check(ctx, true, no_cache), Error);
     }
   }
+}
+
+TEST_CASE("device: PoCL's basic driver runs kernels in the caller's thread, its pthread driver does not") {
+  snapfit::DeviceInfo d;
+  d.platform_name = "Portable Computing Language";
+  d.name = "basic-skylake-avx512-AMD EPYC";
+  CHECK(d.runs_in_caller_thread());
+  d.name = "pthread-skylake-avx512-AMD EPYC";
+  CHECK(!d.runs_in_caller_thread());
+  d.platform_name = "NVIDIA CUDA";
+  d.platform_version = "OpenCL 3.0 CUDA 12.4";
+  d.name = "basic GPU";
+  CHECK(!d.runs_in_caller_thread());
 }
