@@ -26,7 +26,10 @@ struct PoseQueryEngine::Impl {
   std::size_t mode_total = 0, mode_count = 0;
   std::size_t wg = 64, max_groups = 4, modes_per_group = 4096;
   cl::Buffer modes, cube, poses, partials;
-  cl::Buffer line_weights, line_rank;  // translation only: dense x-lines (kernels/pose_query.cl)
+  cl::Buffer line_weights, line_rank, line_partner;  // translation only: dense x-lines (kernels/pose_query.cl)
+  // Translation only with conjugate pairs folded: valid while m' is at most this (the
+  // first mode without a partner that lies in a line the folded sum skips).
+  std::size_t fold_limit = 0;
   std::vector<int> table_half;  // max |k| over all axes of modes [0, i]: the phase tables' reach
   // 6-DOF records (a mode, or a folded conjugate pair): modes held by records [0, j], and
   // record j's first mode alone (weight W, unfolded).
@@ -113,7 +116,7 @@ struct PoseQueryEngine::Impl {
   // The records that hold the first mode_count modes: all of records [0, n), and when
   // mode_count cuts a pair, `extra` = the pair's first mode alone (else a zero weight).
   std::size_t record_count(cl_float4* extra) const {
-    if (variant.translation_only) return mode_count;
+    if (variant.translation_only) return mode_count;  // the rank threshold of translation_lines
     const std::size_t n = static_cast<std::size_t>(
         std::upper_bound(record_modes.begin(), record_modes.end(), mode_count) - record_modes.begin());
     const std::size_t held = n == 0 ? 0 : record_modes[n - 1];
@@ -121,6 +124,9 @@ struct PoseQueryEngine::Impl {
     if (held < mode_count) *extra = first_of_record[n];
     return n;
   }
+
+  // Translation only: whether the current m' runs the folded line sum.
+  bool translation_folded() const { return variant.translation_only && fold_limit > 0 && mode_count <= fold_limit; }
 
   // Work-groups per pose: one per `modes_per_group` records, at most max_groups (on a
   // CPU device a work-group runs on one core; more groups than cores only add overhead).
@@ -249,7 +255,7 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
   // node's rank in the mode order (kernels/pose_query.cl translation_lines); rows
   // padded by 8 nodes (rank max).
   std::vector<Complex> line_w;
-  std::vector<cl_int> line_rank;
+  std::vector<cl_int> line_rank, line_partner;
   int dense_min[3] = {0, 0, 0}, dense_max[3] = {0, 0, 0}, dense_dims[3] = {0, 0, 0};
   if (variant.translation_only) {
     for (int a = 0; a < 3; ++a) {
@@ -270,6 +276,34 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
                                std::size_t(dense_dims[0]) * (std::size_t(kk[1] - dense_min[1]) + std::size_t(dense_dims[1]) * std::size_t(kk[2] - dense_min[2]));
       line_w[node] = spectra.part1.rho[k] * static_cast<float>(dw) * spectra.part2.rho[neg];
       line_rank[node] = static_cast<cl_int>(std::min<std::size_t>(i, std::numeric_limits<cl_int>::max() - 1));
+    }
+    // Conjugate pairs (a real correlation): the folded sum visits the lines with kz > 0
+    // or kz = 0, ky >= 0; a node there whose partner -k lies in a skipped line (or in the
+    // kx < 0 half of the centre line) carries the partner's rank; the partners carry -1
+    // (skipped); nodes without a partner (node 0, Nyquist components) carry INT_MAX.
+    if (variant.fold_conjugate_pairs && spectra.conjugate_pairs() == 1) {
+      const cl_int none = std::numeric_limits<cl_int>::max();
+      line_partner.assign(dense, none);
+      auto node_of = [&](const std::array<int, 3>& kk) {
+        return std::size_t(kk[0] - dense_min[0]) +
+               std::size_t(dense_dims[0]) * (std::size_t(kk[1] - dense_min[1]) + std::size_t(dense_dims[1]) * std::size_t(kk[2] - dense_min[2]));
+      };
+      auto upper = [](const std::array<int, 3>& kk) {
+        return kk[2] > 0 || (kk[2] == 0 && (kk[1] > 0 || (kk[1] == 0 && kk[0] > 0)));
+      };
+      auto visited_line = [](const std::array<int, 3>& kk) { return kk[2] > 0 || (kk[2] == 0 && kk[1] >= 0); };
+      m.fold_limit = total;
+      for (std::size_t i = 0; i < total; ++i) {
+        const std::size_t k = order[i], neg = negated_node(dims, k);
+        const std::array<int, 3> kk = mode_k(k);
+        const std::size_t node = node_of(kk);
+        if (neg == kNoNode || neg == k) {
+          if (!visited_line(kk)) m.fold_limit = std::min(m.fold_limit, i);
+          continue;  // alone: counted once, wherever its line is visited
+        }
+        if (upper(kk)) line_partner[node] = line_rank[node_of(mode_k(neg))];
+        else line_partner[node] = -1;
+      }
     }
   }
   m.mode_total = total;
@@ -320,6 +354,12 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
       m.kernel.setArg(4, cl_int4{{dense_max[0], dense_max[1], dense_max[2], 0}});
       m.kernel.setArg(5, cl_float16{});
       m.kernel.setArg(12, inv_length);
+      if (!line_partner.empty())
+        m.line_partner = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_int) * line_partner.size(), line_partner.data());
+      else
+        m.line_partner = cl::Buffer(ctx.context, CL_MEM_READ_ONLY, sizeof(cl_int) * 8);  // never read (not folded)
+      m.kernel.setArg(13, m.line_partner);
+      m.kernel.setArg(14, cl_int(0));
     } else {
       m.modes = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * mode_data.size(), mode_data.data());
       m.kernel.setArg(0, m.modes);
@@ -341,6 +381,9 @@ PoseQueryEngine::~PoseQueryEngine() = default;
 std::size_t PoseQueryEngine::max_modes() const { return impl_->mode_total; }
 std::size_t PoseQueryEngine::modes() const { return impl_->mode_count; }
 std::size_t PoseQueryEngine::evaluated_terms() const {
+  // Translation only, folded: each pair is one term (the mode order keeps pairs
+  // adjacent, so m' modes hold about m' / 2 pairs).
+  if (impl_->translation_folded()) return (impl_->mode_count + 1) / 2;
   cl_float4 extra{};
   const std::size_t records = impl_->record_count(&extra);
   return records + (extra.s[0] != 0.0f || extra.s[1] != 0.0f ? 1 : 0);
@@ -402,6 +445,7 @@ std::vector<QueryResult> PoseQueryEngine::query_batch(const std::vector<Pose>& p
       m.kernel.setArg(8 - shift, static_cast<cl_int>(slot.size()));
       m.kernel.setArg(9 - shift, static_cast<cl_int>(records));
       if (!m.variant.translation_only) m.kernel.setArg(14, extra);
+      if (m.variant.translation_only) m.kernel.setArg(14, cl_int(m.translation_folded() ? 1 : 0));
       m.kernel.setArg(10 - shift, static_cast<cl_int>(groups_per_pose));
       m.kernel.setArg(11 - shift, static_cast<cl_int>(m.table_half[m.mode_count - 1]));
       m.queue.enqueueNDRangeKernel(m.kernel, cl::NullRange, cl::NDRange(groups * m.wg), cl::NDRange(m.wg));

@@ -188,11 +188,20 @@ void pose_query(__global const float4* modes, __global const CUBE_T* cube,
 //   F = Re(2 pi i w f-terms) = -2 pi (Im(s_x p) / L_x, ky Im(s p) / L_y, kz Im(s p) / L_z).
 // Lines have `dims.x` nodes (the grid's x-extent plus 8 of padding with rank INT_MAX);
 // dense_min is the signed k of node (0, 0, 0).
+// With `folded` (a real correlation, engine/pose_query.cpp): terms at k and -k are
+// complex conjugates, so only the lines with kz > 0, or kz = 0 and ky >= 0, are visited;
+// `partner` holds, for a node there, the rank of its partner -k when that lies in a
+// skipped line or the centre line's kx < 0 half (-1 for those partners themselves,
+// INT_MAX for a node without one). A node weighs a = [rank < m'] + [partner < m'] in the
+// real outputs (Re f, F: a pair is twice the real part) and b = [rank < m'] -
+// [partner < m'] in Im f (a pair's imaginary parts cancel; a pair cut by m' is one mode).
+// The host folds only while m' is below every unpartnered node of a skipped line.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void translation_lines(__global const float2* W, __global const int* rank, const int4 dims, const int4 dense_min,
                        const int4 dense_max, const float16 pose_arg, __global const float16* poses,
                        const int pose_count, const int mode_count, const int groups_per_pose, const int table_half,
-                       __global float* partials, const float4 inv_length) {
+                       __global float* partials, const float4 inv_length, __global const int* partner,
+                       const int folded) {
   const int group = get_group_id(0);
   const int pose = group / groups_per_pose;
   const int slice = group % groups_per_pose;
@@ -214,9 +223,9 @@ void translation_lines(__global const float2* W, __global const int* rank, const
   }
   barrier(CLK_LOCAL_MEM_FENCE);
 
-  // The lines that can hold retained modes: |ky|, |kz| <= table_half.
+  // The lines that can hold retained modes: |ky|, |kz| <= table_half (folded: kz >= 0).
   const int y0 = max(-table_half, dense_min.y), y1 = min(table_half, dense_max.y);
-  const int z0 = max(-table_half, dense_min.z), z1 = min(table_half, dense_max.z);
+  const int z0 = max(folded ? 0 : -table_half, dense_min.z), z1 = min(table_half, dense_max.z);
   const int x0 = max(-table_half, dense_min.x), x1 = min(table_half, dense_max.x);
   const int ny = y1 - y0 + 1, lines = ny * (z1 - z0 + 1);
   const float8 lane = (float8)(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f);
@@ -224,26 +233,41 @@ void translation_lines(__global const float2* W, __global const int* rank, const
   float3 force = (float3)(0.0f);
   for (int l = slice * WG_SIZE + lid; l < lines; l += groups_per_pose * WG_SIZE) {
     const int ky = y0 + l % ny, kz = z0 + l / ny;
+    if (folded && kz == 0 && ky < 0) continue;  // the partners of the kz = 0, ky > 0 lines
     const int row = dims.x * ((kz - dense_min.z) * dims.y + (ky - dense_min.y)) - dense_min.x;
+    // s, sx: weight a (real outputs); sb: weight b (Im f); unfolded a = b = [rank < m'].
     float8 sr = (float8)(0.0f), si = (float8)(0.0f), sxr = (float8)(0.0f), sxi = (float8)(0.0f);
+    float8 sbr = (float8)(0.0f), sbi = (float8)(0.0f);
     for (int x = x0; x <= x1; x += 8) {
       const float16 w = vload16(0, (__global const float*)(W + row + x));
       const float16 t = vload16(0, (__local const float*)(tx + x));
-      const int8 keep = vload8(0, rank + row + x) < (int8)(mode_count);
-      const float8 pr = select((float8)(0.0f), w.even * t.even - w.odd * t.odd, keep);
-      const float8 pim = select((float8)(0.0f), w.even * t.odd + w.odd * t.even, keep);
+      const float8 own = select((float8)(0.0f), (float8)(1.0f), vload8(0, rank + row + x) < (int8)(mode_count));
+      float8 a = own, b = own;
+      if (folded) {
+        const int8 q = vload8(0, partner + row + x);
+        const float8 other = select((float8)(0.0f), (float8)(1.0f), q < (int8)(mode_count));
+        const float8 skip = select((float8)(1.0f), (float8)(0.0f), q < (int8)(0));
+        a = skip * (own + other);
+        b = skip * (own - other);
+      }
+      const float8 pr = w.even * t.even - w.odd * t.odd;
+      const float8 pim = w.even * t.odd + w.odd * t.even;
       const float8 kx = (float8)((float)x) + lane;
-      sr += pr;
-      si += pim;
-      sxr += kx * pr;
-      sxi += kx * pim;
+      sr += a * pr;
+      si += a * pim;
+      sxr += kx * a * pr;
+      sxi += kx * a * pim;
+      sbr += b * pr;
+      sbi += b * pim;
     }
     const float4 r4 = sr.lo + sr.hi, i4 = si.lo + si.hi, xr4 = sxr.lo + sxr.hi, xi4 = sxi.lo + sxi.hi;
+    const float4 br4 = sbr.lo + sbr.hi, bi4 = sbi.lo + sbi.hi;
     const float2 s = (float2)(r4.x + r4.y + r4.z + r4.w, i4.x + i4.y + i4.z + i4.w);
     const float2 sx = (float2)(xr4.x + xr4.y + xr4.z + xr4.w, xi4.x + xi4.y + xi4.z + xi4.w);
+    const float2 sb = (float2)(br4.x + br4.y + br4.z + br4.w, bi4.x + bi4.y + bi4.z + bi4.w);
     const float2 p = cmul(ty[ky], tz[kz]);
     const float2 term = cmul(s, p);
-    f += term;
+    f += (float2)(term.x, cmul(sb, p).y);
 #ifdef FORCE
     force += -TWO_PI * (float3)(cmul(sx, p).y, (float)ky * term.y, (float)kz * term.y) * inv_length.xyz;
 #endif

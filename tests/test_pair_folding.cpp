@@ -5,6 +5,7 @@
 // m' that keep whole pairs and m' that cut one, and the sample parity that decides it.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <vector>
@@ -110,6 +111,61 @@ TEST_CASE("pair folding: sample parity is real, imaginary or general, and only r
   // imaginary), not folded; general complex samples are not folded either.
   CHECK(parities(real, imaginary) == std::array<int, 3>{1, -1, 0});
   CHECK(parities(general, imaginary) == std::array<int, 3>{0, -1, 0});
+}
+
+}  // namespace snapfit
+
+namespace snapfit {
+
+TEST_CASE("pair folding: translation-only folded, unfolded and 6-DOF at R = I agree for every m'") {
+  const AssemblyPair pair = test::build_small_pair(test::small_peg_hole_scene());
+  REQUIRE(pair.spectra.conjugate_pairs() == 1);
+  QueryVariant folded, full, six;
+  folded.translation_only = full.translation_only = true;
+  folded.torque = full.torque = six.torque = false;
+  full.fold_conjugate_pairs = false;
+  six.interpolation = Interpolation::trilinear;
+  PoseQueryEngine a(test::test_context(), pair.spectra, folded, test::test_program_cache());
+  PoseQueryEngine b(test::test_context(), pair.spectra, full, test::test_program_cache());
+  PoseQueryEngine c(test::test_context(), pair.spectra, six, test::test_program_cache());
+  const std::vector<Pose> poses = {test::pose_at({1, 0, -8}), test::pose_at({0.5, 0.3, 2}), test::pose_at({2, -1, -4})};
+  const std::size_t total = a.max_modes();
+  const std::vector<std::size_t> ladder = {1, 2, 3, 64, 65, 4096, 4097, total / 2, total - 1, total};
+  // Scales: the largest |f| and |F| of the unfolded sum over every m' and pose (the
+  // sums cancel at some poses, so their own size is not the float round-off's scale).
+  double e_scale = 0, f_scale = 0;
+  for (const std::size_t m : ladder) {
+    b.set_modes(m);
+    for (const Pose& p : poses) {
+      const QueryResult r = b.query(p);
+      e_scale = std::max(e_scale, std::abs(r.score));
+      f_scale = std::max(f_scale, r.force.norm());
+    }
+  }
+  std::size_t folded_at = 0, unfolded_at = 0;
+  for (const std::size_t m : ladder) {
+    a.set_modes(m);
+    b.set_modes(m);
+    c.set_modes(m);
+    // Folded runs evaluate about half the terms; past the first unpartnered node of a
+    // skipped line (the Nyquist planes, at about half of all modes) it sums every line.
+    if (a.evaluated_terms() < m) ++folded_at;
+    else ++unfolded_at;
+    CHECK(b.evaluated_terms() == m);
+    for (const Pose& p : poses) {
+      CAPTURE(m);
+      const QueryResult ra = a.query(p), rb = b.query(p), rc = c.query(p);
+      REQUIRE(ra.flags == query_ok);
+      CHECK(std::abs(ra.energy - rb.energy) <= 2e-5 * e_scale);
+      CHECK(std::abs(ra.score.imag() - rb.score.imag()) <= 2e-5 * e_scale);
+      CHECK((ra.force - rb.force).norm() <= 2e-5 * f_scale);
+      // And the 6-DOF kernel at R = I (its interpolation at lattice points is exact).
+      CHECK(std::abs(ra.energy - rc.energy) <= 2e-5 * e_scale);
+      CHECK((ra.force - rc.force).norm() <= 2e-5 * f_scale);
+    }
+  }
+  CHECK(folded_at >= 7);   // every m' below half of the modes folds
+  CHECK(unfolded_at >= 2);  // total - 1 and total reach the Nyquist planes
 }
 
 }  // namespace snapfit
