@@ -839,7 +839,10 @@ int run(const Args& args) {
         const double share = double(r.terms) / double(r.modes_used);
         r.cost.bytes *= share;
         r.cost.flops *= share;
-        r.cost.bytes_detail += ", x " + fmt(share, 3) + " terms per mode (conjugate pairs folded)";
+        // Folded translation-only lines also read each node's partner rank (4 B more).
+        if (spec.variant.translation_only) r.cost.bytes *= 24.0 / 20.0;
+        r.cost.bytes_detail += std::string(spec.variant.translation_only ? " + partner rank 4 B per node" : "") + ", x " +
+                               fmt(share, 3) + " terms per mode (conjugate pairs folded)";
         r.cost.flops_detail += ", x " + fmt(share, 3) + " terms per mode";
       }
       r.fp = footprint(spectra, radii, r.modes_used, spec.variant);
