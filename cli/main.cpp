@@ -1,18 +1,15 @@
 // snapfit: haptic guidance for rigid-part assembly. One executable, one subcommand
 // per task; `snapfit SUBCOMMAND --help` describes each.
-#include <cstdlib>
 #include <iostream>
 
 #include "cli/commands.h"
+#include "engine/device.h"
 #include "engine/error.h"
 
 int main(int argc, char** argv) {
-  // PoCL exposes only its multi-threaded CPU driver by default. Ask it for the
-  // single-threaded one too, which runs kernels in the calling thread: `snapfit run`
-  // tunes both and runs the haptic loop on the one that suits it
-  // (scheduler/device_choice.h loop_device); everything else still defaults to the
-  // first PoCL CPU device, the multi-threaded one. A POCL_DEVICES set by the user wins.
-  setenv("POCL_DEVICES", "pthread basic", 0);
+  // `snapfit run` tunes both PoCL CPU drivers and runs the loop on the one that suits
+  // it; everything else still defaults to the multi-threaded one.
+  snapfit::expose_pocl_caller_thread_driver();
   CLI::App app{"snapfit: geometric energy, force and torque between two rigid parts for haptic assembly"};
   app.require_subcommand(1);
   snapfit::cli::add_devices_command(app);

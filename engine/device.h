@@ -38,6 +38,12 @@ struct Device {
   cl::Device device;
 };
 
+// PoCL exposes only its multi-threaded CPU driver by default. This asks it for the
+// single-threaded one too ("basic", which runs kernels in the calling thread and suits
+// the haptic loop: scheduler/device_choice.h loop_device), by setting POCL_DEVICES to
+// "pthread basic" unless the user set it. Call it before the first OpenCL call.
+void expose_pocl_caller_thread_driver();
+
 // Every device of every platform. A platform that fails to answer is skipped; no
 // platform at all gives an empty list (the caller reports it).
 std::vector<Device> enumerate_devices();

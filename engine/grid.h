@@ -23,6 +23,11 @@ struct GridSpec {
                                              (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(k));
   }
   Eigen::Vector3d point(int i, int j, int k) const { return origin + spacing * Eigen::Vector3d(i, j, k); }
+  // The point of grid index `id` (the inverse of index()).
+  Eigen::Vector3d point(std::size_t id) const {
+    const std::size_t nx = static_cast<std::size_t>(dims.x()), ny = static_cast<std::size_t>(dims.y());
+    return point(static_cast<int>(id % nx), static_cast<int>(id / nx % ny), static_cast<int>(id / (nx * ny)));
+  }
 };
 
 // The grid that covers `box` grown by `params.padding` on every side, with

@@ -27,13 +27,14 @@ std::vector<std::size_t> mode_order(const PairSpectra& s) {
         const float wx = float(s.frequency(0, x)), wy = float(s.frequency(1, y)), wz = float(s.frequency(2, z));
         norm2[x + d[0] * (y + d[1] * z)] = wx * wx + wy * wy + wz * wz;
       }
-  // w and -w have the same float |w|^2 (negation is exact), so the pair key keeps them
-  // together within their tie.
-  auto pair_key = [&](std::size_t k) { return std::min(k, negated_node(d, k)); };
+  // w and -w have the same float |w|^2 (negation is exact), so the pair key (the pair's
+  // smaller node) keeps them together within their tie.
+  std::vector<std::size_t> pair_key(total);
+  for (std::size_t k = 0; k < total; ++k) pair_key[k] = std::min(k, negated_node(d, k));
   std::vector<std::size_t> order(total);
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return std::make_tuple(norm2[a], pair_key(a), a) < std::make_tuple(norm2[b], pair_key(b), b);
+    return std::make_tuple(norm2[a], pair_key[a], a) < std::make_tuple(norm2[b], pair_key[b], b);
   });
   return order;
 }

@@ -81,6 +81,27 @@ __attribute__((always_inline)) inline Sample sample_cube(__global const CUBE_T* 
 }
 #endif
 
+// The work-group's sums of the 8 outputs (Re f, Im f, F, T) into out[0..7]: a tree
+// reduction in `scratch` (8 * WG_SIZE floats of local memory).
+inline void reduce_partials(__local float* scratch, const int lid, const float2 f, const float3 force,
+                            const float3 torque, __global float* out) {
+  scratch[8 * lid + 0] = f.x;
+  scratch[8 * lid + 1] = f.y;
+  scratch[8 * lid + 2] = force.x;
+  scratch[8 * lid + 3] = force.y;
+  scratch[8 * lid + 4] = force.z;
+  scratch[8 * lid + 5] = torque.x;
+  scratch[8 * lid + 6] = torque.y;
+  scratch[8 * lid + 7] = torque.z;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int stride = WG_SIZE / 2; stride > 0; stride >>= 1) {
+    if (lid < stride)
+      for (int j = 0; j < 8; ++j) scratch[8 * lid + j] += scratch[8 * (lid + stride) + j];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (lid < 8) out[lid] = scratch[lid];
+}
+
 // One mode's term (seed 000 eq. 10-12) added to the sums f, force, torque.
 __attribute__((always_inline)) inline void add_mode(const float4 mode, const float16 P, __local const float2* tx, __local const float2* ty,
                      __local const float2* tz, __global const CUBE_T* cube, const int4 cube_dims, const int4 offset,
@@ -160,21 +181,7 @@ void pose_query(__global const float4* modes, __global const CUBE_T* cube,
 
   // Work-group reduction of the 8 sums.
   __local float scratch[8 * WG_SIZE];
-  scratch[8 * lid + 0] = f.x;
-  scratch[8 * lid + 1] = f.y;
-  scratch[8 * lid + 2] = force.x;
-  scratch[8 * lid + 3] = force.y;
-  scratch[8 * lid + 4] = force.z;
-  scratch[8 * lid + 5] = torque.x;
-  scratch[8 * lid + 6] = torque.y;
-  scratch[8 * lid + 7] = torque.z;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (int stride = WG_SIZE / 2; stride > 0; stride >>= 1) {
-    if (lid < stride)
-      for (int j = 0; j < 8; ++j) scratch[8 * lid + j] += scratch[8 * (lid + stride) + j];
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  if (lid < 8) partials[8 * group + lid] = scratch[lid];
+  reduce_partials(scratch, lid, f, force, torque, partials + 8 * group);
 }
 
 #ifdef TRANSLATION_ONLY
@@ -274,20 +281,6 @@ void translation_lines(__global const float2* W, __global const int* rank, const
   }
 
   __local float scratch[8 * WG_SIZE];
-  scratch[8 * lid + 0] = f.x;
-  scratch[8 * lid + 1] = f.y;
-  scratch[8 * lid + 2] = force.x;
-  scratch[8 * lid + 3] = force.y;
-  scratch[8 * lid + 4] = force.z;
-  scratch[8 * lid + 5] = 0.0f;
-  scratch[8 * lid + 6] = 0.0f;
-  scratch[8 * lid + 7] = 0.0f;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (int stride = WG_SIZE / 2; stride > 0; stride >>= 1) {
-    if (lid < stride)
-      for (int j = 0; j < 8; ++j) scratch[8 * lid + j] += scratch[8 * (lid + stride) + j];
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  if (lid < 8) partials[8 * group + lid] = scratch[lid];
+  reduce_partials(scratch, lid, f, force, (float3)(0.0f), partials + 8 * group);
 }
 #endif

@@ -4,14 +4,18 @@
 
 #include <algorithm>
 #include <chrono>
-#include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
+#include <functional>
 #include <iomanip>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <fstream>
 #include <sstream>
 #include <string>
+
+#include <CL/opencl.hpp>
 
 #include "engine/error.h"
 
@@ -36,6 +40,43 @@ inline std::string option_value(int argc, char** argv, int& i, const std::string
   if (s.rfind(prefix, 0) == 0) return s.substr(prefix.size());
   if (i + 1 >= argc) throw snapfit::Error(name + ": needs a value");
   return argv[++i];
+}
+
+// The options every benchmark takes, at argv[i]: --quick, -h/--help (prints `usage` and
+// exits), --device SPEC and --out DIR (not empty). True when argv[i] was one of them
+// (i then points at its last argument).
+inline bool common_option(int argc, char** argv, int& i, bool& quick, std::string& device, std::string& out,
+                          void (*usage)(std::ostream&)) {
+  const std::string s = argv[i];
+  if (s == "--quick") {
+    quick = true;
+  } else if (s == "-h" || s == "--help") {
+    usage(std::cout);
+    std::exit(0);
+  } else if (is_option(s, "--device")) {
+    device = option_value(argc, argv, i, "--device");
+  } else if (is_option(s, "--out")) {
+    out = option_value(argc, argv, i, "--out");
+    if (out.empty()) throw snapfit::Error("--out: must not be empty");
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// A benchmark's main: runs `body` and turns an escaping error into a message on stderr
+// ("NAME: error: ..." or "NAME: OpenCL error: ... (code)") and exit status 1.
+inline int guarded_main(const char* name, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const snapfit::Error& e) {
+    std::cerr << name << ": error: " << e.what() << "\n";
+  } catch (const cl::Error& e) {
+    std::cerr << name << ": OpenCL error: " << e.what() << " (" << e.err() << ")\n";
+  } catch (const std::exception& e) {
+    std::cerr << name << ": error: " << e.what() << "\n";
+  }
+  return 1;
 }
 
 // /proc/loadavg as written, and its 1-minute figure (-1 when unreadable).

@@ -112,18 +112,9 @@ Args parse_args(int argc, char** argv) {
     const std::string s = argv[i];
     auto value = [&](const std::string& name) { return snapfit::bench::option_value(argc, argv, i, name); };
     auto is = [&](const std::string& name) { return snapfit::bench::is_option(s, name); };
-    if (s == "--quick") {
-      a.quick = true;
+    if (snapfit::bench::common_option(argc, argv, i, a.quick, a.device, a.out, usage)) {
     } else if (s == "--plots-only") {
       a.plots_only = true;
-    } else if (s == "-h" || s == "--help") {
-      usage(std::cout);
-      std::exit(0);
-    } else if (is("--device")) {
-      a.device = value("--device");
-    } else if (is("--out")) {
-      a.out = value("--out");
-      if (a.out.empty()) throw snapfit::Error("--out: must not be empty");
     } else if (is("--headline-side")) {
       a.headline_side = std::stoi(value("--headline-side"));
       if (a.headline_side < 2) throw snapfit::Error("--headline-side: must be at least 2");
@@ -818,10 +809,5 @@ int run(const Args& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(parse_args(argc, argv));
-  } catch (const std::exception& e) {
-    std::cerr << "bench_descriptors: error: " << e.what() << "\n";
-    return 1;
-  }
+  return snapfit::bench::guarded_main("bench_descriptors", [&] { return run(parse_args(argc, argv)); });
 }

@@ -139,16 +139,7 @@ Args parse_args(int argc, char** argv) {
     const std::string s = argv[i];
     auto value = [&](const std::string& name) { return snapfit::bench::option_value(argc, argv, i, name); };
     auto is = [&](const std::string& name) { return snapfit::bench::is_option(s, name); };
-    if (s == "--quick") {
-      a.quick = true;
-    } else if (s == "-h" || s == "--help") {
-      usage(std::cout);
-      std::exit(0);
-    } else if (is("--device")) {
-      a.device = value("--device");
-    } else if (is("--out")) {
-      a.out = value("--out");
-      if (a.out.empty()) throw snapfit::Error("--out: must not be empty");
+    if (snapfit::bench::common_option(argc, argv, i, a.quick, a.device, a.out, usage)) {
     } else if (is("--repeats")) {
       a.repeats = static_cast<int>(snapfit::bench::integer_option("--repeats", value("--repeats"), 1, 100000));
     } else {
@@ -949,16 +940,5 @@ int run(const Args& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(parse_args(argc, argv));
-  } catch (const snapfit::Error& e) {
-    std::cerr << "bench_fft: error: " << e.what() << "\n";
-    return 1;
-  } catch (const cl::Error& e) {
-    std::cerr << "bench_fft: OpenCL error: " << e.what() << " (" << e.err() << ")\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "bench_fft: error: " << e.what() << "\n";
-    return 1;
-  }
+  return snapfit::bench::guarded_main("bench_fft", [&] { return run(parse_args(argc, argv)); });
 }

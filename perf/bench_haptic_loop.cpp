@@ -13,7 +13,6 @@
 // --margin: the tuner keeps the p99 at most (1 - margin) of the frame budget (its own
 // tuning file per margin).
 // --quick: 3 s of loop (CI proves it runs; no timing is checked).
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sys/resource.h>
@@ -56,8 +55,8 @@ int main(int argc, char** argv) try {
   const Scene scene = load_scene(scene_path);
   // The loop's device as `snapfit run` picks it (scheduler/device_choice.h): PoCL's
   // single-threaded driver, which runs kernels in the loop's own thread, when there is
-  // one (main() of the CLI asks PoCL for it as this does); --device overrides.
-  setenv("POCL_DEVICES", "pthread basic", 0);
+  // one (asked for as the CLI's main() does); --device overrides.
+  expose_pocl_caller_thread_driver();
   Device device;
   if (device_spec.empty()) {
     std::optional<Device> caller_thread;

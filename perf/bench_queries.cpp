@@ -124,19 +124,10 @@ Args parse_args(int argc, char** argv) {
     const std::string s = argv[i];
     auto value = [&](const std::string& name) { return snapfit::bench::option_value(argc, argv, i, name); };
     auto is = [&](const std::string& name) { return snapfit::bench::is_option(s, name); };
-    if (s == "--quick") {
-      a.quick = true;
-    } else if (s == "-h" || s == "--help") {
-      usage(std::cout);
-      std::exit(0);
-    } else if (is("--device")) {
-      a.device = value("--device");
+    if (snapfit::bench::common_option(argc, argv, i, a.quick, a.device, a.out, usage)) {
     } else if (is("--scene")) {
       a.scene = value("--scene");
       if (a.scene.empty()) throw snapfit::Error("--scene: must not be empty");
-    } else if (is("--out")) {
-      a.out = value("--out");
-      if (a.out.empty()) throw snapfit::Error("--out: must not be empty");
     } else if (s == "--latency-only") {
       a.latency_only = true;
     } else if (is("--modes")) {
@@ -1437,16 +1428,5 @@ int run(const Args& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(parse_args(argc, argv));
-  } catch (const snapfit::Error& e) {
-    std::cerr << "bench_queries: error: " << e.what() << "\n";
-    return 1;
-  } catch (const cl::Error& e) {
-    std::cerr << "bench_queries: OpenCL error: " << e.what() << " (" << e.err() << ")\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "bench_queries: error: " << e.what() << "\n";
-    return 1;
-  }
+  return snapfit::bench::guarded_main("bench_queries", [&] { return run(parse_args(argc, argv)); });
 }

@@ -265,9 +265,12 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     // late (the OS), which a smaller m' cannot fix: it is counted, not acted on.
     const bool compute_miss = missed && compute_ms > config.modes.up_headroom * config.budget_ms;
     if (missed && !compute_miss) ++report.late_wakeup_misses;
-    const double predicted = config.modes.predicted_ms ? config.modes.predicted_ms(governor.modes()) : 0.0;
-    const bool stall = compute_miss && config.modes.stall_factor > 0 && predicted > 0 &&
-                       compute_ms > config.modes.stall_factor * predicted;
+    // Only a work-bound miss asks the cost model (not every frame).
+    bool stall = false;
+    if (compute_miss && config.modes.stall_factor > 0 && config.modes.predicted_ms) {
+      const double predicted = config.modes.predicted_ms(governor.modes());
+      stall = predicted > 0 && compute_ms > config.modes.stall_factor * predicted;
+    }
     if (stall) ++report.stall_misses;
     report.frame_ms.push_back(frame_ms);
     report.wake_late_ms.push_back(1e3 * (woke - tick_time));

@@ -216,12 +216,7 @@ GridSpec symmetric_grid(double half_width, double z0, double z1, int n) {
   return g;
 }
 
-Vector3d point_of(const GridSpec& g, std::size_t id) {
-  const int i = static_cast<int>(id % g.dims.x());
-  const int j = static_cast<int>((id / g.dims.x()) % g.dims.y());
-  const int k = static_cast<int>(id / (static_cast<std::size_t>(g.dims.x()) * g.dims.y()));
-  return g.point(i, j, k);
-}
+Vector3d point_of(const GridSpec& g, std::size_t id) { return g.point(id); }
 
 std::vector<Vector3d> all_points(const GridSpec& g) {
   std::vector<Vector3d> pts(g.count());

@@ -217,3 +217,15 @@ TEST_CASE("grid: brick_point_order lists every point once, in bricks of neighbou
   for (std::size_t i = 0; i < plain.size(); ++i) REQUIRE(plain[i] == static_cast<long long>(i));
   CHECK_THROWS_WITH_AS(brick_point_order(grid, 3), doctest::Contains("1, 4, 8 or 16"), Error);
 }
+
+TEST_CASE("grid: point(index) inverts index(i, j, k)") {
+  GridSpec grid;
+  grid.origin = {0.5, -1.0, 2.0};
+  grid.spacing = 0.25;
+  grid.dims = Eigen::Vector3i(5, 3, 7);
+  bool ok = true;
+  for (int k = 0; k < 7; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 5; ++i) ok = ok && grid.point(grid.index(i, j, k)) == grid.point(i, j, k);
+  CHECK(ok);
+}

@@ -72,12 +72,7 @@ GridSpec grid_for(const Mesh& m, int n) {
   return g;
 }
 
-Vector3d point_of(const GridSpec& g, std::size_t id) {
-  const int i = static_cast<int>(id % g.dims.x());
-  const int j = static_cast<int>((id / g.dims.x()) % g.dims.y());
-  const int k = static_cast<int>(id / (static_cast<std::size_t>(g.dims.x()) * g.dims.y()));
-  return g.point(i, j, k);
-}
+Vector3d point_of(const GridSpec& g, std::size_t id) { return g.point(id); }
 
 DescriptorFields winding_fields(const Mesh& mesh, const GridSpec& grid, bool propagate) {
   DescriptorParams params;
