@@ -12,6 +12,7 @@
 #include "engine/error.h"
 #include "engine/kernel_sources.h"
 #include "engine/mode_order.h"
+#include "engine/translation_lines.h"
 
 namespace snapfit {
 
@@ -26,10 +27,13 @@ struct PoseQueryEngine::Impl {
   std::size_t mode_total = 0, mode_count = 0;
   std::size_t wg = 64, max_groups = 4, modes_per_group = 4096;
   cl::Buffer modes, cube, poses, partials;
-  cl::Buffer line_weights, line_rank, line_partner;  // translation only: dense x-lines (kernels/pose_query.cl)
-  // Translation only with conjugate pairs folded: valid while m' is at most this (the
-  // first mode without a partner that lies in a line the folded sum skips).
-  std::size_t fold_limit = 0;
+  // Translation only (engine/translation_lines.h): the weight box and line sets, the
+  // selection for the current m' (uploaded before the next query when `lines_dirty`).
+  TranslationLines lines;
+  LineSelection selection;
+  bool lines_dirty = false;
+  cl::Buffer line_weights, line_records, line_extras;
+  std::size_t line_capacity = 0;
   std::vector<int> table_half;  // max |k| over all axes of modes [0, i]: the phase tables' reach
   // 6-DOF records (a mode, or a folded conjugate pair): modes held by records [0, j], and
   // record j's first mode alone (weight W, unfolded).
@@ -115,8 +119,9 @@ struct PoseQueryEngine::Impl {
 
   // The records that hold the first mode_count modes: all of records [0, n), and when
   // mode_count cuts a pair, `extra` = the pair's first mode alone (else a zero weight).
+  // Translation only: the number of lines selected.
   std::size_t record_count(cl_float4* extra) const {
-    if (variant.translation_only) return mode_count;  // the rank threshold of translation_lines
+    if (variant.translation_only) return selection.lines.size();
     const std::size_t n = static_cast<std::size_t>(
         std::upper_bound(record_modes.begin(), record_modes.end(), mode_count) - record_modes.begin());
     const std::size_t held = n == 0 ? 0 : record_modes[n - 1];
@@ -125,13 +130,36 @@ struct PoseQueryEngine::Impl {
     return n;
   }
 
-  // Translation only: whether the current m' runs the folded line sum.
-  bool translation_folded() const { return variant.translation_only && fold_limit > 0 && mode_count <= fold_limit; }
+  // Translation only: selects the lines for the current m' (uploaded by upload_lines).
+  void select_translation_lines() {
+    select_lines(lines, mode_count, selection);
+    lines_dirty = true;
+  }
 
-  // Work-groups per pose: one per `modes_per_group` records, at most max_groups (on a
-  // CPU device a work-group runs on one core; more groups than cores only add overhead).
-  std::size_t groups_per_pose(std::size_t records) const {
-    return std::clamp<std::size_t>((records + modes_per_group - 1) / modes_per_group, 1, max_groups);
+  // Translation only: writes the selected lines and extras before the next launch.
+  void upload_lines() {
+    if (!lines_dirty) return;
+    const std::size_t n = std::max<std::size_t>(selection.lines.size(), 1);
+    if (n > line_capacity) {
+      line_capacity = std::max(n + n / 4, std::size_t(64));
+      line_records = cl::Buffer(ctx.context, CL_MEM_READ_ONLY, sizeof(LineRecord) * line_capacity);
+      kernel.setArg(1, line_records);
+    }
+    // Blocking: the host vectors change with the next set_modes.
+    if (!selection.lines.empty())
+      queue.enqueueWriteBuffer(line_records, CL_TRUE, 0, sizeof(LineRecord) * selection.lines.size(), selection.lines.data());
+    if (!selection.extras.empty())
+      queue.enqueueWriteBuffer(line_extras, CL_TRUE, 0, sizeof(ExtraMode) * selection.extras.size(), selection.extras.data());
+    kernel.setArg(3, static_cast<cl_int>(selection.extras.size()));
+    kernel.setArg(4, static_cast<cl_int>(selection.folded ? 1 : 0));
+    lines_dirty = false;
+  }
+
+  // Work-groups per pose: one per `modes_per_group` units of work (6-DOF records, or
+  // translation-only line nodes), at most max_groups (on a CPU device a work-group runs
+  // on one core; more groups than cores only add overhead).
+  std::size_t groups_per_pose(std::size_t work) const {
+    return std::clamp<std::size_t>((work + modes_per_group - 1) / modes_per_group, 1, max_groups);
   }
 
   // Round to nearest even; subnormal halves kept (IEEE 754 binary16).
@@ -251,61 +279,9 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
       m.record_modes.push_back(i);
     }
   }
-  // Translation only: W_k = S1(w_k) S2(-w_k) dw in a dense box of x-lines with each
-  // node's rank in the mode order (kernels/pose_query.cl translation_lines); rows
-  // padded by 8 nodes (rank max).
-  std::vector<Complex> line_w;
-  std::vector<cl_int> line_rank, line_partner;
-  int dense_min[3] = {0, 0, 0}, dense_max[3] = {0, 0, 0}, dense_dims[3] = {0, 0, 0};
-  if (variant.translation_only) {
-    for (int a = 0; a < 3; ++a) {
-      dense_max[a] = int(dims[a] / 2);
-      dense_min[a] = dense_max[a] - int(dims[a]) + 1;
-      dense_dims[a] = int(dims[a]) + (a == 0 ? 8 : 0);
-    }
-    const std::size_t dense = std::size_t(dense_dims[0]) * dense_dims[1] * dense_dims[2];
-    line_w.assign(dense, Complex(0, 0));
-    line_rank.assign(dense, std::numeric_limits<cl_int>::max());
-    for (std::size_t i = 0; i < total; ++i) {
-      const std::size_t k = order[i];
-      // rho2^(-w_k) at the node -k: S2(-w) e^{-2 pi i (-w).c2} folds into the phase tau.
-      const std::size_t x = k % dims[0], y = (k / dims[0]) % dims[1], z = k / (dims[0] * dims[1]);
-      const std::size_t neg = (dims[0] - x) % dims[0] + dims[0] * ((dims[1] - y) % dims[1] + dims[1] * ((dims[2] - z) % dims[2]));
-      const std::array<int, 3> kk = mode_k(k);
-      const std::size_t node = std::size_t(kk[0] - dense_min[0]) +
-                               std::size_t(dense_dims[0]) * (std::size_t(kk[1] - dense_min[1]) + std::size_t(dense_dims[1]) * std::size_t(kk[2] - dense_min[2]));
-      line_w[node] = spectra.part1.rho[k] * static_cast<float>(dw) * spectra.part2.rho[neg];
-      line_rank[node] = static_cast<cl_int>(std::min<std::size_t>(i, std::numeric_limits<cl_int>::max() - 1));
-    }
-    // Conjugate pairs (a real correlation): the folded sum visits the lines with kz > 0
-    // or kz = 0, ky >= 0; a node there whose partner -k lies in a skipped line (or in the
-    // kx < 0 half of the centre line) carries the partner's rank; the partners carry -1
-    // (skipped); nodes without a partner (node 0, Nyquist components) carry INT_MAX.
-    if (variant.fold_conjugate_pairs && spectra.conjugate_pairs() == 1) {
-      const cl_int none = std::numeric_limits<cl_int>::max();
-      line_partner.assign(dense, none);
-      auto node_of = [&](const std::array<int, 3>& kk) {
-        return std::size_t(kk[0] - dense_min[0]) +
-               std::size_t(dense_dims[0]) * (std::size_t(kk[1] - dense_min[1]) + std::size_t(dense_dims[1]) * std::size_t(kk[2] - dense_min[2]));
-      };
-      auto upper = [](const std::array<int, 3>& kk) {
-        return kk[2] > 0 || (kk[2] == 0 && (kk[1] > 0 || (kk[1] == 0 && kk[0] > 0)));
-      };
-      auto visited_line = [](const std::array<int, 3>& kk) { return kk[2] > 0 || (kk[2] == 0 && kk[1] >= 0); };
-      m.fold_limit = total;
-      for (std::size_t i = 0; i < total; ++i) {
-        const std::size_t k = order[i], neg = negated_node(dims, k);
-        const std::array<int, 3> kk = mode_k(k);
-        const std::size_t node = node_of(kk);
-        if (neg == kNoNode || neg == k) {
-          if (!visited_line(kk)) m.fold_limit = std::min(m.fold_limit, i);
-          continue;  // alone: counted once, wherever its line is visited
-        }
-        if (upper(kk)) line_partner[node] = line_rank[node_of(mode_k(neg))];
-        else line_partner[node] = -1;
-      }
-    }
-  }
+  // Translation only: the product W_k in a dense box of x-lines, and the lines that hold
+  // each m' (engine/translation_lines.h).
+  if (variant.translation_only) m.lines = build_translation_lines(spectra, order, variant.fold_conjugate_pairs);
   m.mode_total = total;
   m.mode_count = total;
 
@@ -345,21 +321,15 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
                           variant.translation_only ? "translation_lines" : "pose_query");
     const cl_float4 inv_length{{float(1.0 / spectra.length.x()), float(1.0 / spectra.length.y()), float(1.0 / spectra.length.z()), 0.0f}};
     if (variant.translation_only) {
-      m.line_weights = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * line_w.size(), line_w.data());
-      m.line_rank = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_int) * line_rank.size(), line_rank.data());
+      const auto& box = m.lines.weights;
+      m.line_weights = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * box.size(),
+                                  const_cast<Complex*>(box.data()));
+      m.line_extras = cl::Buffer(ctx.context, CL_MEM_READ_ONLY, sizeof(ExtraMode) * (kMaxUnpairedExtras + 1));
       m.kernel.setArg(0, m.line_weights);
-      m.kernel.setArg(1, m.line_rank);
-      m.kernel.setArg(2, cl_int4{{dense_dims[0], dense_dims[1], dense_dims[2], 0}});
-      m.kernel.setArg(3, cl_int4{{dense_min[0], dense_min[1], dense_min[2], 0}});
-      m.kernel.setArg(4, cl_int4{{dense_max[0], dense_max[1], dense_max[2], 0}});
+      m.kernel.setArg(2, m.line_extras);
       m.kernel.setArg(5, cl_float16{});
       m.kernel.setArg(12, inv_length);
-      if (!line_partner.empty())
-        m.line_partner = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_int) * line_partner.size(), line_partner.data());
-      else
-        m.line_partner = cl::Buffer(ctx.context, CL_MEM_READ_ONLY, sizeof(cl_int) * 8);  // never read (not folded)
-      m.kernel.setArg(13, m.line_partner);
-      m.kernel.setArg(14, cl_int(0));
+      m.select_translation_lines();
     } else {
       m.modes = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * mode_data.size(), mode_data.data());
       m.kernel.setArg(0, m.modes);
@@ -381,15 +351,18 @@ PoseQueryEngine::~PoseQueryEngine() = default;
 std::size_t PoseQueryEngine::max_modes() const { return impl_->mode_total; }
 std::size_t PoseQueryEngine::modes() const { return impl_->mode_count; }
 std::size_t PoseQueryEngine::evaluated_terms() const {
-  // Translation only, folded: each pair is one term (the mode order keeps pairs
-  // adjacent, so m' modes hold about m' / 2 pairs).
-  if (impl_->translation_folded()) return (impl_->mode_count + 1) / 2;
+  // Translation only: the nodes of the selected line intervals (folded: one per pair)
+  // and the extra single terms.
+  if (impl_->variant.translation_only) return impl_->selection.nodes + impl_->selection.extras.size();
   cl_float4 extra{};
   const std::size_t records = impl_->record_count(&extra);
   return records + (extra.s[0] != 0.0f || extra.s[1] != 0.0f ? 1 : 0);
 }
 void PoseQueryEngine::set_modes(std::size_t m) {
-  impl_->mode_count = std::clamp<std::size_t>(m, 1, impl_->mode_total);
+  const std::size_t clamped = std::clamp<std::size_t>(m, 1, impl_->mode_total);
+  if (clamped == impl_->mode_count) return;
+  impl_->mode_count = clamped;
+  if (impl_->variant.translation_only) impl_->select_translation_lines();
   impl_->ensure_cube(impl_->mode_radius[impl_->mode_count - 1]);
 }
 
@@ -430,11 +403,12 @@ std::vector<QueryResult> PoseQueryEngine::query_batch(const std::vector<Pose>& p
   if (!slot.empty()) {
     cl_float4 extra{};
     const std::size_t records = m.record_count(&extra);
-    const std::size_t groups_per_pose = m.groups_per_pose(records);
+    const std::size_t groups_per_pose = m.groups_per_pose(m.variant.translation_only ? m.selection.nodes : records);
     const std::size_t groups = groups_per_pose * slot.size();
     try {
       m.ensure_capacity(slot.size(), groups);
       m.ensure_cube(m.mode_radius[m.mode_count - 1]);
+      if (m.variant.translation_only) m.upload_lines();
       // Argument numbers: pose_query, or translation_lines 1 lower (kernels/pose_query.cl).
       const cl_uint shift = m.variant.translation_only ? 1 : 0;
       if (slot.size() == 1) {
@@ -445,7 +419,6 @@ std::vector<QueryResult> PoseQueryEngine::query_batch(const std::vector<Pose>& p
       m.kernel.setArg(8 - shift, static_cast<cl_int>(slot.size()));
       m.kernel.setArg(9 - shift, static_cast<cl_int>(records));
       if (!m.variant.translation_only) m.kernel.setArg(14, extra);
-      if (m.variant.translation_only) m.kernel.setArg(14, cl_int(m.translation_folded() ? 1 : 0));
       m.kernel.setArg(10 - shift, static_cast<cl_int>(groups_per_pose));
       m.kernel.setArg(11 - shift, static_cast<cl_int>(m.table_half[m.mode_count - 1]));
       m.queue.enqueueNDRangeKernel(m.kernel, cl::NullRange, cl::NDRange(groups * m.wg), cl::NDRange(m.wg));

@@ -186,98 +186,92 @@ void pose_query(__global const float4* modes, __global const CUBE_T* cube,
 
 #ifdef TRANSLATION_ONLY
 // Translation only (seed 000 section 3.3; R = I): f(t) = sum_k W_k e^{2 pi i w_k.tau} with
-// W_k = S1(w_k) S2(-w_k) dw. The weights sit in a dense box of x-lines (kz, ky, kx with
-// kx fastest; `rank` is each node's position in the |w| order, so node k is one of the
-// m' retained modes exactly when rank < m'). Per line (ky, kz) the phase factors,
-// e^{i phi} = tx[kx] (ty[ky] tz[kz]) (DESIGN.md, separable per axis), so the line is a
-// contiguous, 8-wide complex dot product of W with the x table:
+// W_k = S1(w_k) S2(-w_k) dw, stored in a dense box of x-lines (kx fastest; rows padded
+// by 8 nodes). engine/translation_lines.h picks, for the current m', the lines that
+// hold retained modes and on each the interval [xa, xb] of retained kx (|w| grows with
+// |kx| along a line, so that is one interval): `lines` holds (index of the line's kx = 0
+// node, (ky, kz) as two shorts, xa, xb). Per line the phase factors, e^{i phi} =
+// tx[kx] (ty[ky] tz[kz]) (DESIGN.md, separable per axis), so the line is a contiguous,
+// 8-wide complex dot product of W with the x table:
 //   s = sum_kx W tx[kx],  s_x = sum_kx kx W tx[kx];  f += s p,  p = ty[ky] tz[kz],
 //   F = Re(2 pi i w f-terms) = -2 pi (Im(s_x p) / L_x, ky Im(s p) / L_y, kz Im(s p) / L_z).
-// Lines have `dims.x` nodes (the grid's x-extent plus 8 of padding with rank INT_MAX);
-// dense_min is the signed k of node (0, 0, 0).
-// With `folded` (a real correlation, engine/pose_query.cpp): terms at k and -k are
-// complex conjugates, so only the lines with kz > 0, or kz = 0 and ky >= 0, are visited;
-// `partner` holds, for a node there, the rank of its partner -k when that lies in a
-// skipped line or the centre line's kx < 0 half (-1 for those partners themselves,
-// INT_MAX for a node without one). A node weighs a = [rank < m'] + [partner < m'] in the
-// real outputs (Re f, F: a pair is twice the real part) and b = [rank < m'] -
-// [partner < m'] in Im f (a pair's imaginary parts cancel; a pair cut by m' is one mode).
-// The host folds only while m' is below every unpartnered node of a skipped line.
+// With `folded` (a real correlation: the terms at k and -k are complex conjugates) the
+// lines are one half of the box, each node stands for its pair: twice its real part
+// (Re f, F) and nothing in Im f. `extras` (float4: W, (kx, ky), (kz, code) as shorts)
+// are single terms added once per pose: code 1 weighs 1 everywhere (the mode of a pair
+// that m' cuts), code 2 weighs -1 in the real outputs and +1 in Im f (a node without a
+// partner, which the folded lines counted twice).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void translation_lines(__global const float2* W, __global const int* rank, const int4 dims, const int4 dense_min,
-                       const int4 dense_max, const float16 pose_arg, __global const float16* poses,
-                       const int pose_count, const int mode_count, const int groups_per_pose, const int table_half,
-                       __global float* partials, const float4 inv_length, __global const int* partner,
-                       const int folded) {
+void translation_lines(__global const float2* W, __global const int4* lines, __global const float4* extras,
+                       const int extra_count, const int folded, const float16 pose_arg, __global const float16* poses,
+                       const int pose_count, const int line_count, const int groups_per_pose, const int table_half,
+                       __global float* partials, const float4 inv_length) {
   const int group = get_group_id(0);
   const int pose = group / groups_per_pose;
   const int slice = group % groups_per_pose;
   const int lid = get_local_id(0);
   const float16 P = pose_count > 1 ? poses[pose] : pose_arg;
 
-  // Tables for |k| <= table_half + 8: the last 8-wide chunk of a line may reach 7
-  // beyond; those nodes are masked, but their table values must be finite.
+  // Tables for |k| <= table_half; x up to table_half + 7 (the last 8-wide chunk of a
+  // line reaches 7 beyond its interval: masked, but the values must be finite).
 #define PAD_HALF (MAX_HALF + 8)
   __local float2 tables[3 * (2 * PAD_HALF + 1)];
   __local float2* tx = tables + PAD_HALF;
   __local float2* ty = tx + (2 * PAD_HALF + 1);
   __local float2* tz = ty + (2 * PAD_HALF + 1);
-  const int reach = min(table_half + 8, PAD_HALF);
-  for (int k = lid - reach; k <= reach; k += WG_SIZE) {
+  const int reach = min(table_half, MAX_HALF);
+  for (int k = lid - reach; k <= reach + 7; k += WG_SIZE) {
     tx[k] = axis_phase(k, P.s9, P.sc);
-    ty[k] = axis_phase(k, P.sa, P.sd);
-    tz[k] = axis_phase(k, P.sb, P.se);
+    if (k <= reach) {
+      ty[k] = axis_phase(k, P.sa, P.sd);
+      tz[k] = axis_phase(k, P.sb, P.se);
+    }
   }
   barrier(CLK_LOCAL_MEM_FENCE);
 
-  // The lines that can hold retained modes: |ky|, |kz| <= table_half (folded: kz >= 0).
-  const int y0 = max(-table_half, dense_min.y), y1 = min(table_half, dense_max.y);
-  const int z0 = max(folded ? 0 : -table_half, dense_min.z), z1 = min(table_half, dense_max.z);
-  const int x0 = max(-table_half, dense_min.x), x1 = min(table_half, dense_max.x);
-  const int ny = y1 - y0 + 1, lines = ny * (z1 - z0 + 1);
+  const float real_weight = folded ? 2.0f : 1.0f;
   const float8 lane = (float8)(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f);
   float2 f = (float2)(0.0f);
   float3 force = (float3)(0.0f);
-  for (int l = slice * WG_SIZE + lid; l < lines; l += groups_per_pose * WG_SIZE) {
-    const int ky = y0 + l % ny, kz = z0 + l / ny;
-    if (folded && kz == 0 && ky < 0) continue;  // the partners of the kz = 0, ky > 0 lines
-    const int row = dims.x * ((kz - dense_min.z) * dims.y + (ky - dense_min.y)) - dense_min.x;
-    // s, sx: weight a (real outputs); sb: weight b (Im f); unfolded a = b = [rank < m'].
+  for (int l = slice * WG_SIZE + lid; l < line_count; l += groups_per_pose * WG_SIZE) {
+    const int4 line = lines[l];
+    const short2 kyz = as_short2(line.y);
+    __global const float* row = (__global const float*)(W + line.x);
+    const float xb = (float)line.w;
     float8 sr = (float8)(0.0f), si = (float8)(0.0f), sxr = (float8)(0.0f), sxi = (float8)(0.0f);
-    float8 sbr = (float8)(0.0f), sbi = (float8)(0.0f);
-    for (int x = x0; x <= x1; x += 8) {
-      const float16 w = vload16(0, (__global const float*)(W + row + x));
+    for (int x = line.z; x <= line.w; x += 8) {
+      const float16 w = vload16(0, row + 2 * x);
       const float16 t = vload16(0, (__local const float*)(tx + x));
-      const float8 own = select((float8)(0.0f), (float8)(1.0f), vload8(0, rank + row + x) < (int8)(mode_count));
-      float8 a = own, b = own;
-      if (folded) {
-        const int8 q = vload8(0, partner + row + x);
-        const float8 other = select((float8)(0.0f), (float8)(1.0f), q < (int8)(mode_count));
-        const float8 skip = select((float8)(1.0f), (float8)(0.0f), q < (int8)(0));
-        a = skip * (own + other);
-        b = skip * (own - other);
-      }
-      const float8 pr = w.even * t.even - w.odd * t.odd;
-      const float8 pim = w.even * t.odd + w.odd * t.even;
       const float8 kx = (float8)((float)x) + lane;
-      sr += a * pr;
-      si += a * pim;
-      sxr += kx * a * pr;
-      sxi += kx * a * pim;
-      sbr += b * pr;
-      sbi += b * pim;
+      const int8 keep = kx <= (float8)(xb);
+      const float8 pr = select((float8)(0.0f), w.even * t.even - w.odd * t.odd, keep);
+      const float8 pim = select((float8)(0.0f), w.even * t.odd + w.odd * t.even, keep);
+      sr += pr;
+      si += pim;
+      sxr += kx * pr;
+      sxi += kx * pim;
     }
     const float4 r4 = sr.lo + sr.hi, i4 = si.lo + si.hi, xr4 = sxr.lo + sxr.hi, xi4 = sxi.lo + sxi.hi;
-    const float4 br4 = sbr.lo + sbr.hi, bi4 = sbi.lo + sbi.hi;
     const float2 s = (float2)(r4.x + r4.y + r4.z + r4.w, i4.x + i4.y + i4.z + i4.w);
     const float2 sx = (float2)(xr4.x + xr4.y + xr4.z + xr4.w, xi4.x + xi4.y + xi4.z + xi4.w);
-    const float2 sb = (float2)(br4.x + br4.y + br4.z + br4.w, bi4.x + bi4.y + bi4.z + bi4.w);
-    const float2 p = cmul(ty[ky], tz[kz]);
-    const float2 term = cmul(s, p);
-    f += (float2)(term.x, cmul(sb, p).y);
+    const float2 p = cmul(ty[kyz.x], tz[kyz.y]);
+    const float2 term = real_weight * cmul(s, p);
+    f += (float2)(term.x, folded ? 0.0f : term.y);
 #ifdef FORCE
-    force += -TWO_PI * (float3)(cmul(sx, p).y, (float)ky * term.y, (float)kz * term.y) * inv_length.xyz;
+    force += -TWO_PI * (float3)(real_weight * cmul(sx, p).y, (float)kyz.x * term.y, (float)kyz.y * term.y) * inv_length.xyz;
 #endif
+  }
+  if (slice == 0 && lid == 0) {
+    for (int e = 0; e < extra_count; ++e) {
+      const float4 mode = extras[e];
+      const short2 kxy = as_short2(mode.z), kzc = as_short2(mode.w);
+      const float2 term = cmul(mode.xy, cmul(tx[kxy.x], cmul(ty[kxy.y], tz[kzc.x])));
+      const float real = kzc.y == 1 ? 1.0f : -1.0f;
+      f += (float2)(real * term.x, term.y);
+#ifdef FORCE
+      force += -TWO_PI * real * term.y * convert_float3((int3)(kxy.x, kxy.y, kzc.x)) * inv_length.xyz;
+#endif
+    }
   }
 
   __local float scratch[8 * WG_SIZE];

@@ -38,7 +38,10 @@
 //   5. targets   6-DOF E+F+T at m' >= 32768 with p99 <= 1 ms, per scheme; translation
 //                only >= 10x faster than 6-DOF at the same m'. Seed 000's figure (1 kHz at
 //                m' = 4096 on a Tesla K20c, translation only) is listed as published, not
-//                measured here.
+//                measured here. PoCL's single-threaded driver is visible as well
+//                (--device basic): it runs each query in the calling thread, as the haptic
+//                loop does (scheduler/device_choice.h), without the multi-threaded
+//                driver's dispatch to worker threads (0.03-0.07 ms per launch here).
 // Output in DIR (default results/bench_queries): queries.csv, throughput.csv,
 // queries.json (everything, with device, driver, load averages, command line, date) and
 // PNG charts: latency_<variant>.png, latency_p99_all.png, throughput.png, roofline.png.
@@ -107,7 +110,8 @@ void usage(std::ostream& os) {
   os << "usage: bench_queries [--quick] [--device SPEC] [--scene FILE] [--out DIR] [--repeats N]\n"
         "  --quick         a few m' values, 300 repetitions (under a minute once fields are cached)\n"
         "  --device SPEC   OpenCL device: index, P:D, cpu|gpu|accelerator or a name substring\n"
-        "                  (default: $SNAPFIT_DEVICE, else PoCL's CPU device)\n"
+        "                  (default: $SNAPFIT_DEVICE, else PoCL's CPU device; 'basic': PoCL's single-threaded\n"
+        "                  driver, the haptic loop's)\n"
         "  --scene FILE    scene (default scenes/default.json)\n"
         "  --out DIR       output folder (default results/bench_queries)\n"
         "  --repeats N     timed queries per latency point (default 2000, --quick 300)\n"
@@ -246,10 +250,12 @@ std::vector<VariantSpec> variant_specs() {
 //          (local memory)                                                  = 40 B
 //          TAPS^3 cube taps x sizeof(Sample): float8 (32 B) with torque, float2 (8 B)
 //          without; half that with the half-float cube
-//   translation only (dense x-lines): per node of the box |k_a| <= h, weight 8 B +
-//          rank 4 B + x table 8 B (local) = 20 B, times the box's nodes per retained
-//          mode ((2h + 1)^3 / m', computed per m'); flops per node: complex multiply 6,
-//          2 selects, 2 adds, 2 fma (kx terms) 4 = 12, times the same ratio
+//   translation only (x-line intervals, engine/translation_lines.h): per node of the
+//          selected intervals, weight 8 B + x table 8 B (local) = 16 B; flops per node:
+//          complex multiply 6, 2 adds, 2 fma (kx terms) 4 = 12 (the masked lanes of each
+//          line's last 8-wide chunk and the per-line sums are not counted)
+// Both are counted per evaluated term (PoseQueryEngine::evaluated_terms: a record or a
+// line node, one per conjugate pair when pairs are folded) and scaled by terms per mode.
 // Flops: an add, a multiply or a subtraction is 1, an fma 2; integer index arithmetic,
 // floor and conversions are not counted:
 //   phase: 3 complex multiplies (4 mul + 2 add each)                           18
@@ -267,15 +273,16 @@ struct Cost {
   std::string bytes_detail, flops_detail;
 };
 
-Cost cost_model(const QueryVariant& v, double box_nodes_per_mode) {
+Cost cost_model(const QueryVariant& v, double terms_per_mode) {
   Cost c;
   const double stream = 16 + 3 * 8;
   const double phase = 18, accumulate = 2, force = v.force ? 7 : 0;
+  const std::string per_mode = ", x " + fmt(terms_per_mode, 3) + " terms per mode";
   if (v.translation_only) {
-    c.bytes = 20 * box_nodes_per_mode;
-    c.flops = 12 * box_nodes_per_mode;
-    c.bytes_detail = "20 per box node (weight 8 + rank 4 + x table 8) x " + fmt(box_nodes_per_mode, 3) + " nodes per mode";
-    c.flops_detail = "12 per box node x " + fmt(box_nodes_per_mode, 3) + " nodes per mode";
+    c.bytes = 16 * terms_per_mode;
+    c.flops = 12 * terms_per_mode;
+    c.bytes_detail = "16 per line node (weight 8 + x table 8)" + per_mode;
+    c.flops_detail = "12 per line node" + per_mode;
     return c;
   }
   const int taps = v.interpolation == Interpolation::tricubic ? 4 : 2;
@@ -289,9 +296,11 @@ Cost cost_model(const QueryVariant& v, double box_nodes_per_mode) {
   c.bytes = stream + gather_bytes;
   c.flops = phase + rotate + weights + gather + 6 + torque + accumulate + force;
   c.bytes_detail = "40 stream + " + fmt(taps3, 3) + " taps x " + std::to_string(comps * (v.half_cube ? 2 : 4)) +
-                   " B = " + fmt(c.bytes, 5);
+                   " B = " + fmt(c.bytes, 5) + per_mode;
   c.flops_detail = "18 phase + 18 rotate + " + fmt(weights, 3) + " weights + " + fmt(gather, 5) + " gather + 6 + " +
-                   fmt(torque, 3) + " torque + 2 sum + 7 force = " + fmt(c.flops, 5);
+                   fmt(torque, 3) + " torque + 2 sum + 7 force = " + fmt(c.flops, 5) + per_mode;
+  c.bytes *= terms_per_mode;
+  c.flops *= terms_per_mode;
   return c;
 }
 
@@ -376,31 +385,19 @@ std::vector<float> sorted_mode_radii(const snapfit::PairSpectra& s) {
   return r;
 }
 
-// Nodes of the translation kernel's dense box |k_a| <= h (h: the largest |k_a| among
-// the first m' modes) per retained mode.
-double box_nodes_per_mode(const snapfit::PairSpectra& s, const std::vector<float>& radii, std::size_t m) {
-  m = std::clamp<std::size_t>(m, 1, radii.size());
-  const double r = radii[m - 1];
-  double nodes = 1;
-  for (int a = 0; a < 3; ++a) {
-    const double h = std::floor(r * s.length[a] + 1e-6);
-    nodes *= std::min(2 * h + 1, double(s.dims[a]));
-  }
-  return nodes / double(m);
-}
-
-// The working set of one query at m' (what engine/pose_query.cpp uploads): the mode
-// arrays (16 B per mode; translation only: 12 B per dense-box node), the compact cube of part 2's spectrum (as ensure_cube builds
-// it fresh for this m') and the three phase tables.
+// The working set of one query at m' (what engine/pose_query.cpp uploads and the kernel
+// reads): the mode records (16 B per evaluated term; translation only: 8 B per line node,
+// plus 16 B per line record, not counted), the compact cube of part 2's spectrum (as ensure_cube
+// builds it fresh for this m') and the three phase tables.
 struct Footprint {
   double mode_bytes = 0, cube_bytes = 0, table_bytes = 0;
   std::array<int, 3> cube_dims{};
 };
-Footprint footprint(const snapfit::PairSpectra& s, const std::vector<float>& radii, std::size_t m,
+Footprint footprint(const snapfit::PairSpectra& s, const std::vector<float>& radii, std::size_t m, std::size_t terms,
                     const QueryVariant& v) {
   Footprint f;
   m = std::clamp<std::size_t>(m, 1, radii.size());
-  f.mode_bytes = v.translation_only ? 12.0 * box_nodes_per_mode(s, radii, m) * double(m) : 16.0 * double(m);
+  f.mode_bytes = v.translation_only ? 8.0 * double(terms) : 16.0 * double(terms);
   const double r = radii[m - 1];
   int table_half = 0;
   for (int a = 0; a < 3; ++a) table_half = std::max(table_half, int(std::floor(r * s.length[a] + 1e-6)));
@@ -825,18 +822,8 @@ int run(const Args& args) {
           [&] { return measure_latency(*engine, spec, poses_of[spec.key], m, warmup, repeats, cursor, sink); }, others,
           attempts);
       r.attempts = attempts;
-      r.cost = cost_model(spec.variant, box_nodes_per_mode(spectra, radii, r.modes_used));
-      if (r.terms != r.modes_used && r.modes_used > 0) {  // per retained mode: the folded pairs' share
-        const double share = double(r.terms) / double(r.modes_used);
-        r.cost.bytes *= share;
-        r.cost.flops *= share;
-        // Folded translation-only lines also read each node's partner rank (4 B more).
-        if (spec.variant.translation_only) r.cost.bytes *= 24.0 / 20.0;
-        r.cost.bytes_detail += std::string(spec.variant.translation_only ? " + partner rank 4 B per node" : "") + ", x " +
-                               fmt(share, 3) + " terms per mode (conjugate pairs folded)";
-        r.cost.flops_detail += ", x " + fmt(share, 3) + " terms per mode";
-      }
-      r.fp = footprint(spectra, radii, r.modes_used, spec.variant);
+      r.cost = cost_model(spec.variant, double(r.terms) / double(std::max<std::size_t>(r.modes_used, 1)));
+      r.fp = footprint(spectra, radii, r.modes_used, r.terms, spec.variant);
       std::cout << "    m' " << pad(std::to_string(r.modes_used), 7) << "  p50 " << pad(fixed(r.p50), 9) << " us  p99 "
                 << pad(fixed(r.p99), 9) << " us  max " << pad(fixed(r.max), 9) << " us  [p10 " << pad(fixed(r.p10), 8)
                 << " p90 " << pad(fixed(r.p90), 8) << " mean " << pad(fixed(r.mean), 8) << "]  (load "
@@ -1041,7 +1028,8 @@ int run(const Args& args) {
   }
   for (const auto& spec : specs) {
     const LatencyRow* lr = find_lat(spec.key, roof_m);
-    const Cost c = lr ? lr->cost : cost_model(spec.variant, box_nodes_per_mode(spectra, radii, roof_m));
+    if (!lr) continue;  // not measured at this m'
+    const Cost& c = lr->cost;
     std::cout << "    " << padr(spec.label, 24) << " bytes: " << c.bytes_detail << "; flops: " << c.flops_detail
               << "\n";
   }
@@ -1428,5 +1416,6 @@ int run(const Args& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  snapfit::expose_pocl_caller_thread_driver();  // --device basic: the haptic loop's device
   return snapfit::bench::guarded_main("bench_queries", [&] { return run(parse_args(argc, argv)); });
 }

@@ -610,8 +610,8 @@ TEST_CASE("pose query: translation-only and force-only variants agree with the 6
 }
 
 TEST_CASE("pose query: translation-only sums exactly the m' lowest-|w| modes at any m'") {
-  // translation_lines masks a dense box of x-lines by each node's rank in the |w| order;
-  // at R = I the 6-DOF kernel reads the nodes themselves from the |w|-sorted list, so
+  // translation_lines sums, per x-line, the interval of kx that engine/translation_lines.h
+  // selects from the |w| order; at R = I the 6-DOF kernel reads the nodes themselves from the |w|-sorted list, so
   // the two agree to float rounding at every m' only if both sum the same mode set.
   const GaussianPair& s = pair();
   const double scale = s.score_scale();
@@ -637,7 +637,7 @@ TEST_CASE("pose query: translation-only sums exactly the m' lowest-|w| modes at 
       worst = std::max({worst, std::abs(b.score - a.score) / scale, (b.force - a.force).norm() / force_scale});
     }
   }
-  MESSAGE("translation-only (dense lines, rank mask) vs 6-DOF at R = I over m' in 1 .. all: max relative diff "
+  MESSAGE("translation-only (dense line intervals) vs 6-DOF at R = I over m' in 1 .. all: max relative diff "
           << fmt("%.2e", worst));
   CHECK(worst < 1e-5);
 }
