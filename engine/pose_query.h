@@ -40,7 +40,8 @@ struct QueryVariant {
   // PairSpectra::conjugate_pairs), the 6-DOF terms at w and -w are complex conjugates, so
   // each retained pair is evaluated once with twice the weight: half the work for the
   // same m' and the same result (Re f, F, T; Im f is 0 for every complete pair). False
-  // sums every mode (for checks). Translation-only queries sum every mode.
+  // sums every mode (for checks). Translation-only queries fold the same way, over half
+  // of their x-lines (engine/translation_lines.h).
   bool fold_conjugate_pairs = true;
 };
 
@@ -73,7 +74,8 @@ class PoseQueryEngine {
   std::size_t max_modes() const;  // every mode of the FFT grid, by increasing |w|
   std::size_t modes() const;
   // Terms the kernel evaluates per query at the current m': m' with conjugate pairs
-  // folded (about m' / 2, see QueryVariant::fold_conjugate_pairs), else m'.
+  // folded (about m' / 2, see QueryVariant::fold_conjugate_pairs), else m'. Translation
+  // only: the nodes of the selected line intervals plus its extra single terms.
   std::size_t evaluated_terms() const;
   void set_modes(std::size_t m);  // clamped to [1, max_modes()]
 

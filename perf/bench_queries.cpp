@@ -41,7 +41,7 @@
 //                measured here. PoCL's single-threaded driver is visible as well
 //                (--device basic): it runs each query in the calling thread, as the haptic
 //                loop does (scheduler/device_choice.h), without the multi-threaded
-//                driver's dispatch to worker threads (0.03-0.07 ms per launch here).
+//                driver's dispatch to worker threads (0.02-0.07 ms per launch here).
 // Output in DIR (default results/bench_queries): queries.csv, throughput.csv,
 // queries.json (everything, with device, driver, load averages, command line, date) and
 // PNG charts: latency_<variant>.png, latency_p99_all.png, throughput.png, roofline.png.
@@ -627,6 +627,7 @@ struct LatencyRow {
   QueryVariant variant;
   std::size_t modes = 0, modes_used = 0;
   std::size_t terms = 0;  // terms the kernel evaluates (conjugate pairs folded: about m' / 2)
+  double set_modes_us = 0;  // one PoseQueryEngine::set_modes(m') call after set_modes(1)
   int repeats = 0, warmup = 0;
   double p50 = 0, p99 = 0, max = 0, mean = 0, min = 0, p10 = 0, p90 = 0;  // microseconds
   std::size_t flagged = 0;
@@ -644,7 +645,10 @@ LatencyRow measure_latency(PoseQueryEngine& engine, const VariantSpec& spec, con
   r.label = spec.label;
   r.variant = spec.variant;
   r.modes = modes;
+  engine.set_modes(1);
+  const auto s0 = Clock::now();
   engine.set_modes(modes);
+  r.set_modes_us = std::chrono::duration<double, std::micro>(Clock::now() - s0).count();
   r.modes_used = engine.modes();
   r.terms = engine.evaluated_terms();
   r.warmup = warmup;
@@ -828,7 +832,8 @@ int run(const Args& args) {
                 << pad(fixed(r.p99), 9) << " us  max " << pad(fixed(r.max), 9) << " us  [p10 " << pad(fixed(r.p10), 8)
                 << " p90 " << pad(fixed(r.p90), 8) << " mean " << pad(fixed(r.mean), 8) << "]  (load "
                 << fixed(r.load_before, 2) << " -> " << fixed(r.load_after, 2) << ", others " << fixed(r.other_cores, 2)
-                << " cores" << (r.attempts > 1 ? ", attempt " + std::to_string(r.attempts) : "")
+                << " cores; set_modes from 1: " << fixed(r.set_modes_us, 0) << " us"
+                << (r.attempts > 1 ? ", attempt " + std::to_string(r.attempts) : "")
                 << (r.flagged ? ", FLAGGED " + std::to_string(r.flagged) : "") << ")\n"
                 << std::flush;
       latency.push_back(r);
@@ -1223,6 +1228,7 @@ int run(const Args& args) {
                   {"min_us", r.min},
                   {"p10_us", r.p10},
                   {"p90_us", r.p90},
+                  {"set_modes_us", r.set_modes_us},
                   {"flagged", r.flagged},
                   {"bytes_per_mode", r.cost.bytes},
                   {"flops_per_mode", r.cost.flops},
