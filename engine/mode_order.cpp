@@ -17,6 +17,11 @@ std::size_t negated_node(const std::array<std::size_t, 3>& dims, std::size_t k) 
   return neg[0] + dims[0] * (neg[1] + dims[1] * neg[2]);
 }
 
+std::array<int, 3> signed_node(const std::array<std::size_t, 3>& dims, std::size_t k) {
+  return {signed_index(k % dims[0], dims[0]), signed_index((k / dims[0]) % dims[1], dims[1]),
+          signed_index(k / (dims[0] * dims[1]), dims[2])};
+}
+
 std::vector<std::size_t> mode_order(const PairSpectra& s) {
   const auto& d = s.dims;
   const std::size_t total = d[0] * d[1] * d[2];

@@ -17,6 +17,9 @@ constexpr std::size_t kNoNode = std::numeric_limits<std::size_t>::max();
 // -n/2, wraps to the same index, which stands for +n/2). Node 0 is its own negation.
 std::size_t negated_node(const std::array<std::size_t, 3>& dims, std::size_t k);
 
+// The signed frequency indices (kx, ky, kz) of FFT node k (signed_index per axis).
+std::array<int, 3> signed_node(const std::array<std::size_t, 3>& dims, std::size_t k);
+
 // Every FFT node by increasing |w| (in float), ties ordered so that w and -w are
 // adjacent (by the pair's smaller node index, then the node index): a prefix of any
 // length splits at most one conjugate pair.

@@ -227,11 +227,7 @@ PoseQueryEngine::PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& s
   // Every node, by increasing |w| (the low-pass ball grows with m'), conjugate pairs
   // adjacent (engine/mode_order.h).
   const std::vector<std::size_t> order = mode_order(spectra);
-  auto signed_k = [](std::size_t k, std::size_t n) { return k <= n / 2 ? int(k) : int(k) - int(n); };
-  auto mode_k = [&](std::size_t k) {
-    return std::array<int, 3>{signed_k(k % dims[0], dims[0]), signed_k((k / dims[0]) % dims[1], dims[1]),
-                              signed_k(k / (dims[0] * dims[1]), dims[2])};
-  };
+  auto mode_k = [&](std::size_t k) { return signed_node(dims, k); };
   m.table_half.resize(total);
   m.mode_radius.resize(total);
   int reach = 0;

@@ -17,7 +17,6 @@ namespace {
 
 using Cd = std::complex<double>;
 
-int signed_index(std::size_t k, std::size_t n) { return k <= n / 2 ? int(k) : int(k) - int(n); }
 std::size_t wrap(long i, std::size_t n) { return static_cast<std::size_t>(((i % long(n)) + long(n)) % long(n)); }
 
 // Interpolation weights along one axis at fractional index u; returns the first tap.

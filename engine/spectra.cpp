@@ -10,11 +10,6 @@
 namespace snapfit {
 namespace {
 
-// Signed index k' of FFT index k (k' = k - N above N/2).
-long signed_index(std::size_t k, std::size_t n) {
-  return k <= n / 2 ? static_cast<long>(k) : static_cast<long>(k) - static_cast<long>(n);
-}
-
 // Where a part's samples sit in the padded box: centred, so the box centre c is the
 // samples' centre (to within half a spacing) and S(w) varies slowly.
 struct Placement {

@@ -54,6 +54,9 @@ struct PairSpectra {
   int conjugate_pairs() const { return part1.sample_parity * part2.sample_parity == 1 ? 1 : 0; }
 };
 
+// Signed index k' of FFT index k on an axis of n points: k, or k - n above n / 2.
+inline int signed_index(std::size_t k, std::size_t n) { return k <= n / 2 ? int(k) : int(k) - int(n); }
+
 // Forward FFTs of Im-affinity fields i * rho (engine/descriptors.h affinity_imaginary),
 // and for torque of q * rho2 about part 2's frame origin. Both fields must share a spacing.
 // Throws snapfit::Error for mismatched spacings or an FFT failure (naming the device).

@@ -16,7 +16,6 @@ namespace {
 using Key = std::uint32_t;
 constexpr Key kExcluded = std::numeric_limits<Key>::max();
 
-int signed_index(std::size_t k, std::size_t n) { return k <= n / 2 ? int(k) : int(k) - int(n); }
 std::size_t fft_index(int k, std::size_t n) { return k >= 0 ? std::size_t(k) : std::size_t(k + int(n)); }
 
 std::int32_t pack_shorts(int a, int b) {
@@ -83,11 +82,9 @@ LineSet group_lines(const TranslationLines& t, KeyOf key_of) {
 }
 
 ExtraMode extra_mode(const TranslationLines& t, std::size_t node, int code) {
-  const auto& d = t.dims;
-  const int kx = signed_index(node % d[0], d[0]), ky = signed_index((node / d[0]) % d[1], d[1]),
-            kz = signed_index(node / (d[0] * d[1]), d[2]);
-  const std::complex<float> w = t.weights[box_node(t, kx, ky, kz)];
-  return ExtraMode{w.real(), w.imag(), pack_shorts(kx, ky), pack_shorts(kz, code)};
+  const std::array<int, 3> k = signed_node(t.dims, node);
+  const std::complex<float> w = t.weights[box_node(t, k[0], k[1], k[2])];
+  return ExtraMode{w.real(), w.imag(), pack_shorts(k[0], k[1]), pack_shorts(k[2], code)};
 }
 
 }  // namespace
@@ -116,8 +113,8 @@ TranslationLines build_translation_lines(const PairSpectra& spectra, const std::
     rank[k] = static_cast<Key>(i);
     const std::size_t x = k % d[0], y = (k / d[0]) % d[1], z = k / (d[0] * d[1]);
     const std::size_t neg = (d[0] - x) % d[0] + d[0] * ((d[1] - y) % d[1] + d[1] * ((d[2] - z) % d[2]));
-    t.weights[box_node(t, signed_index(x, d[0]), signed_index(y, d[1]), signed_index(z, d[2]))] =
-        spectra.part1.rho[k] * static_cast<float>(dw) * spectra.part2.rho[neg];
+    const std::array<int, 3> kk = signed_node(d, k);
+    t.weights[box_node(t, kk[0], kk[1], kk[2])] = spectra.part1.rho[k] * static_cast<float>(dw) * spectra.part2.rho[neg];
   }
   t.unfolded = group_lines(t, [&](std::size_t k, int, int, int) { return rank[k]; });
   if (!fold || spectra.conjugate_pairs() != 1) return t;
@@ -129,8 +126,8 @@ TranslationLines build_translation_lines(const PairSpectra& spectra, const std::
   for (std::size_t i = 0; i < total; ++i) {
     const std::size_t k = order[i], neg = negated_node(d, k);
     if (neg != kNoNode && neg != k) continue;
-    const bool seen = visited(signed_index(k % d[0], d[0]), signed_index((k / d[0]) % d[1], d[1]),
-                              signed_index(k / (d[0] * d[1]), d[2]));
+    const std::array<int, 3> kk = signed_node(d, k);
+    const bool seen = visited(kk[0], kk[1], kk[2]);
     if (!seen || t.unpaired_visited_ranks.size() == kMaxUnpairedExtras) {
       t.fold_limit = i;  // the folded lines would miss this node (or need one correction too many)
       break;
