@@ -64,6 +64,22 @@ inline bool common_option(int argc, char** argv, int& i, bool& quick, std::strin
   return true;
 }
 
+// Reads every argument: the common options above, then `own(s, value, is)` for the
+// benchmark's own options, where s is the argument, value(name) reads an option's value
+// and is(name) tells whether s is option `name`. `own` returns false for an argument it
+// does not know, which is an error naming it.
+template <class Own>
+void parse_options(int argc, char** argv, bool& quick, std::string& device, std::string& out,
+                   void (*usage)(std::ostream&), Own own) {
+  for (int i = 1; i < argc; ++i) {
+    if (common_option(argc, argv, i, quick, device, out, usage)) continue;
+    const std::string s = argv[i];
+    auto value = [&](const std::string& name) { return option_value(argc, argv, i, name); };
+    auto is = [&](const std::string& name) { return is_option(s, name); };
+    if (!own(s, value, is)) throw snapfit::Error("unknown argument '" + s + "' (see --help)");
+  }
+}
+
 // A benchmark's main: runs `body` and turns an escaping error into a message on stderr
 // ("NAME: error: ..." or "NAME: OpenCL error: ... (code)") and exit status 1.
 inline int guarded_main(const char* name, const std::function<int()>& body) {

@@ -108,12 +108,8 @@ void usage(std::ostream& os) {
 Args parse_args(int argc, char** argv) {
   Args a;
   a.command_line = snapfit::bench::command_line(argc, argv);
-  for (int i = 1; i < argc; ++i) {
-    const std::string s = argv[i];
-    auto value = [&](const std::string& name) { return snapfit::bench::option_value(argc, argv, i, name); };
-    auto is = [&](const std::string& name) { return snapfit::bench::is_option(s, name); };
-    if (snapfit::bench::common_option(argc, argv, i, a.quick, a.device, a.out, usage)) {
-    } else if (s == "--plots-only") {
+  const auto own = [&](const std::string& s, auto& value, auto& is) {
+    if (s == "--plots-only") {
       a.plots_only = true;
     } else if (is("--headline-side")) {
       a.headline_side = std::stoi(value("--headline-side"));
@@ -133,9 +129,11 @@ Args parse_args(int argc, char** argv) {
         a.only.insert(item);
       }
     } else {
-      throw snapfit::Error("unknown argument '" + s + "' (see --help)");
+      return false;
     }
-  }
+    return true;
+  };
+  snapfit::bench::parse_options(argc, argv, a.quick, a.device, a.out, usage, own);
   return a;
 }
 

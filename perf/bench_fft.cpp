@@ -135,17 +135,15 @@ void usage(std::ostream& os) {
 Args parse_args(int argc, char** argv) {
   Args a;
   a.command_line = snapfit::bench::command_line(argc, argv);
-  for (int i = 1; i < argc; ++i) {
-    const std::string s = argv[i];
-    auto value = [&](const std::string& name) { return snapfit::bench::option_value(argc, argv, i, name); };
-    auto is = [&](const std::string& name) { return snapfit::bench::is_option(s, name); };
-    if (snapfit::bench::common_option(argc, argv, i, a.quick, a.device, a.out, usage)) {
-    } else if (is("--repeats")) {
+  const auto own = [&](const std::string&, auto& value, auto& is) {
+    if (is("--repeats")) {
       a.repeats = static_cast<int>(snapfit::bench::integer_option("--repeats", value("--repeats"), 1, 100000));
     } else {
-      throw snapfit::Error("unknown argument '" + s + "' (see --help)");
+      return false;
     }
-  }
+    return true;
+  };
+  snapfit::bench::parse_options(argc, argv, a.quick, a.device, a.out, usage, own);
   return a;
 }
 

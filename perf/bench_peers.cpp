@@ -128,12 +128,8 @@ void usage(std::ostream& os) {
 Args parse_args(int argc, char** argv) {
   Args a;
   a.command_line = snapfit::bench::command_line(argc, argv);
-  for (int i = 1; i < argc; ++i) {
-    const std::string s = argv[i];
-    auto value = [&](const std::string& name) { return snapfit::bench::option_value(argc, argv, i, name); };
-    auto is = [&](const std::string& name) { return snapfit::bench::is_option(s, name); };
-    if (snapfit::bench::common_option(argc, argv, i, a.quick, a.device, a.out, usage)) {
-    } else if (s == "--no-cache") {
+  const auto own = [&](const std::string& s, auto& value, auto& is) {
+    if (s == "--no-cache") {
       a.use_cache = false;
     } else if (is("--scene")) {
       a.scene = value("--scene");
@@ -141,9 +137,11 @@ Args parse_args(int argc, char** argv) {
     } else if (is("--poses")) {
       a.poses = static_cast<int>(snapfit::bench::integer_option("--poses", value("--poses"), 2, 1000000));
     } else {
-      throw snapfit::Error("unknown argument '" + s + "' (see --help)");
+      return false;
     }
-  }
+    return true;
+  };
+  snapfit::bench::parse_options(argc, argv, a.quick, a.device, a.out, usage, own);
   return a;
 }
 
