@@ -7,7 +7,7 @@
 #include "cli/commands.h"
 #include "engine/device.h"
 #include "engine/device_check.h"
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit::cli {
 namespace {

@@ -7,14 +7,14 @@
 #include <iostream>
 
 #include "cli/commands.h"
-#include "cli/scene_summary.h"
+#include "report/scene_summary.h"
 #include "engine/descriptors.h"
-#include "engine/error.h"
-#include "engine/part_fields.h"
+#include "snapfit/error.h"
+#include "pipeline/part_fields.h"
 #include "io/png_export.h"
 #include "io/vti_export.h"
-#include "scheduler/prepare_parts.h"
-#include "scheduler/progress.h"
+#include "pipeline/prepare_parts.h"
+#include "core/progress.h"
 
 namespace snapfit::cli {
 namespace {

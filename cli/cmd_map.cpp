@@ -5,12 +5,12 @@
 #include <sstream>
 
 #include "cli/commands.h"
-#include "engine/assembly_pair.h"
-#include "engine/error.h"
+#include "pipeline/assembly_pair.h"
+#include "snapfit/error.h"
 #include "engine/full_map.h"
 #include "io/png_export.h"
 #include "io/vti_export.h"
-#include "scheduler/progress.h"
+#include "core/progress.h"
 
 namespace snapfit::cli {
 namespace {

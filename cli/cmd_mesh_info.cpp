@@ -2,9 +2,9 @@
 #include <iostream>
 
 #include "cli/commands.h"
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/mesh_load.h"
-#include "io/mesh_report.h"
+#include "mesh/mesh_report.h"
 
 namespace snapfit::cli {
 namespace {

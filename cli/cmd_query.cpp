@@ -7,9 +7,9 @@
 
 #include "cli/commands.h"
 #include "cli/parse_options.h"
-#include "engine/assembly_pair.h"
-#include "engine/error.h"
-#include "scheduler/progress.h"
+#include "pipeline/assembly_pair.h"
+#include "snapfit/error.h"
+#include "core/progress.h"
 
 namespace snapfit::cli {
 namespace {

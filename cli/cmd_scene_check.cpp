@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "cli/commands.h"
-#include "cli/scene_summary.h"
+#include "report/scene_summary.h"
 
 namespace snapfit::cli {
 

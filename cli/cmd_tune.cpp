@@ -6,13 +6,13 @@
 #include <optional>
 
 #include "cli/commands.h"
-#include "cli/haptic_report.h"
+#include "report/haptic_report.h"
 #include "cli/parse_options.h"
-#include "engine/assembly_pair.h"
+#include "pipeline/assembly_pair.h"
 #include "engine/device.h"
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "scheduler/engine_tuning.h"
-#include "scheduler/progress.h"
+#include "core/progress.h"
 #include "scheduler/trajectory.h"
 
 namespace snapfit::cli {

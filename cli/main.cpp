@@ -4,7 +4,7 @@
 
 #include "cli/commands.h"
 #include "engine/device.h"
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 int main(int argc, char** argv) {
   // `snapfit run` tunes both PoCL CPU drivers and runs the loop on the one that suits

@@ -1,6 +1,6 @@
 #include "cli/parse_options.h"
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit::cli {
 

@@ -1,6 +1,6 @@
 #include "engine/compute_context.h"
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 

@@ -4,10 +4,10 @@
 #include <climits>
 #include <cmath>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/kernel_sources.h"
 #include "engine/triangle_bvh.h"
-#include "engine/triangle_refine.h"
+#include "mesh/triangle_refine.h"
 #include "engine/winding_propagation.h"
 
 namespace snapfit {

@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "engine/compute_context.h"
-#include "engine/grid.h"
+#include "core/grid.h"
 #include "engine/program_cache.h"
-#include "io/mesh.h"
-#include "io/scene.h"
+#include "mesh/mesh.h"
+#include "snapfit/scene.h"
 
 namespace snapfit {
 
@@ -27,7 +27,7 @@ struct DescriptorOptions {
   // (so grid points on the surface give finite values, with the sign of w).
   double min_distance_fraction = 1e-3;
   // Before the hierarchy is built, triangles are split until each fits in a ball of
-  // this fraction of the grid spacing (engine/triangle_refine.h); 0 disables it.
+  // this fraction of the grid spacing (mesh/triangle_refine.h); 0 disables it.
   // 0.5 measured as fast as 0.25 in the density pass (the per-point splitting with the
   // second-moment bound is cheap) with a 4x smaller hierarchy to build.
   double refine_fraction = 0.5;

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/kernel_sources.h"
 
 namespace snapfit {

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {

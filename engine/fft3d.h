@@ -3,7 +3,7 @@
 // eq. 13-14): forward F_k = sum_i f_i exp(-2 pi i k.i/N), inverse unnormalized
 // (clFFT scales the backward transform by 1/N by default; we turn that off so the
 // caller applies the physical dV / dw factors in one place). Data layout: interleaved
-// complex float, x fastest (engine/grid.h).
+// complex float, x fastest (core/grid.h).
 //
 // clFFT keeps library-wide state (clfftSetup/clfftTeardown); FftLibrary owns it for
 // the process and must outlive every plan. Plans are baked once per (context, dims)

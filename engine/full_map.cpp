@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/kernel_sources.h"
 
 namespace snapfit {

@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "engine/grid.h"
+#include "core/grid.h"
 #include "engine/pose_query.h"
 
 namespace snapfit {

@@ -1,6 +1,6 @@
 #include "engine/kernel_sources.h"
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 

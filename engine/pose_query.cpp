@@ -9,7 +9,7 @@
 #include <numeric>
 #include <string>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/kernel_sources.h"
 #include "engine/mode_order.h"
 #include "engine/translation_lines.h"

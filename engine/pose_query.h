@@ -15,7 +15,7 @@
 #include <memory>
 #include <vector>
 
-#include "engine/pose.h"
+#include "snapfit/pose.h"
 #include "engine/program_cache.h"
 #include "engine/spectra.h"
 

@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <iostream>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/cache_file.h"
-#include "io/hash.h"
+#include "core/hash.h"
 
 namespace snapfit {
 namespace {

@@ -10,7 +10,7 @@
 #include <numeric>
 #include <algorithm>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {

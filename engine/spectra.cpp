@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {

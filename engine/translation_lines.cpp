@@ -6,7 +6,7 @@
 #include <numeric>
 #include <string>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/mode_order.h"
 
 namespace snapfit {

@@ -7,7 +7,7 @@
 #include <atomic>
 #include <numeric>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {

@@ -11,7 +11,7 @@
 
 #include <vector>
 
-#include "io/mesh.h"
+#include "mesh/mesh.h"
 
 namespace snapfit {
 

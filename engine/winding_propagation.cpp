@@ -6,7 +6,7 @@
 #include <numeric>
 #include <unordered_map>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {

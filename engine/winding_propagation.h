@@ -17,8 +17,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/grid.h"
-#include "io/mesh.h"
+#include "core/grid.h"
+#include "mesh/mesh.h"
 
 namespace snapfit {
 

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <string>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/mesh_load.h"
 
 namespace {

@@ -1,12 +1,12 @@
-// libFuzzer target: the scene loader (io/scene.h parse_scene) on arbitrary bytes.
+// libFuzzer target: the scene loader (snapfit/scene.h parse_scene) on arbitrary bytes.
 // Every input must either parse or throw snapfit::Error; any other exception, a crash,
 // an ASan report or a hang is a bug (see fuzz/README.md).
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
-#include "engine/error.h"
-#include "io/scene.h"
+#include "snapfit/error.h"
+#include "snapfit/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -6,7 +6,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 

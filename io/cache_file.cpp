@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/atomic_write.h"
-#include "io/hash.h"
+#include "core/hash.h"
 
 namespace snapfit {
 namespace {

@@ -17,7 +17,7 @@
 #include <fstream>
 #include <new>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {

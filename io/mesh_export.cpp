@@ -12,7 +12,7 @@
 #include <limits>
 #include <string>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/atomic_write.h"
 
 namespace snapfit {

@@ -3,7 +3,7 @@
 // the same folder, then rename), so a reader never sees a half-written file.
 #include <string>
 
-#include "io/mesh.h"
+#include "mesh/mesh.h"
 
 namespace snapfit {
 

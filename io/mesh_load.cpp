@@ -25,7 +25,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/isolated_import.h"
 
 namespace snapfit {

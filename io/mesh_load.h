@@ -2,7 +2,7 @@
 // Mesh import through Assimp: any format it reads (STL, OBJ, PLY, glTF, OFF, ...).
 #include <string>
 
-#include "io/mesh.h"
+#include "mesh/mesh.h"
 
 namespace snapfit {
 

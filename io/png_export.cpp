@@ -14,7 +14,7 @@
 #include <functional>
 #include <string>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/atomic_write.h"
 
 namespace snapfit {

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/grid.h"
+#include "core/grid.h"
 
 namespace snapfit {
 

@@ -13,7 +13,7 @@
 #include <set>
 #include <string>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/atomic_write.h"
 
 namespace snapfit {

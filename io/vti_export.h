@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/grid.h"
+#include "core/grid.h"
 
 namespace snapfit {
 

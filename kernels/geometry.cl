@@ -15,7 +15,7 @@ typedef struct {
 #define STACK_SIZE 64
 #endif
 
-// Grid point number `id`: origin + spacing * (i, j, k), i fastest (engine/grid.h).
+// Grid point number `id`: origin + spacing * (i, j, k), i fastest (core/grid.h).
 inline float3 grid_point(const long id, const float3 origin, const float spacing, const int nx, const int ny) {
   const long i = id % nx;
   const long j = (id / nx) % ny;

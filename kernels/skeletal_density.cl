@@ -18,7 +18,7 @@
 // triangle piece (A/12) sum_i |v_i - c|^2 <= r^2 A / 4). A cluster is accepted when that bound is at most
 // tolerance * g(0) * A/(D - r)^2 (a relative error on its solid-angle bound);
 // otherwise nodes open their children and triangles are split at their longest edge.
-// Triangles arrive pre-split to a fraction of the grid spacing (engine/triangle_refine.h),
+// Triangles arrive pre-split to a fraction of the grid spacing (mesh/triangle_refine.h),
 // so MAX_SPLIT_DEPTH = 16 halvings reach ~2e-3 of the spacing, near the 1e-3 below which
 // |xi| is clamped; a small split stack also keeps PoCL fast (measured: depth 40 is ~2x slower).
 // Pieces still rejected at MAX_SPLIT_DEPTH use the exact solid angle times g(x_c),

@@ -22,14 +22,14 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "engine/assembly_pair.h"
+#include "pipeline/assembly_pair.h"
 #include "engine/device.h"
 #include "engine/reference_query.h"
-#include "io/plot.h"
-#include "io/spectra_cache.h"
+#include "report/plot.h"
+#include "pipeline/spectra_cache.h"
 #include "perf/bench_common.h"
 #include "scheduler/engine_tuning.h"
-#include "scheduler/quantile.h"
+#include "core/quantile.h"
 #include "scheduler/trajectory.h"
 
 using namespace snapfit;

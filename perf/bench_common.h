@@ -17,7 +17,7 @@
 
 #include <CL/opencl.hpp>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit::bench {
 

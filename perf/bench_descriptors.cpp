@@ -17,11 +17,11 @@
 //   tolerance   tolerance 0.2, 0.1, 0.05 at a medium size
 // --only takes a comma-separated list of those names (default: all). --quick runs
 // small sizes only (well under a minute). Output: tables on stdout, DIR/descriptors.csv
-// and DIR/descriptors.json (default DIR results/bench_descriptors), and, when io/plot.h
+// and DIR/descriptors.json (default DIR results/bench_descriptors), and, when report/plot.h
 // is available, log-log charts DIR/time_vs_m.png and DIR/time_vs_n.png (--plots-only
 // redraws them from an existing DIR/descriptors.json without measuring).
 //
-// Grids: the part's box grown by PADDING on every side (engine/part_fields.h part_grid)
+// Grids: the part's box grown by PADDING on every side (pipeline/part_fields.h part_grid)
 // at the spacing that gives the wanted number of points, then shifted by less than half
 // a spacing per axis so that no grid plane lies on one of the part's axis-aligned faces
 // (the shift maximizes the smallest distance, reported as face_clearance in spacings).
@@ -53,17 +53,17 @@
 #include "engine/compute_context.h"
 #include "engine/descriptors.h"
 #include "engine/device.h"
-#include "engine/error.h"
-#include "engine/grid.h"
-#include "engine/part_fields.h"
-#include "io/mesh.h"
-#if __has_include("io/plot.h")
-#include "io/plot.h"
+#include "snapfit/error.h"
+#include "core/grid.h"
+#include "pipeline/part_fields.h"
+#include "mesh/mesh.h"
+#if __has_include("report/plot.h")
+#include "report/plot.h"
 #define SNAPFIT_BENCH_PLOTS 1
 #endif
-#include "io/scene.h"
-#include "scenes/procedural/procedural_parts.h"
-#include "scheduler/progress.h"
+#include "snapfit/scene.h"
+#include "mesh/procedural/procedural_parts.h"
+#include "core/progress.h"
 
 namespace {
 
@@ -556,7 +556,7 @@ std::string write_plots(const std::filesystem::path& dir, const nlohmann::json& 
 #else
   (void)dir;
   (void)rows;
-  return "plots: skipped (io/plot.h is not available in this build)";
+  return "plots: skipped (report/plot.h is not available in this build)";
 #endif
 }
 

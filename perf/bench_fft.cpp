@@ -88,17 +88,17 @@
 
 #include "engine/compute_context.h"
 #include "engine/device.h"
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/fft3d.h"
 #include "engine/full_map.h"
 #include "engine/kernel_sources.h"
-#include "engine/part_fields.h"
+#include "pipeline/part_fields.h"
 #include "engine/program_cache.h"
 #include "engine/spectra.h"
-#include "io/plot.h"
-#include "io/scene.h"
+#include "report/plot.h"
+#include "snapfit/scene.h"
 #include "perf/bench_common.h"
-#include "scheduler/prepare_parts.h"
+#include "pipeline/prepare_parts.h"
 
 namespace {
 

@@ -20,13 +20,13 @@
 #include <optional>
 #include <nlohmann/json.hpp>
 
-#include "engine/assembly_pair.h"
+#include "pipeline/assembly_pair.h"
 #include "engine/device.h"
-#include "io/plot.h"
+#include "report/plot.h"
 #include "perf/bench_common.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/engine_tuning.h"
-#include "scheduler/quantile.h"
+#include "core/quantile.h"
 #include "scheduler/trajectory.h"
 
 using namespace snapfit;

@@ -18,7 +18,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/isolated_import.h"
 #include "io/mesh_export.h"
 #include "io/mesh_load.h"

@@ -5,8 +5,8 @@
 //   bench_peers [--quick] [--device SPEC] [--scene FILE] [--out DIR] [--poses N] [--no-cache]
 //
 // Part pair: the scene's two parts (default scenes/default.json: the peg and the hole
-// block, zero clearance, built by io/scene.h + scheduler/prepare_parts.h), then refined by
-// longest-edge bisection (engine/triangle_refine.h; the surface and its orientation are
+// block, zero clearance, built by snapfit/scene.h + pipeline/prepare_parts.h), then refined by
+// longest-edge bisection (mesh/triangle_refine.h; the surface and its orientation are
 // unchanged, only the triangles get smaller) to about 1e3 (the scene's own meshes when
 // they have about that many), 1e4, 1e5 and 1e6 triangles for both parts together
 // (--quick: 1e3 and 1e4). One radius for both parts, adjusted until the count is within
@@ -22,7 +22,7 @@
 //           abs_err = 0, no nearest points) per pose, wall clock of one call after setting
 //           part 2's transform; p50 / p99 over the poses. Distance queries stop after a time
 //           budget per level (30 s, --quick 3 s); the count done is reported.
-//   snapfit the same steps as engine/assembly_pair.h build_assembly_pair on the indicator
+//   snapfit the same steps as pipeline/assembly_pair.h build_assembly_pair on the indicator
 //           version of the scene (descriptor kind "indicator", as scenes/collision_only.json;
 //           6-DOF with energy, force and torque, so torque spectra too): the scene's meshes
 //           go through build_assembly_pair itself, refined ones through the same calls
@@ -72,20 +72,20 @@
 #include <thread>
 #include <vector>
 
-#include "engine/assembly_pair.h"
+#include "pipeline/assembly_pair.h"
 #include "engine/compute_context.h"
 #include "engine/device.h"
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/fft3d.h"
-#include "engine/part_fields.h"
+#include "pipeline/part_fields.h"
 #include "engine/pose_query.h"
 #include "engine/spectra.h"
-#include "engine/triangle_refine.h"
-#include "io/plot.h"
-#include "io/scene.h"
+#include "mesh/triangle_refine.h"
+#include "report/plot.h"
+#include "snapfit/scene.h"
 #include "perf/bench_common.h"
-#include "scheduler/prepare_parts.h"
-#include "scheduler/progress.h"
+#include "pipeline/prepare_parts.h"
+#include "core/progress.h"
 #include "scheduler/trajectory.h"
 
 namespace {

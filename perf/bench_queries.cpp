@@ -66,17 +66,17 @@
 #include <thread>
 #include <vector>
 
-#include "engine/assembly_pair.h"
+#include "pipeline/assembly_pair.h"
 #include "perf/bench_common.h"
 #include "engine/compute_context.h"
 #include "engine/device.h"
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/fft3d.h"
 #include "engine/full_map.h"
 #include "engine/pose_query.h"
-#include "io/plot.h"
-#include "io/scene.h"
-#include "scheduler/progress.h"
+#include "report/plot.h"
+#include "snapfit/scene.h"
+#include "core/progress.h"
 
 namespace {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "scheduler/scripted_device.h"
 
 namespace snapfit {

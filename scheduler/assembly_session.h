@@ -6,8 +6,8 @@
 #include <optional>
 
 #include "engine/pose_query.h"
-#include "io/mesh.h"
-#include "io/scene.h"
+#include "mesh/mesh.h"
+#include "snapfit/scene.h"
 #include "scheduler/auto_tune.h"
 #include "scheduler/haptic_loop.h"
 #include "scheduler/haptic_setup.h"

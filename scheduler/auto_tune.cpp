@@ -5,8 +5,8 @@
 #include <cmath>
 #include <ctime>
 
-#include "engine/error.h"
-#include "scheduler/quantile.h"
+#include "snapfit/error.h"
+#include "core/quantile.h"
 
 namespace snapfit {
 

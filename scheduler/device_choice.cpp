@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <sstream>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "scheduler/haptic_loop.h"
 
 namespace snapfit {

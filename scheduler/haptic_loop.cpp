@@ -10,8 +10,8 @@
 #include <optional>
 #include <thread>
 
-#include "engine/error.h"
-#include "scheduler/quantile.h"
+#include "snapfit/error.h"
+#include "core/quantile.h"
 
 namespace snapfit {
 

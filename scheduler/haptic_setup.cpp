@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "engine/error.h"
-#include "io/mesh_mass_properties.h"
+#include "snapfit/error.h"
+#include "mesh/mesh_mass_properties.h"
 
 namespace snapfit {
 

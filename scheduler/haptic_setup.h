@@ -1,12 +1,12 @@
 #pragma once
-// From a scene's `haptics` section (io/scene.h HapticsParams) to what the haptic loop
+// From a scene's `haptics` section (snapfit/scene.h HapticsParams) to what the haptic loop
 // needs: the virtual coupling, the device limits, the geometric gain, and the test of
 // whether a run ended assembled.
 #include <vector>
 
-#include "engine/pose.h"
-#include "io/mesh.h"
-#include "io/scene.h"
+#include "snapfit/pose.h"
+#include "mesh/mesh.h"
+#include "snapfit/scene.h"
 #include "scheduler/haptic_device.h"
 #include "scheduler/virtual_coupling.h"
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "scheduler/trajectory.h"
 
 namespace snapfit {

@@ -4,7 +4,7 @@
 // trajectory. The wrenches it is sent are kept for the report.
 #include <vector>
 
-#include "io/scene.h"
+#include "snapfit/scene.h"
 #include "scheduler/haptic_device.h"
 
 namespace snapfit {

@@ -1,11 +1,11 @@
 #pragma once
-// The scripted device trajectory of a scene (io/scene.h Trajectory): the pose at any
+// The scripted device trajectory of a scene (snapfit/scene.h Trajectory): the pose at any
 // time, linear in position and spherical-linear (slerp) in rotation between keyframes,
 // held at the first and last keyframe outside their times.
 #include <vector>
 
-#include "engine/pose.h"
-#include "io/scene.h"
+#include "snapfit/pose.h"
+#include "snapfit/scene.h"
 
 namespace snapfit {
 

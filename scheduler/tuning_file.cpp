@@ -3,9 +3,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/cache_file.h"
-#include "io/hash.h"
+#include "core/hash.h"
 
 namespace snapfit {
 namespace {

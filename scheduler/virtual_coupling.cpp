@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 

@@ -17,7 +17,7 @@
 // a critically damped coupling stays free of overshoot in the discrete system too.
 #include <Eigen/Core>
 
-#include "engine/pose.h"
+#include "snapfit/pose.h"
 
 namespace snapfit {
 

@@ -16,7 +16,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "io/mesh.h"
+#include "mesh/mesh.h"
 
 namespace snapfit::test {
 

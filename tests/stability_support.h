@@ -7,8 +7,8 @@
 
 #include <Eigen/Geometry>
 
-#include "engine/assembly_pair.h"
-#include "io/scene.h"
+#include "pipeline/assembly_pair.h"
+#include "snapfit/scene.h"
 #include "tests/test_engine_support.h"
 
 namespace snapfit::test {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "scheduler/auto_tune.h"
 #include "scheduler/device_choice.h"
 #include "scheduler/tuning_file.h"

@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/cache_file.h"
 #include "tests/test_support.h"
 

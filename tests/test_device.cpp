@@ -6,7 +6,7 @@
 #include "engine/compute_context.h"
 #include "engine/device.h"
 #include "engine/device_check.h"
-#include "engine/error.h"
+#include "snapfit/error.h"
 
 using namespace snapfit;
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "engine/device.h"
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/fft3d.h"
 
 using namespace snapfit;

@@ -1,4 +1,4 @@
-// Descriptor field cache (io/field_cache.h) through engine/part_fields.h: miss then hit
+// Descriptor field cache (pipeline/field_cache.h) through pipeline/part_fields.h: miss then hit
 // with bit-identical fields, a new key for every value-changing input, recovery from
 // corrupt and truncated entries, an unwritable cache folder, and use_cache = false.
 // The cache root comes from $SNAPFIT_CACHE_DIR (io/cache_file.h cache_root()), pointed
@@ -15,10 +15,10 @@
 
 #include "engine/compute_context.h"
 #include "engine/device.h"
-#include "engine/part_fields.h"
+#include "pipeline/part_fields.h"
 #include "io/cache_file.h"
-#include "io/field_cache.h"
-#include "scenes/procedural/procedural_parts.h"
+#include "pipeline/field_cache.h"
+#include "mesh/procedural/procedural_parts.h"
 #include "tests/test_engine_support.h"
 #include "tests/test_support.h"
 

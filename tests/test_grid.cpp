@@ -1,4 +1,4 @@
-// Sample grids (engine/grid.h): coverage of the padded box, centring, spacing and
+// Sample grids (core/grid.h): coverage of the padded box, centring, spacing and
 // resolution modes, index/point layout, errors, and the scene-wide common spacing.
 #include <doctest/doctest.h>
 
@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include "engine/error.h"
-#include "engine/grid.h"
+#include "snapfit/error.h"
+#include "core/grid.h"
 
 using namespace snapfit;
 using Eigen::AlignedBox3d;

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <map>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "scheduler/haptic_loop.h"
 #include "scheduler/scripted_device.h"
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/isolated_import.h"
 #include "io/mesh_export.h"
 #include "io/mesh_load.h"

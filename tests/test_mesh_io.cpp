@@ -1,4 +1,4 @@
-// Mesh import, export and validation (io/mesh_load.h, io/mesh_export.h, io/mesh_report.h).
+// Mesh import, export and validation (io/mesh_load.h, io/mesh_export.h, mesh/mesh_report.h).
 #include <doctest/doctest.h>
 #include <unistd.h>
 
@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "engine/error.h"
-#include "io/mesh.h"
+#include "snapfit/error.h"
+#include "mesh/mesh.h"
 #include "io/mesh_export.h"
 #include "io/mesh_load.h"
-#include "io/mesh_report.h"
+#include "mesh/mesh_report.h"
 
 namespace fs = std::filesystem;
 using snapfit::Mesh;

@@ -2,8 +2,8 @@
 // Small meshes shared by the geometry tests.
 #include <random>
 
-#include "io/mesh.h"
-#include "scenes/procedural/procedural_parts.h"
+#include "mesh/mesh.h"
+#include "mesh/procedural/procedural_parts.h"
 
 namespace snapfit::test {
 

@@ -1,4 +1,4 @@
-// Charts to PNG (io/plot.h) and the bitmap font (io/bitmap_font.h).
+// Charts to PNG (report/plot.h) and the bitmap font (report/bitmap_font.h).
 #include <doctest/doctest.h>
 #include <png.h>
 
@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/error.h"
-#include "io/bitmap_font.h"
-#include "io/plot.h"
+#include "snapfit/error.h"
+#include "report/bitmap_font.h"
+#include "report/plot.h"
 #include "tests/test_support.h"
 
 using namespace snapfit;

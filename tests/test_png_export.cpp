@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/png_export.h"
 #include "tests/test_support.h"
 

@@ -32,10 +32,10 @@
 
 #include "engine/compute_context.h"
 #include "engine/device.h"
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/fft3d.h"
-#include "engine/grid.h"
-#include "engine/pose.h"
+#include "core/grid.h"
+#include "snapfit/pose.h"
 #include "engine/pose_query.h"
 #include "engine/spectra.h"
 #include "tests/test_support.h"

@@ -1,4 +1,4 @@
-// Procedural parts (scenes/procedural/): mesh validity (indexed, watertight, outward
+// Procedural parts (mesh/procedural/): mesh validity (indexed, watertight, outward
 // normals, no degenerate triangles) and geometry against closed forms.
 #include <doctest/doctest.h>
 
@@ -10,8 +10,8 @@
 #include <string>
 #include <utility>
 
-#include "engine/error.h"
-#include "scenes/procedural/procedural_parts.h"
+#include "snapfit/error.h"
+#include "mesh/procedural/procedural_parts.h"
 
 using snapfit::Mesh;
 using snapfit::ProceduralPartSpec;

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "engine/device_check.h"
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/kernel_sources.h"
 #include "engine/program_cache.h"
 #include "io/cache_file.h"

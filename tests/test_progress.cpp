@@ -1,4 +1,4 @@
-// Progress reports (scheduler/progress.h), in plain (non-terminal) and forced terminal style.
+// Progress reports (core/progress.h), in plain (non-terminal) and forced terminal style.
 #include <doctest/doctest.h>
 #include <tbb/parallel_for.h>
 
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "scheduler/progress.h"
+#include "core/progress.h"
 
 using namespace snapfit;
 

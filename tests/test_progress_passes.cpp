@@ -1,4 +1,4 @@
-// One progress bar per named pass (scheduler/progress.h pass_progress_bars), in plain
+// One progress bar per named pass (core/progress.h pass_progress_bars), in plain
 // (non-terminal) style into a string stream.
 #include <doctest/doctest.h>
 
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "scheduler/progress.h"
+#include "core/progress.h"
 
 using namespace snapfit;
 

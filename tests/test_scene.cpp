@@ -1,4 +1,4 @@
-// Scene files (io/scene.h): the shipped scenes, round trips, and one check per error class.
+// Scene files (snapfit/scene.h): the shipped scenes, round trips, and one check per error class.
 #include <doctest/doctest.h>
 #include <unistd.h>
 
@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "engine/error.h"
-#include "io/scene.h"
+#include "snapfit/error.h"
+#include "snapfit/scene.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

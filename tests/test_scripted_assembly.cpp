@@ -9,7 +9,7 @@
 
 #include <iostream>
 
-#include "engine/assembly_pair.h"
+#include "pipeline/assembly_pair.h"
 #include "scheduler/assembly_session.h"
 #include "tests/test_engine_support.h"
 

@@ -17,7 +17,7 @@
 #include <tuple>
 #include <nlohmann/json.hpp>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/kernel_sources.h"
 #include "io/cache_file.h"
 #include "io/mesh_load.h"

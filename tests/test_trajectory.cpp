@@ -2,7 +2,7 @@
 // positions and slerp rotations in between, held outside, errors.
 #include <doctest/doctest.h>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "scheduler/trajectory.h"
 
 using namespace snapfit;

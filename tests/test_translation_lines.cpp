@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/mode_order.h"
 #include "engine/translation_lines.h"
 

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "engine/triangle_bvh.h"
-#include "scenes/procedural/procedural_parts.h"
+#include "mesh/procedural/procedural_parts.h"
 #include "tests/test_meshes.h"
 
 using namespace snapfit;

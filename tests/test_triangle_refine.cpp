@@ -1,4 +1,4 @@
-// Triangle refinement (engine/triangle_refine.h): pieces fit the radius, and the
+// Triangle refinement (mesh/triangle_refine.h): pieces fit the radius, and the
 // surface integrals (area, area vector, enclosed volume) and orientation are unchanged;
 // a coarse radius is a no-op; the piece limit and bad radii throw.
 #include <doctest/doctest.h>
@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/error.h"
-#include "engine/triangle_refine.h"
-#include "scenes/procedural/procedural_parts.h"
+#include "snapfit/error.h"
+#include "mesh/triangle_refine.h"
+#include "mesh/procedural/procedural_parts.h"
 #include "tests/test_meshes.h"
 
 using namespace snapfit;

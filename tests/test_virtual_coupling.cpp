@@ -1,13 +1,13 @@
 // The virtual coupling and its integrator (scheduler/virtual_coupling.h): settling
 // without overshoot when critically damped, passivity with a stiff coupling, and the
-// solid moments the proxy's inertia comes from (io/mesh_mass_properties.h).
+// solid moments the proxy's inertia comes from (mesh/mesh_mass_properties.h).
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <random>
 
-#include "engine/error.h"
-#include "io/mesh_mass_properties.h"
+#include "snapfit/error.h"
+#include "mesh/mesh_mass_properties.h"
 #include "scheduler/haptic_device.h"
 #include "scheduler/virtual_coupling.h"
 #include "tests/test_meshes.h"

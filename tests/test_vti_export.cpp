@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/error.h"
+#include "snapfit/error.h"
 #include "io/vti_export.h"
 #include "tests/test_support.h"
 

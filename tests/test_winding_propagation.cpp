@@ -13,7 +13,7 @@
 
 #include "engine/descriptors.h"
 #include "engine/winding_propagation.h"
-#include "scenes/procedural/procedural_parts.h"
+#include "mesh/procedural/procedural_parts.h"
 #include "tests/descriptor_reference.h"
 #include "tests/test_engine_support.h"
 

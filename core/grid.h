@@ -1,0 +1,52 @@
+#pragma once
+// A uniform grid of sample points: p(i,j,k) = origin + spacing * (i, j, k), with
+// i fastest in memory (index = i + dims.x * (j + dims.y * k)), as VTK image data.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <vector>
+
+#include "snapfit/scene.h"
+
+namespace snapfit {
+
+struct GridSpec {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  double spacing = 1.0;
+  Eigen::Vector3i dims = Eigen::Vector3i::Zero();
+
+  std::size_t count() const {
+    return static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(dims.z());
+  }
+  std::size_t index(int i, int j, int k) const {
+    return static_cast<std::size_t>(i) + static_cast<std::size_t>(dims.x()) *
+                                             (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(k));
+  }
+  Eigen::Vector3d point(int i, int j, int k) const { return origin + spacing * Eigen::Vector3d(i, j, k); }
+  // The point of grid index `id` (the inverse of index()).
+  Eigen::Vector3d point(std::size_t id) const {
+    const std::size_t nx = static_cast<std::size_t>(dims.x()), ny = static_cast<std::size_t>(dims.y());
+    return point(static_cast<int>(id % nx), static_cast<int>(id / nx % ny), static_cast<int>(id / (nx * ny)));
+  }
+};
+
+// The grid that covers `box` grown by `params.padding` on every side, with
+// params.spacing, or with params.resolution points along the longest padded axis.
+// Throws snapfit::Error for an empty box or a grid of more than 2^31 points.
+GridSpec make_grid(const Eigen::AlignedBox3d& box, const GridParams& params);
+
+}  // namespace snapfit
+
+namespace snapfit {
+
+// One spacing for all parts of a scene (their spectra must share it): params.spacing,
+// or the longest padded extent over all boxes divided by (resolution - 1).
+double common_spacing(const GridParams& params, const std::vector<Eigen::AlignedBox3d>& boxes);
+
+// The grid's point indices in packets of `lanes` (1, 4, 8 or 16) neighbours: bricks of
+// 1x1x1, 2x2x1, 2x2x2 or 4x2x2 points, brick after brick in grid order, the points of a
+// brick in grid order. Bricks cut by the grid's far faces are padded with -1, so the
+// list's length is a multiple of `lanes`. Throws snapfit::Error for another lane count.
+std::vector<long long> brick_point_order(const GridSpec& grid, int lanes);
+
+}  // namespace snapfit

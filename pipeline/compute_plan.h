@@ -1,0 +1,22 @@
+#pragma once
+// What the engine will compute for a scene, and why: only what the scene needs
+// (DESIGN.md "Leave out what a scene does not need").
+#include <string>
+#include <vector>
+
+#include "snapfit/scene.h"
+
+namespace snapfit {
+
+struct ComputePlan {
+  bool skeletal_density = true;  // false: winding number (indicator) only
+  bool torque_fields = true;     // the three q * rho2 fields of part 2 and their spectra
+  bool rotation = true;          // spectrum rotation per frame (false: translation fast path)
+  bool force = true;
+  bool torque = true;
+  std::vector<std::string> lines;  // one sentence per decision, with its reason
+};
+
+ComputePlan plan_computation(const Scene& scene);
+
+}  // namespace snapfit

@@ -1,0 +1,47 @@
+#include "pipeline/prepare_parts.h"
+
+#include <tbb/parallel_invoke.h>
+
+#include <chrono>
+#include <exception>
+
+#include "pipeline/part_mesh.h"
+
+namespace snapfit {
+namespace {
+
+PreparedPart prepare(const PartSpec& spec) {
+  const auto start = std::chrono::steady_clock::now();
+  PreparedPart part;
+  part.mesh = build_part_mesh(spec);
+  part.report = validate_mesh(part.mesh);
+  part.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return part;
+}
+
+}  // namespace
+
+PreparedParts prepare_parts(const Scene& scene) {
+  PreparedParts parts;
+  std::exception_ptr error1, error2;
+  tbb::parallel_invoke(
+      [&] {
+        try {
+          parts.part1 = prepare(scene.part1);
+        } catch (...) {
+          error1 = std::current_exception();
+        }
+      },
+      [&] {
+        try {
+          parts.part2 = prepare(scene.part2);
+        } catch (...) {
+          error2 = std::current_exception();
+        }
+      });
+  if (error1) std::rethrow_exception(error1);
+  if (error2) std::rethrow_exception(error2);
+  return parts;
+}
+
+}  // namespace snapfit

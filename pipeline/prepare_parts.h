@@ -1,0 +1,23 @@
+#pragma once
+// Builds both parts of a scene (load or generate, then validate) in parallel on TBB.
+#include "mesh/mesh.h"
+#include "mesh/mesh_report.h"
+#include "snapfit/scene.h"
+
+namespace snapfit {
+
+struct PreparedPart {
+  Mesh mesh;           // in the part's own frame, scene units
+  MeshReport report;
+  double seconds = 0;  // wall time to load or generate and validate
+};
+
+struct PreparedParts {
+  PreparedPart part1;
+  PreparedPart part2;
+};
+
+// Throws snapfit::Error naming the part on failure (the first failure, if both fail).
+PreparedParts prepare_parts(const Scene& scene);
+
+}  // namespace snapfit

@@ -1,0 +1,150 @@
+#include "report/haptic_report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "io/atomic_write.h"
+#include "report/plot.h"
+#include "core/quantile.h"
+
+namespace snapfit::cli {
+namespace {
+
+void write_text_file(const std::filesystem::path& path, const std::string& text) {
+  write_file_atomically(path.string(), [&](std::FILE* f) {
+    return std::fwrite(text.data(), 1, text.size(), f) == text.size() ? std::string() : std::string("short write");
+  });
+}
+
+std::string loop_csv(const LoopReport& loop) {
+  std::ostringstream csv;
+  csv.precision(9);
+  csv << "time_s,frame_ms,missed,modes,flags,device_x,device_y,device_z,part_x,part_y,part_z,part_qw,part_qx,"
+         "part_qy,part_qz,energy,geo_fx,geo_fy,geo_fz,geo_tx,geo_ty,geo_tz,sent_fx,sent_fy,sent_fz,sent_tx,"
+         "sent_ty,sent_tz\n";
+  for (const FrameRecord& f : loop.log) {
+    const Eigen::Vector3d& d = f.device.translation;
+    const Eigen::Vector3d& p = f.part.translation;
+    const Eigen::Quaterniond& q = f.part.rotation;
+    csv << f.time_s << ',' << f.frame_ms << ',' << f.missed << ',' << f.modes << ',' << f.flags << ',' << d.x() << ','
+        << d.y() << ',' << d.z() << ',' << p.x() << ',' << p.y() << ',' << p.z() << ',' << q.w() << ',' << q.x()
+        << ',' << q.y() << ',' << q.z() << ',' << f.energy;
+    for (const Eigen::Vector3d* v : {&f.geometric.force, &f.geometric.torque, &f.sent.force, &f.sent.torque})
+      csv << ',' << v->x() << ',' << v->y() << ',' << v->z();
+    csv << '\n';
+  }
+  return csv.str();
+}
+
+Series line(const std::string& label) { return Series{label, {}, {}, Series::Style::line}; }
+
+}  // namespace
+
+std::string tuning_table(const TuningResult& t) {
+  std::ostringstream s;
+  char row[160];
+  std::snprintf(row, sizeof row, "  %9s %9s %9s %9s %10s\n", "m'", "p50 ms", "p99 ms", "max ms", "model ms");
+  s << row;
+  for (const TimingPoint& p : t.points) {
+    std::snprintf(row, sizeof row, "  %9zu %9.3f %9.3f %9.3f %10.3f%s\n", p.modes, p.p50_ms, p.p99_ms, p.max_ms,
+                  t.model.predict_ms(p.modes), p.modes == t.chosen_modes ? "  <- chosen" : "");
+    s << row;
+  }
+  std::snprintf(row, sizeof row, "  target p99 <= %.3f ms (budget %.3f ms, margin %.0f%%): m' = %zu%s\n",
+                t.target_ms(), t.budget_ms, 100 * t.margin, t.chosen_modes,
+                t.fits ? "" : " (the budget is NOT met even at the smallest level)");
+  s << row;
+  return s.str();
+}
+
+Chart tuning_chart(const TuningResult& t, const std::string& device_name) {
+  Series p50{"p50", {}, {}, Series::Style::line_points}, p99{"p99", {}, {}, Series::Style::line_points},
+      model = line("cost model (p99 fit)");
+  for (const TimingPoint& p : t.points) {
+    p50.x.push_back(p.modes), p50.y.push_back(p.p50_ms);
+    p99.x.push_back(p.modes), p99.y.push_back(p.p99_ms);
+    model.x.push_back(p.modes), model.y.push_back(std::max(1e-3, t.model.predict_ms(p.modes)));
+  }
+  Chart c{"Per-query time against m' on " + device_name, "m' (modes)", "ms per query", true, true, {p50, p99, model},
+          {}, {}};
+  c.hlines.push_back(HLine{t.budget_ms, "budget"});
+  c.hlines.push_back(HLine{t.target_ms(), "target (margin)"});
+  for (const TimingPoint& p : t.points)
+    if (p.modes == t.chosen_modes) c.markers.push_back(Marker{double(p.modes), p.p99_ms, "chosen m'"});
+  c.markers.push_back(Marker{4096, t.model.predict_ms(4096) > 0 ? t.model.predict_ms(4096) : t.points.front().p99_ms,
+                             "seed 000: 4096 (K20c)"});
+  return c;
+}
+
+nlohmann::json write_haptic_report(const std::filesystem::path& out, const Scene& scene, const SessionResult& run,
+                                   const TuningResult& tuning) {
+  const LoopReport& loop = run.loop;
+  write_text_file(out / "loop.csv", loop_csv(loop));
+
+  Chart hist = histogram_chart("Frame time, " + std::to_string(loop.frames) + " frames at " +
+                                   std::to_string(int(loop.rate_hz)) + " Hz",
+                               "frame time (ms)", loop.frame_ms, 60, true);
+  hist.hlines.clear();
+  write_chart_png((out / "frame_times.png").string(), hist);
+
+  Series energy = line("energy"), force = line("|geometric force| (N)"), sent = line("|force to device| (N)"),
+         torque = line("|geometric torque| (N m)"), position = line("position error (" + scene.units + ")"),
+         angle = line("angle error (deg)");
+  // One point in 10 keeps the charts light; the CSV has every frame.
+  for (std::size_t i = 0; i < loop.log.size(); i += 10) {
+    const FrameRecord& f = loop.log[i];
+    energy.x.push_back(f.time_s), energy.y.push_back(f.energy);
+    force.x.push_back(f.time_s), force.y.push_back(f.geometric.force.norm());
+    sent.x.push_back(f.time_s), sent.y.push_back(f.sent.force.norm());
+    torque.x.push_back(f.time_s), torque.y.push_back(f.geometric.torque.norm());
+    const PoseError e = pose_error(f.part, run.target);
+    position.x.push_back(f.time_s), position.y.push_back(e.position);
+    angle.x.push_back(f.time_s), angle.y.push_back(e.angle_deg);
+  }
+  write_chart_png((out / "energy.png").string(),
+                  Chart{"Geometric energy at the part's pose (" + scene.name + ")", "time (s)", "energy", false, false,
+                        {energy}, {}, {}});
+  Chart ft{"Force and torque in the haptic loop", "time (s)", "magnitude", false, false, {force, sent}, {}, {}};
+  if (scene.outputs.torque) ft.series.push_back(torque);
+  write_chart_png((out / "force_torque.png").string(), ft);
+  Chart pe{"Pose error against the assembled pose", "time (s)", "error", false, false, {position, angle}, {}, {}};
+  pe.hlines.push_back(HLine{run.position_tolerance, "position tolerance"});
+  write_chart_png((out / "pose_error.png").string(), pe);
+  write_chart_png((out / "tuning.png").string(), tuning_chart(tuning, "this device"));
+
+  nlohmann::json changes = nlohmann::json::array();
+  for (const ModeChange& c : loop.mode_changes)
+    changes.push_back({{"time_s", c.time_s}, {"frame", c.frame}, {"from", c.from}, {"to", c.to}, {"reason", c.reason}});
+  const auto& fp = run.loop.final_part.pose;
+  return {{"rate_hz", loop.rate_hz},
+          {"measured_rate_hz", loop.measured_rate_hz},
+          {"elapsed_s", loop.elapsed_s},
+          {"frames", loop.frames},
+          {"ticks", loop.ticks},
+          {"misses", loop.misses},
+          {"skipped_ticks", loop.skipped_ticks},
+          {"late_wakeup_misses", loop.late_wakeup_misses},
+          {"stall_misses", loop.stall_misses},
+              {"wake_late_ms", {{"p50", quantile(loop.wake_late_ms, 0.5)}, {"p99", quantile(loop.wake_late_ms, 0.99)},
+                            {"max", quantile(loop.wake_late_ms, 1.0)}}},
+          {"miss_rate", loop.miss_rate()},
+          {"flagged_frames", loop.flagged_frames},
+          {"frame_ms", {{"p50", quantile(loop.frame_ms, 0.5)}, {"p99", quantile(loop.frame_ms, 0.99)},
+                        {"max", quantile(loop.frame_ms, 1.0)}}},
+          {"modes", {{"tuned", tuning.chosen_modes}, {"final", loop.final_modes}, {"changes", changes}}},
+          {"geometry_gain", run.geometry_gain},
+          {"force_scale", run.force_scale},
+          {"coupling", {{"stiffness_n_per_m", run.coupling.stiffness}, {"rot_stiffness_nm_per_rad", run.coupling.rot_stiffness},
+                        {"damping", run.coupling.damping}, {"rot_damping", run.coupling.rot_damping},
+                        {"mass_kg", run.coupling.mass_kg}, {"inertia_kg_m2", run.coupling.inertia_kg_m2}}},
+          {"final_pose", {{"position", {fp.translation.x(), fp.translation.y(), fp.translation.z()}},
+                          {"quaternion_wxyz", {fp.rotation.w(), fp.rotation.x(), fp.rotation.y(), fp.rotation.z()}}}},
+          {"final_error", {{"position", run.final_error.position}, {"angle_deg", run.final_error.angle_deg}}},
+          {"tolerance", {{"position", run.position_tolerance}, {"angle_deg", run.angle_tolerance_deg}}},
+          {"assembled", run.assembled},
+          {"priority", {{"threads_raised", run.priority.threads}, {"realtime", run.priority.realtime}, {"failed", run.priority.failed},
+                        {"reason", run.priority.reason}}}};
+}
+
+}  // namespace snapfit::cli
