@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "cli/parse_options.h"
 #include "pipeline/assembly_pair.h"
+#include "engine/query_engine.h"
 #include "snapfit/error.h"
 #include "core/progress.h"
 
@@ -89,9 +90,9 @@ void run_query(const QueryOptions& opt) {
   PairOptions options;
   options.descriptors.progress = pass_progress_bars();
   const AssemblyPair pair = build_assembly_pair(scene, ctx, fft, options);
-  PoseQueryEngine engine(ctx, pair.spectra, query_variant_for(scene, interpolation));
-  engine.set_modes(opt.modes);
-  const std::vector<QueryResult> results = engine.query_batch(poses);
+  auto engine = make_query_engine(ctx, pair.spectra, query_variant_for(scene, interpolation));
+  engine->set_modes(opt.modes);
+  const std::vector<QueryResult> results = engine->query_batch(poses);
   for (std::size_t i = 0; i < poses.size(); ++i) std::cout << result_json(poses[i], results[i]).dump() << "\n";
 }
 

@@ -25,6 +25,7 @@
 #include "engine/device_check.h"
 #include "snapfit/error.h"
 #include "pipeline/assembly_pair.h"
+#include "engine/query_engine.h"
 #include "pipeline/part_fields.h"
 #include "report/plot.h"
 #include "pipeline/spectra_cache.h"
@@ -106,25 +107,25 @@ void run_main_job(const RunOptions& opt) {
     save_cached_spectra(spectra_key, *spectra, note);
   }
   const QueryVariant variant = query_variant_for(scene, Interpolation::tricubic);
-  PoseQueryEngine engine(ctx, *spectra, variant);
+  auto engine = make_query_engine(ctx, *spectra, variant);
   std::cout << "    FFT grid " << spectra->dims[0] << " x " << spectra->dims[1] << " x " << spectra->dims[2] << ", "
-            << engine.max_modes() << " modes, kernel variant: " << variant_name(variant) << "\n";
+            << engine->max_modes() << " modes, kernel variant: " << variant_name(variant) << "\n";
 
   // m' for this device: the tuning file, else a measured sweep (scheduler/auto_tune.h).
   std::cout << "[6/7] m' for a " << scene.frame_budget_ms << " ms frame on this device\n";
   TuningKey key = tuning_key_for(device.info, variant, *spectra, scene.frame_budget_ms, opt.margin, scene.loop_rate_hz);
   TuningResult tuning;
-  PoseQueryEngine* loop_engine = &engine;
+  QueryEngine* loop_engine = engine.get();
   // Other devices, when the user did not pick one: the loop goes to the lowest tuned latency.
   std::vector<std::unique_ptr<ComputeContext>> other_contexts;
-  std::vector<std::unique_ptr<PoseQueryEngine>> other_engines;
+  std::vector<std::unique_ptr<QueryEngine>> other_engines;
   if (opt.modes) {
-    tuning = pick_modes({TimingPoint{std::min(*opt.modes, engine.max_modes()), 0, 0, 0, 0}}, scene.frame_budget_ms,
+    tuning = pick_modes({TimingPoint{std::min(*opt.modes, engine->max_modes()), 0, 0, 0, 0}}, scene.frame_budget_ms,
                         opt.margin);
     std::cout << "    m' = " << tuning.chosen_modes << " (--modes; not tuned)\n";
   } else {
     const std::vector<Pose> poses = tuning_poses(scene);
-    const auto tune_on = [&](PoseQueryEngine& e, const TuningKey& k) {
+    const auto tune_on = [&](QueryEngine& e, const TuningKey& k) {
       TuneOptions tune_options;
       const auto bars = pass_progress_bars();  // one bar, finished when the sweep ends
       tune_options.progress = [bars](std::uint64_t done, std::uint64_t total) { bars("    tuning m'", done, total); };
@@ -133,7 +134,7 @@ void run_main_job(const RunOptions& opt) {
                 << "\n" << tuning_table(tuned.result);
       return tuned.result;
     };
-    std::vector<TuningResult> tunings{tune_on(engine, key)};
+    std::vector<TuningResult> tunings{tune_on(*engine, key)};
     std::vector<TuningKey> keys{key};
     std::vector<std::string> names{device.info.name};
     std::vector<bool> in_caller_thread{device.info.runs_in_caller_thread()};
@@ -144,7 +145,7 @@ void run_main_job(const RunOptions& opt) {
           auto other_ctx = std::make_unique<ComputeContext>(make_compute_context(other));
           if (!run_device_check(*other_ctx, false).passed) continue;
           std::cout << "    also tuning " << describe_device(other.info) << "\n";
-          auto other_engine = std::make_unique<PoseQueryEngine>(*other_ctx, *spectra, variant);
+          auto other_engine = make_query_engine(*other_ctx, *spectra, variant);
           keys.push_back(tuning_key_for(other.info, variant, *spectra, scene.frame_budget_ms, opt.margin, scene.loop_rate_hz));
           tunings.push_back(tune_on(*other_engine, keys.back()));
           names.push_back(other.info.name);

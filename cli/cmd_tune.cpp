@@ -9,6 +9,7 @@
 #include "report/haptic_report.h"
 #include "cli/parse_options.h"
 #include "pipeline/assembly_pair.h"
+#include "engine/query_engine.h"
 #include "engine/device.h"
 #include "snapfit/error.h"
 #include "scheduler/engine_tuning.h"
@@ -40,8 +41,8 @@ void run_tune(const TuneCommandOptions& opt) {
   pair_options.descriptors.progress = pass_progress_bars();
   const AssemblyPair pair = build_assembly_pair(scene, ctx, fft, pair_options);
   const QueryVariant variant = query_variant_for(scene, parse_interpolation(opt.interpolation));
-  PoseQueryEngine engine(ctx, pair.spectra, variant);
-  std::cout << "variant " << variant_name(variant) << ", " << engine.max_modes() << " modes available, budget "
+  auto engine = make_query_engine(ctx, pair.spectra, variant);
+  std::cout << "variant " << variant_name(variant) << ", " << engine->max_modes() << " modes available, budget "
             << budget << " ms, margin " << opt.margin * 100 << " %\n";
 
   const std::vector<Pose> poses = scene.trajectory.keyframes.empty()
@@ -52,7 +53,7 @@ void run_tune(const TuneCommandOptions& opt) {
   const auto bars = pass_progress_bars();  // one bar, finished when the sweep ends
   tune.progress = [bars](std::uint64_t done, std::uint64_t total) { bars("tuning m'", done, total); };
   const TuningKey key = tuning_key_for(device.info, variant, pair.spectra, budget, opt.margin, scene.loop_rate_hz);
-  const EngineTuning tuned = tune_engine(engine, key, poses, tune, true,
+  const EngineTuning tuned = tune_engine(*engine, key, poses, tune, true,
                                          [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; });
   std::cout << tuning_table(tuned.result) << "saved to " << tuned.path << "\n";
   if (!opt.png.empty()) {

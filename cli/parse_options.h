@@ -2,7 +2,7 @@
 // Option values shared by several subcommands.
 #include <string>
 
-#include "engine/pose_query.h"
+#include "snapfit/query.h"
 
 namespace snapfit::cli {
 

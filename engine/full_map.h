@@ -5,7 +5,9 @@
 #include <vector>
 
 #include "core/grid.h"
-#include "engine/pose_query.h"
+#include "engine/program_cache.h"
+#include "engine/spectra.h"
+#include "snapfit/query.h"
 
 namespace snapfit {
 

@@ -1,6 +1,7 @@
 #include "engine/mode_order.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <numeric>
 #include <tuple>
 
@@ -42,6 +43,17 @@ std::vector<std::size_t> mode_order(const PairSpectra& s) {
     return std::make_tuple(norm2[a], pair_key[a], a) < std::make_tuple(norm2[b], pair_key[b], b);
   });
   return order;
+}
+
+std::vector<int> mode_reach(const std::array<std::size_t, 3>& dims, const std::vector<std::size_t>& order) {
+  std::vector<int> reach(order.size());
+  int largest = 0;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const std::array<int, 3> k = signed_node(dims, order[i]);
+    largest = std::max({largest, std::abs(k[0]), std::abs(k[1]), std::abs(k[2])});
+    reach[i] = largest;
+  }
+  return reach;
 }
 
 }  // namespace snapfit

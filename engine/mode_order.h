@@ -25,4 +25,8 @@ std::array<int, 3> signed_node(const std::array<std::size_t, 3>& dims, std::size
 // length splits at most one conjugate pair.
 std::vector<std::size_t> mode_order(const PairSpectra& spectra);
 
+// reach[i]: the largest |k| on any axis among the modes order[0 .. i] (how far the
+// per-axis phase tables of a query at m' = i + 1 must go).
+std::vector<int> mode_reach(const std::array<std::size_t, 3>& dims, const std::vector<std::size_t>& order);
+
 }  // namespace snapfit

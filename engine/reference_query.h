@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "engine/mode_order.h"
-#include "engine/pose_query.h"
+#include "snapfit/query.h"
 #include "engine/spectra.h"
 
 namespace snapfit {

@@ -23,6 +23,7 @@
 #include <sstream>
 
 #include "pipeline/assembly_pair.h"
+#include "engine/query_engine.h"
 #include "engine/device.h"
 #include "engine/reference_query.h"
 #include "report/plot.h"
@@ -139,11 +140,11 @@ int main(int argc, char** argv) try {
   const double ref_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ref_start).count();
 
   // The auto-tuner's point for the scene's budget (tricubic, oversampling 2, float).
-  PoseQueryEngine tuned_engine(ctx, pair.spectra, scene_variant);
+  auto tuned_engine = make_query_engine(ctx, pair.spectra, scene_variant);
   const TuningKey key = tuning_key_for(device.info, scene_variant, pair.spectra, scene.frame_budget_ms, 0.25, scene.loop_rate_hz);
   TuneOptions tune;
   if (quick) tune.repetitions = 100;
-  const EngineTuning tuned = tune_engine(tuned_engine, key, sample_trajectory(t, 100.0), tune, false, nullptr);
+  const EngineTuning tuned = tune_engine(*tuned_engine, key, sample_trajectory(t, 100.0), tune, false, nullptr);
   std::cout << "auto-tuner: m' = " << tuned.result.chosen_modes << (tuned.from_file ? " (tuning file)" : " (measured)")
             << "\n";
 
@@ -156,28 +157,28 @@ int main(int argc, char** argv) try {
       const std::string scheme_name = scheme == Interpolation::tricubic ? "tricubic" : "trilinear";
       QueryVariant variant = scene_variant;
       variant.interpolation = scheme;
-      PoseQueryEngine engine(ctx, s, variant);
+      auto engine = make_query_engine(ctx, s, variant);
       std::vector<std::size_t> ladder;
-      for (std::size_t m = 1024; m <= std::min(max_ladder, engine.max_modes()); m *= 2) ladder.push_back(m);
+      for (std::size_t m = 1024; m <= std::min(max_ladder, engine->max_modes()); m *= 2) ladder.push_back(m);
       if (os == 2.0 && scheme == Interpolation::tricubic) {  // the tuned point, measured like the others
         ladder.push_back(tuned.result.chosen_modes);
         std::sort(ladder.begin(), ladder.end());
         ladder.erase(std::unique(ladder.begin(), ladder.end()), ladder.end());
       }
       for (std::size_t m : ladder) {
-        engine.set_modes(m);
+        engine->set_modes(m);
         // float: the device kernel.
         Row f{os, scheme_name, "float", m};
         ErrorSums fe;
         for (std::size_t i = 0; i < poses.size(); ++i) {
-          const QueryResult r = engine.query(poses[i]);
+          const QueryResult r = engine->query(poses[i]);
           if (r.flags) ++f.flagged;
           else fe.add(r, reference[i]);
         }
         std::vector<double> times;
         for (int k = 0; k < repeats; ++k) {
           const auto t0 = std::chrono::steady_clock::now();
-          engine.query(poses[k % poses.size()]);
+          engine->query(poses[k % poses.size()]);
           times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         }
         f.ms = quantile(times, 0.5);

@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pipeline/assembly_pair.h"
+#include "engine/query_engine.h"
 #include "engine/device.h"
 #include "report/plot.h"
 #include "perf/bench_common.h"
@@ -71,12 +72,12 @@ int main(int argc, char** argv) try {
   const ComputeContext ctx = make_compute_context(device);
   const AssemblyPair pair = build_assembly_pair(scene, ctx, fft);
   const QueryVariant variant = query_variant_for(scene, Interpolation::tricubic);
-  PoseQueryEngine engine(ctx, pair.spectra, variant);
+  auto engine = make_query_engine(ctx, pair.spectra, variant);
   const TuningKey key = tuning_key_for(device.info, variant, pair.spectra, scene.frame_budget_ms, margin, scene.loop_rate_hz);
   TuneOptions tune_options;
   tune_options.budget_ms = scene.frame_budget_ms;
   tune_options.margin = margin;
-  const EngineTuning tuned = tune_engine(engine, key, sample_trajectory(scene.trajectory, 100.0), tune_options,
+  const EngineTuning tuned = tune_engine(*engine, key, sample_trajectory(scene.trajectory, 100.0), tune_options,
                                          retune, [](const std::string& m) { std::cerr << m << "\n"; });
   std::cout << "tuned m' = " << tuned.result.chosen_modes << (tuned.from_file ? " (tuning file)" : " (measured)")
             << ", model p99 " << tuned.result.model.predict_ms(tuned.result.chosen_modes) << " ms\n"
@@ -92,7 +93,7 @@ int main(int argc, char** argv) try {
     return static_cast<long>(u.ru_majflt);
   };
   const long faults_before = major_faults();
-  const SessionResult run = run_scripted_assembly(scene, pair.parts.part2.mesh, pair.spectra.spacing, engine,
+  const SessionResult run = run_scripted_assembly(scene, pair.parts.part2.mesh, pair.spectra.spacing, *engine,
                                                   tuned.result, session);
   const long loop_major_faults = major_faults() - faults_before;
   const LoopReport& loop = run.loop;

@@ -73,12 +73,13 @@
 #include <vector>
 
 #include "pipeline/assembly_pair.h"
+#include "engine/query_engine.h"
 #include "engine/compute_context.h"
 #include "engine/device.h"
 #include "snapfit/error.h"
 #include "engine/fft3d.h"
 #include "pipeline/part_fields.h"
-#include "engine/pose_query.h"
+#include "snapfit/query.h"
 #include "engine/spectra.h"
 #include "mesh/triangle_refine.h"
 #include "report/plot.h"
@@ -99,7 +100,7 @@ using snapfit::bench::seconds_since;
 using Clock = std::chrono::steady_clock;
 using snapfit::Mesh;
 using snapfit::Pose;
-using snapfit::PoseQueryEngine;
+using snapfit::QueryEngine;
 using snapfit::QueryVariant;
 
 // ---------------------------------------------------------------- command line
@@ -408,10 +409,11 @@ int run(const Args& args) {
               << " s, FFT grid " << spectra.dims[0] << "x" << spectra.dims[1] << "x" << spectra.dims[2] << ", h "
               << spectra.spacing << "\n"
               << std::flush;
-    PoseQueryEngine engine_eft(ctx, spectra, eft), engine_ef(ctx, spectra, ef);
+    auto engine_eft = make_query_engine(ctx, spectra, eft);
+    auto engine_ef = make_query_engine(ctx, spectra, ef);
     if (poses.empty()) {
-      engine_ef.set_modes(1024);
-      const auto res = engine_ef.query_batch(all_poses);
+      engine_ef->set_modes(1024);
+      const auto res = engine_ef->query_batch(all_poses);
       for (std::size_t i = 0; i < all_poses.size(); ++i)
         if (res[i].flags == snapfit::query_ok)
           poses.push_back(all_poses[i]);
@@ -423,7 +425,7 @@ int run(const Args& args) {
     }
     double sink = 0;
     for (std::size_t m : timing_modes)
-      for (auto* e : {&engine_eft, &engine_ef}) {
+      for (QueryEngine* e : {engine_eft.get(), engine_ef.get()}) {
         e->set_modes(m);
         for (int i = 0; i < warmup; ++i) sink += e->query(poses[std::size_t(i) % poses.size()]).energy;
         std::vector<double> s;
@@ -434,12 +436,12 @@ int run(const Args& args) {
           s.push_back(seconds_since(t));
           sink += q.energy;
         }
-        R.snap.push_back({e == &engine_eft ? "eft_tricubic" : "ef_tricubic", e->modes(), stat_us(s)});
+        R.snap.push_back({e == engine_eft.get() ? "eft_tricubic" : "ef_tricubic", e->modes(), stat_us(s)});
       }
     for (std::size_t m : verdict_modes) {
-      engine_ef.set_modes(m);
+      engine_ef->set_modes(m);
       std::vector<double> E;
-      for (const auto& q : engine_ef.query_batch(poses)) E.push_back(q.flags == snapfit::query_ok ? q.energy : NAN);
+      for (const auto& q : engine_ef->query_batch(poses)) E.push_back(q.flags == snapfit::query_ok ? q.energy : NAN);
       R.energy[m] = E;
     }
     R.other_cores_snap = snapfit::bench::other_cores(cs0, snapfit::bench::cpu_sample());
@@ -664,7 +666,7 @@ int run(const Args& args) {
   j["method"] = {
       {"fcl", "BVHModel<OBBRSSd>; collide with 1 contact and no contact data; distance exact (rel_err = abs_err = 0); "
               "wall clock of setTransform + computeAABB + the call, one call per pose"},
-      {"snapfit", "PoseQueryEngine::query wall clock, one call per pose after " + std::to_string(warmup) +
+      {"snapfit", "QueryEngine::query wall clock, one call per pose after " + std::to_string(warmup) +
                       " warm-up; fields + spectra as build_assembly_pair does on the indicator scene"}};
   nlohmann::json lj = nlohmann::json::array();
   for (const auto& R : levels) {

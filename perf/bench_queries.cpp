@@ -7,7 +7,7 @@
 // What is measured, on the selected OpenCL device, for the scene (default
 // scenes/default.json; its descriptor fields come from the field cache or are computed
 // once, with progress bars):
-//   1. latency   wall clock around PoseQueryEngine::query(pose), p50 / p99 / max in
+//   1. latency   wall clock around QueryEngine::query(pose), p50 / p99 / max in
 //                microseconds, N repetitions (default 2000, --quick 300) after 100
 //                warm-up queries, at m' in {1, 1024, ..., 131072} (m' = 1: the fixed
 //                cost of one query: pose arguments, launch, phase tables, read-back), for
@@ -67,13 +67,14 @@
 #include <vector>
 
 #include "pipeline/assembly_pair.h"
+#include "engine/query_engine.h"
 #include "perf/bench_common.h"
 #include "engine/compute_context.h"
 #include "engine/device.h"
 #include "snapfit/error.h"
 #include "engine/fft3d.h"
 #include "engine/full_map.h"
-#include "engine/pose_query.h"
+#include "snapfit/query.h"
 #include "report/plot.h"
 #include "snapfit/scene.h"
 #include "core/progress.h"
@@ -88,7 +89,7 @@ using snapfit::bench::seconds_since;
 
 using snapfit::Interpolation;
 using snapfit::Pose;
-using snapfit::PoseQueryEngine;
+using snapfit::QueryEngine;
 using snapfit::QueryVariant;
 using Clock = std::chrono::steady_clock;
 
@@ -252,7 +253,7 @@ std::vector<VariantSpec> variant_specs() {
 //          selected intervals, weight 8 B + x table 8 B (local) = 16 B; flops per node:
 //          complex multiply 6, 2 adds, 2 fma (kx terms) 4 = 12 (the masked lanes of each
 //          line's last 8-wide chunk and the per-line sums are not counted)
-// Both are counted per evaluated term (PoseQueryEngine::evaluated_terms: a record or a
+// Both are counted per evaluated term (QueryEngine::evaluated_terms: a record or a
 // line node, one per conjugate pair when pairs are folded) and scaled by terms per mode.
 // Flops: an add, a multiply or a subtraction is 1, an fma 2; integer index arithmetic,
 // floor and conversions are not counted:
@@ -351,7 +352,7 @@ std::vector<Pose> make_poses(const snapfit::Scene& scene, double spacing, std::s
 }
 
 // Poses the engine accepts (not outside the padded box, not rejected).
-std::vector<Pose> usable_poses(PoseQueryEngine& engine, const std::vector<Pose>& poses, std::size_t& rejected) {
+std::vector<Pose> usable_poses(QueryEngine& engine, const std::vector<Pose>& poses, std::size_t& rejected) {
   const auto results = engine.query_batch(poses);
   std::vector<Pose> out;
   rejected = 0;
@@ -625,7 +626,7 @@ struct LatencyRow {
   QueryVariant variant;
   std::size_t modes = 0, modes_used = 0;
   std::size_t terms = 0;  // terms the kernel evaluates (conjugate pairs folded: about m' / 2)
-  double set_modes_us = 0;  // one PoseQueryEngine::set_modes(m') call after set_modes(1)
+  double set_modes_us = 0;  // one QueryEngine::set_modes(m') call after set_modes(1)
   int repeats = 0, warmup = 0;
   double p50 = 0, p99 = 0, max = 0, mean = 0, min = 0, p10 = 0, p90 = 0;  // microseconds
   std::size_t flagged = 0;
@@ -636,7 +637,7 @@ struct LatencyRow {
   int attempts = 1;
 };
 
-LatencyRow measure_latency(PoseQueryEngine& engine, const VariantSpec& spec, const std::vector<Pose>& poses,
+LatencyRow measure_latency(QueryEngine& engine, const VariantSpec& spec, const std::vector<Pose>& poses,
                            std::size_t modes, int warmup, int repeats, std::size_t& cursor, double& sink) {
   LatencyRow r;
   r.key = spec.key;
@@ -803,9 +804,9 @@ int run(const Args& args) {
   std::cout << "\n[1] per-query latency: " << repeats << " timed queries after " << warmup
             << " warm-up per point (wall clock around engine.query)\n";
   const std::size_t pose_count = std::max<std::size_t>(4096, std::size_t(repeats) + warmup);
-  std::map<std::string, std::unique_ptr<PoseQueryEngine>> engines;
+  std::map<std::string, std::unique_ptr<QueryEngine>> engines;
   for (const auto& spec : specs) {
-    auto engine = std::make_unique<PoseQueryEngine>(ctx, spectra, spec.variant);
+    auto engine = make_query_engine(ctx, spectra, spec.variant);
     engine->set_modes(1024);
     const auto all = make_poses(scene, spectra.spacing, pose_count, !spec.variant.translation_only, 12345u);
     std::size_t rejected = 0;
@@ -848,7 +849,7 @@ int run(const Args& args) {
   std::cout << "\n[2] batched throughput (query_batch), poses per second\n";
   std::vector<ThroughputRow> throughput;
   for (const auto& spec : specs) {
-    PoseQueryEngine& engine = *engines[spec.key];
+    QueryEngine& engine = *engines[spec.key];
     const auto& poses = poses_of[spec.key];
     for (std::size_t m : batch_modes) {
       engine.set_modes(m);
@@ -1199,7 +1200,7 @@ int run(const Args& args) {
                 {"fields_from_cache", pair.fields1.from_cache && pair.fields2.from_cache},
                 {"pair_seconds", pair_s}};
   j["method"] = {
-      {"latency", "wall clock (steady_clock) around PoseQueryEngine::query(pose); " + std::to_string(warmup) +
+      {"latency", "wall clock (steady_clock) around QueryEngine::query(pose); " + std::to_string(warmup) +
                       " warm-up queries then " + std::to_string(repeats) +
                       " timed per point; poses along the scene trajectory with +-0.5 spacing and up to 0.5 deg "
                       "random perturbation (translation only: R = I); percentiles nearest-rank"},

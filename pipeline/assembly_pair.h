@@ -5,16 +5,17 @@
 //   FftLibrary fft;
 //   ComputeContext ctx = make_compute_context(select_device(""));
 //   AssemblyPair pair = build_assembly_pair(load_scene("scenes/default.json"), ctx, fft);
-//   PoseQueryEngine engine(ctx, pair.spectra, query_variant_for(pair.scene));
-//   engine.set_modes(32768);
-//   QueryResult r = engine.query(pose_of_part2_in_part1_frame);   // r.energy, r.force, r.torque
+//   auto engine = make_query_engine(ctx, pair.spectra, query_variant_for(pair.scene));
+//   engine->set_modes(32768);
+//   QueryResult r = engine->query(pose_of_part2_in_part1_frame);   // r.energy, r.force, r.torque
 //
 // Frames and signs: engine/pose_query.h.
 #include <functional>
 #include <string>
 
 #include "pipeline/part_fields.h"
-#include "engine/pose_query.h"
+#include "snapfit/query.h"
+#include "engine/query_engine.h"
 #include "engine/spectra.h"
 #include "snapfit/scene.h"
 #include "pipeline/prepare_parts.h"

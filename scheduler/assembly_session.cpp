@@ -8,7 +8,7 @@
 namespace snapfit {
 
 SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, double spacing,
-                                    PoseQueryEngine& engine, const TuningResult& tuning,
+                                    QueryEngine& engine, const TuningResult& tuning,
                                     const SessionOptions& options) {
   if (scene.trajectory.keyframes.empty())
     throw Error(scene.source_path + ": no trajectory: a scripted assembly needs one (or use a real device)");

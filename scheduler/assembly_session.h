@@ -5,7 +5,7 @@
 // `snapfit run` and perf/bench_haptic_loop use it.
 #include <optional>
 
-#include "engine/pose_query.h"
+#include "snapfit/query.h"
 #include "mesh/mesh.h"
 #include "snapfit/scene.h"
 #include "scheduler/auto_tune.h"
@@ -43,7 +43,7 @@ struct SessionResult {
 // Runs the loop on its own thread on the steady clock and waits for it. Throws
 // snapfit::Error when the scene has no trajectory or its haptics cannot be set up.
 SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, double spacing,
-                                    PoseQueryEngine& engine, const TuningResult& tuning,
+                                    QueryEngine& engine, const TuningResult& tuning,
                                     const SessionOptions& options = {});
 
 }  // namespace snapfit

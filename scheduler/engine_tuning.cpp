@@ -34,7 +34,7 @@ TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, 
   return key;
 }
 
-QueryTimer engine_query_timer(PoseQueryEngine& engine, std::vector<Pose> poses, double pace_hz) {
+QueryTimer engine_query_timer(QueryEngine& engine, std::vector<Pose> poses, double pace_hz) {
   if (poses.empty()) throw Error("auto-tuning: no poses to time queries at");
   return [&engine, poses = std::move(poses), pace_hz, next = std::size_t(0)](std::size_t modes, std::size_t count) mutable {
     engine.set_modes(modes);
@@ -51,7 +51,7 @@ QueryTimer engine_query_timer(PoseQueryEngine& engine, std::vector<Pose> poses, 
   };
 }
 
-EngineTuning tune_engine(PoseQueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses,
+EngineTuning tune_engine(QueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses,
                          TuneOptions options, bool retune, const std::function<void(const std::string&)>& note) {
   EngineTuning out;
   out.path = tuning_file_path(key);

@@ -1,5 +1,5 @@
 #pragma once
-// Auto-tuning of a PoseQueryEngine on its device (scheduler/auto_tune.h), with the
+// Auto-tuning of a QueryEngine on its device (scheduler/auto_tune.h), with the
 // result kept in the tuning file (scheduler/tuning_file.h) and reused while the key
 // (device, driver, kernel variant, scene features, budget, margin) is unchanged.
 #include <functional>
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "engine/device.h"
-#include "engine/pose_query.h"
+#include "snapfit/query.h"
 #include "engine/spectra.h"
 #include "scheduler/auto_tune.h"
 #include "scheduler/tuning_file.h"
@@ -24,7 +24,7 @@ TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, 
 // With pace_hz > 0 the queries are issued on absolute deadlines at that rate, idle in
 // between, as in the haptic loop: an OpenCL runtime whose worker threads fall asleep
 // between frames shows its wake-up cost here, which back-to-back queries would hide.
-QueryTimer engine_query_timer(PoseQueryEngine& engine, std::vector<Pose> poses, double pace_hz = 0);
+QueryTimer engine_query_timer(QueryEngine& engine, std::vector<Pose> poses, double pace_hz = 0);
 
 struct EngineTuning {
   TuningResult result;
@@ -36,7 +36,7 @@ struct EngineTuning {
 // with `engine` at `poses` and saves it. A save failure is reported through `note` and
 // the fresh result is still returned.
 // The queries are paced at key.pace_hz (engine_query_timer; 0: back-to-back).
-EngineTuning tune_engine(PoseQueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses,
+EngineTuning tune_engine(QueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses,
                          TuneOptions options, bool retune, const std::function<void(const std::string&)>& note);
 
 }  // namespace snapfit

@@ -38,10 +38,11 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "engine/pose_query.h"
+#include "snapfit/query.h"
 #include "scheduler/haptic_device.h"
 #include "scheduler/virtual_coupling.h"
 

@@ -6,6 +6,7 @@
 
 #include "engine/device.h"
 #include "engine/full_map.h"
+#include "engine/query_engine.h"
 
 using namespace snapfit;
 
@@ -47,8 +48,8 @@ TEST_CASE("full map: every translation of the map equals a per-pose query there"
       const Eigen::Matrix3d R =
           Eigen::AngleAxisd(degrees * M_PI / 180.0, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
       const TranslationMap map = translational_energy_map(fft, ctx, spectra, R, interpolation);
-      PoseQueryEngine engine(ctx, spectra, QueryVariant{false, false, false, interpolation});
-      engine.set_modes(engine.max_modes());
+      auto engine = make_query_engine(ctx, spectra, QueryVariant{false, false, false, interpolation});
+      engine->set_modes(engine->max_modes());
       double scale = 0;
       for (float e : map.energy)
         if (std::isfinite(e)) scale = std::max(scale, std::abs(static_cast<double>(e)));
@@ -59,7 +60,7 @@ TEST_CASE("full map: every translation of the map equals a per-pose query there"
         Pose pose;
         pose.rotation = Eigen::Quaterniond(R);
         pose.translation = t;
-        const QueryResult r = engine.query(pose);
+        const QueryResult r = engine->query(pose);
         const Eigen::Vector3i idx = ((t - map.grid.origin) / h).array().round().cast<int>();
         const float e = map.energy[map.grid.index(idx.x(), idx.y(), idx.z())];
         if (r.flags & query_outside_grid) {

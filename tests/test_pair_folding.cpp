@@ -11,7 +11,8 @@
 #include <vector>
 
 #include "engine/mode_order.h"
-#include "engine/pose_query.h"
+#include "snapfit/query.h"
+#include "engine/query_engine.h"
 #include "engine/spectra.h"
 #include "tests/stability_support.h"
 
@@ -61,16 +62,16 @@ TEST_CASE("pair folding: folded and unfolded 6-DOF queries agree for every m', p
     QueryVariant folded, full;
     folded.interpolation = full.interpolation = interpolation;
     full.fold_conjugate_pairs = false;
-    PoseQueryEngine a(test::test_context(), pair.spectra, folded, test::test_program_cache());
-    PoseQueryEngine b(test::test_context(), pair.spectra, full, test::test_program_cache());
+    auto a = make_query_engine(test::test_context(), pair.spectra, folded, test::test_program_cache());
+    auto b = make_query_engine(test::test_context(), pair.spectra, full, test::test_program_cache());
     const std::vector<Pose> poses = {pose_at({1, 0, -8}, 2, {0, 0, 1}), pose_at({0.5, 0.3, 2}, 10, {1, 1, 0}),
                                      pose_at({4, -3, 12}, 170, {0, 1, 1})};
-    const std::size_t total = a.max_modes();
+    const std::size_t total = a->max_modes();
     for (const std::size_t m : {std::size_t(1), std::size_t(2), std::size_t(3), std::size_t(64), std::size_t(65),
                                 std::size_t(4096), std::size_t(4097), total - 1, total}) {
-      a.set_modes(m);
-      b.set_modes(m);
-      const std::vector<QueryResult> ra = a.query_batch(poses), rb = b.query_batch(poses);
+      a->set_modes(m);
+      b->set_modes(m);
+      const std::vector<QueryResult> ra = a->query_batch(poses), rb = b->query_batch(poses);
       for (std::size_t n = 0; n < poses.size(); ++n) {
         CAPTURE(m);
         CAPTURE(n);
@@ -125,38 +126,38 @@ TEST_CASE("pair folding: translation-only folded, unfolded and 6-DOF at R = I ag
   folded.torque = full.torque = six.torque = false;
   full.fold_conjugate_pairs = false;
   six.interpolation = Interpolation::trilinear;
-  PoseQueryEngine a(test::test_context(), pair.spectra, folded, test::test_program_cache());
-  PoseQueryEngine b(test::test_context(), pair.spectra, full, test::test_program_cache());
-  PoseQueryEngine c(test::test_context(), pair.spectra, six, test::test_program_cache());
+  auto a = make_query_engine(test::test_context(), pair.spectra, folded, test::test_program_cache());
+  auto b = make_query_engine(test::test_context(), pair.spectra, full, test::test_program_cache());
+  auto c = make_query_engine(test::test_context(), pair.spectra, six, test::test_program_cache());
   const std::vector<Pose> poses = {test::pose_at({1, 0, -8}), test::pose_at({0.5, 0.3, 2}), test::pose_at({2, -1, -4})};
-  const std::size_t total = a.max_modes();
+  const std::size_t total = a->max_modes();
   const std::vector<std::size_t> ladder = {1, 2, 3, 64, 65, 4096, 4097, total / 2, total - 1, total};
   // Scales: the largest |f| and |F| of the unfolded sum over every m' and pose (the
   // sums cancel at some poses, so their own size is not the float round-off's scale).
   double e_scale = 0, f_scale = 0;
   for (const std::size_t m : ladder) {
-    b.set_modes(m);
+    b->set_modes(m);
     for (const Pose& p : poses) {
-      const QueryResult r = b.query(p);
+      const QueryResult r = b->query(p);
       e_scale = std::max(e_scale, std::abs(r.score));
       f_scale = std::max(f_scale, r.force.norm());
     }
   }
   std::size_t folded_at = 0, unfolded_at = 0;
   for (const std::size_t m : ladder) {
-    a.set_modes(m);
-    b.set_modes(m);
-    c.set_modes(m);
+    a->set_modes(m);
+    b->set_modes(m);
+    c->set_modes(m);
     // Folded runs evaluate about half the terms (one per pair, plus single terms for a
     // cut pair and nodes without a partner, which outnumber the savings only at m' < 4);
     // past the first unpartnered node of a skipped line (the Nyquist planes, at about
     // half of all modes) it sums every line.
-    if (m >= 64 && a.evaluated_terms() < m) ++folded_at;
-    if (m >= 64 && a.evaluated_terms() == m) ++unfolded_at;
-    CHECK(b.evaluated_terms() == m);
+    if (m >= 64 && a->evaluated_terms() < m) ++folded_at;
+    if (m >= 64 && a->evaluated_terms() == m) ++unfolded_at;
+    CHECK(b->evaluated_terms() == m);
     for (const Pose& p : poses) {
       CAPTURE(m);
-      const QueryResult ra = a.query(p), rb = b.query(p), rc = c.query(p);
+      const QueryResult ra = a->query(p), rb = b->query(p), rc = c->query(p);
       REQUIRE(ra.flags == query_ok);
       CHECK(std::abs(ra.energy - rb.energy) <= 2e-5 * e_scale);
       CHECK(std::abs(ra.score.imag() - rb.score.imag()) <= 2e-5 * e_scale);

@@ -36,7 +36,8 @@
 #include "engine/fft3d.h"
 #include "core/grid.h"
 #include "snapfit/pose.h"
-#include "engine/pose_query.h"
+#include "snapfit/query.h"
+#include "engine/query_engine.h"
 #include "engine/spectra.h"
 #include "tests/test_support.h"
 
@@ -269,8 +270,8 @@ QueryVariant variant(Interpolation interpolation, bool force, bool torque, bool 
   return v;
 }
 
-std::unique_ptr<PoseQueryEngine> make_engine(double oversampling, const QueryVariant& v) {
-  auto engine = std::make_unique<PoseQueryEngine>(context(), spectra(oversampling), v, cache_config());
+std::unique_ptr<QueryEngine> make_engine(double oversampling, const QueryVariant& v) {
+  auto engine = make_query_engine(context(), spectra(oversampling), v, cache_config());
   engine->set_modes(engine->max_modes());
   return engine;
 }
@@ -424,7 +425,7 @@ struct EngineDifferences {
   Vector3d force, torque;
 };
 
-EngineDifferences engine_differences(PoseQueryEngine& engine, const Pose& pose, double dt, double dtheta) {
+EngineDifferences engine_differences(QueryEngine& engine, const Pose& pose, double dt, double dtheta) {
   std::vector<Pose> batch = {pose};
   for (int a = 0; a < 3; ++a)
     for (const double sign : {1.0, -1.0}) {
@@ -866,11 +867,11 @@ TEST_CASE("pose query: torque without torque spectra and mismatched spacings thr
   const PairSpectra plain = compute_pair_spectra(library, context(), g1, r1, g2, r2, false, options);
   CHECK_FALSE(plain.torque);
   for (const auto& m : plain.part2.moments) CHECK(m.empty());
-  CHECK_THROWS_AS(PoseQueryEngine(context(), plain, variant(Interpolation::trilinear, true, true), cache_config()), Error);
-  CHECK_THROWS_AS(PoseQueryEngine(context(), plain, variant(Interpolation::tricubic, true, true), cache_config()), Error);
+  CHECK_THROWS_AS(make_query_engine(context(), plain, variant(Interpolation::trilinear, true, true), cache_config()), Error);
+  CHECK_THROWS_AS(make_query_engine(context(), plain, variant(Interpolation::tricubic, true, true), cache_config()), Error);
   // The same spectra serve a variant without torque.
-  PoseQueryEngine ok(context(), plain, variant(Interpolation::trilinear, true, false), cache_config());
-  CHECK(ok.query(Pose{}).flags == query_ok);
+  auto ok = make_query_engine(context(), plain, variant(Interpolation::trilinear, true, false), cache_config());
+  CHECK(ok->query(Pose{}).flags == query_ok);
 
   GridSpec other = g2;
   other.spacing = 0.45;

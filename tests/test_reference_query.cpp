@@ -7,6 +7,7 @@
 #include <random>
 
 #include "engine/fft3d.h"
+#include "engine/query_engine.h"
 #include "engine/reference_query.h"
 #include "tests/test_engine_support.h"
 
@@ -99,13 +100,13 @@ TEST_CASE("reference query: the device kernel's float sums agree with double acc
   const auto r1 = random_field(g1, 3), r2 = random_field(g2, 4);
   const FftLibrary fft;
   const PairSpectra s = compute_pair_spectra(fft, test::test_context(), g1, r1, g2, r2, true);
-  PoseQueryEngine engine(test::test_context(), s, QueryVariant{true, true, false, Interpolation::tricubic},
+  auto engine = make_query_engine(test::test_context(), s, QueryVariant{true, true, false, Interpolation::tricubic},
                          test::test_program_cache());
   const std::vector<std::size_t> order = mode_order(s);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1, 1);
-  for (std::size_t modes : {std::size_t(64), std::size_t(1000), engine.max_modes()}) {
-    engine.set_modes(modes);
+  for (std::size_t modes : {std::size_t(64), std::size_t(1000), engine->max_modes()}) {
+    engine->set_modes(modes);
     for (int i = 0; i < 3; ++i) {
       Pose pose;
       pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(3 * u(rng), Vector3d(u(rng), u(rng), u(rng)).normalized()));
@@ -113,7 +114,7 @@ TEST_CASE("reference query: the device kernel's float sums agree with double acc
       ReferenceOptions options;
       options.modes = modes;
       const QueryResult ref = reference_query(s, pose, options, &order);
-      const QueryResult dev = engine.query(pose);
+      const QueryResult dev = engine->query(pose);
       CAPTURE(modes);
       REQUIRE(dev.flags == query_ok);
       // Float spectra products and sums: relative to the size of the terms summed.

@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "pipeline/assembly_pair.h"
+#include "engine/query_engine.h"
 #include "scheduler/assembly_session.h"
 #include "tests/test_engine_support.h"
 
@@ -24,11 +25,11 @@ SessionResult insert(const std::string& scene_file, std::size_t modes, std::opti
   PairOptions options;
   options.note = [](const std::string&) {};
   const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, options);
-  PoseQueryEngine engine(test::test_context(), pair.spectra, query_variant_for(scene), test::test_program_cache());
+  auto engine = make_query_engine(test::test_context(), pair.spectra, query_variant_for(scene), test::test_program_cache());
   const TuningResult fixed = pick_modes({TimingPoint{modes, 0, 0, 0, 1}}, scene.frame_budget_ms, 0.25);
   SessionOptions session;
   session.simulated_time = true;
-  return run_scripted_assembly(scene, pair.parts.part2.mesh, pair.spectra.spacing, engine, fixed, session);
+  return run_scripted_assembly(scene, pair.parts.part2.mesh, pair.spectra.spacing, *engine, fixed, session);
 }
 
 double peak_geometric_force(const SessionResult& r) {

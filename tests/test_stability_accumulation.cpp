@@ -15,6 +15,7 @@
 
 #include "engine/mode_order.h"
 #include "tests/stability_support.h"
+#include "engine/query_engine.h"
 
 using namespace snapfit;
 using Eigen::Vector3d;
@@ -158,9 +159,9 @@ TEST_CASE("stability accumulation: float32 sums in the query kernel against a do
   const AssemblyPair pair = test::build_small_pair(scene);
   QueryVariant variant;  // 6-DOF, force and torque
   variant.interpolation = Interpolation::trilinear;
-  PoseQueryEngine engine(test::test_context(), pair.spectra, variant, test::test_program_cache());
+  auto engine = make_query_engine(test::test_context(), pair.spectra, variant, test::test_program_cache());
   const std::vector<std::size_t> order = mode_order(pair.spectra);
-  const std::size_t total = engine.max_modes();
+  const std::size_t total = engine->max_modes();
   std::cout << "accumulation: FFT grid " << pair.spectra.dims[0] << " x " << pair.spectra.dims[1] << " x "
             << pair.spectra.dims[2] << " = " << total << " modes\n";
 
@@ -188,9 +189,9 @@ TEST_CASE("stability accumulation: float32 sums in the query kernel against a do
   double worst_e = 0, worst_f = 0, worst_t = 0, worst_acc_e = 0, worst_acc_f = 0, worst_acc_t = 0;
   double worst_k_e = 0, worst_k_f = 0, worst_k_t = 0, worst_t_haptic = 0;
   for (std::size_t m : ladder) {
-    engine.set_modes(m);
+    engine->set_modes(m);
     for (std::size_t p = 0; p < poses.size(); ++p) {
-      const QueryResult q = engine.query(poses[p].pose);
+      const QueryResult q = engine->query(poses[p].pose);
       REQUIRE(q.flags == query_ok);
       const DoubleSums ref = double_sum(pair.spectra, order, m, poses[p].pose, wg, max_groups);
       const double e_err = std::abs(q.energy - ref.energy) / std::abs(ref.energy);

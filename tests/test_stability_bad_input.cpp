@@ -23,6 +23,7 @@
 #include "io/mesh_load.h"
 #include "scheduler/haptic_loop.h"
 #include "tests/stability_support.h"
+#include "engine/query_engine.h"
 
 using namespace snapfit;
 using Eigen::Vector3d;
@@ -144,22 +145,22 @@ TEST_CASE("stability bad input: non-finite and huge poses, library and CLI") {
   cached.note = [](const std::string&) {};
   cached.descriptors.program_cache = test::test_program_cache();
   const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, cached);
-  PoseQueryEngine engine(test::test_context(), pair.spectra, query_variant_for(scene), test::test_program_cache());
-  engine.set_modes(1024);
+  auto engine = make_query_engine(test::test_context(), pair.spectra, query_variant_for(scene), test::test_program_cache());
+  engine->set_modes(1024);
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   const double denormal = std::numeric_limits<double>::denorm_min(), huge = std::numeric_limits<double>::max();
   for (double bad : {nan, inf, -inf}) {
     Pose p;
     p.translation = Vector3d(0, bad, 0);
-    CHECK((engine.query(p).flags & query_bad_pose) != 0);
+    CHECK((engine->query(p).flags & query_bad_pose) != 0);
     p = Pose();
     p.rotation.x() = bad;
-    CHECK((engine.query(p).flags & query_bad_pose) != 0);
+    CHECK((engine->query(p).flags & query_bad_pose) != 0);
   }
   for (double big : {huge, -huge, 1e30}) {
     Pose p;
     p.translation = Vector3d(big, 0, 0);
-    const QueryResult r = engine.query(p);
+    const QueryResult r = engine->query(p);
     CHECK((r.flags & query_outside_grid) != 0);
     CHECK(r.force == Vector3d::Zero());
   }
@@ -167,7 +168,7 @@ TEST_CASE("stability bad input: non-finite and huge poses, library and CLI") {
     Pose p;
     p.translation = Vector3d(denormal, -denormal, denormal);
     p.rotation = Eigen::Quaterniond(1, denormal, 0, 0);
-    const QueryResult r = engine.query(p);
+    const QueryResult r = engine->query(p);
     CHECK(r.flags == query_ok);
     CHECK(std::isfinite(r.energy));
   }

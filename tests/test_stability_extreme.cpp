@@ -15,6 +15,7 @@
 
 #include "scheduler/virtual_coupling.h"
 #include "tests/stability_support.h"
+#include "engine/query_engine.h"
 
 using namespace snapfit;
 using Eigen::Vector3d;
@@ -28,7 +29,7 @@ struct Differences {
   Vector3d force = Vector3d::Zero(), torque = Vector3d::Zero();  // -dE/dt, -dE/dtheta by central differences
 };
 
-Differences differences(PoseQueryEngine& engine, const Pose& pose, double h, double angle) {
+Differences differences(QueryEngine& engine, const Pose& pose, double h, double angle) {
   std::vector<Pose> batch = {pose};
   for (int a = 0; a < 3; ++a)
     for (double s : {1.0, -1.0}) {
@@ -54,13 +55,13 @@ Differences differences(PoseQueryEngine& engine, const Pose& pose, double h, dou
 
 struct SmallEngine {
   AssemblyPair pair;
-  std::unique_ptr<PoseQueryEngine> engine;
+  std::unique_ptr<QueryEngine> engine;
 };
 
 SmallEngine small_engine(const test::SmallPairParams& params, std::size_t modes) {
   SmallEngine s;
   s.pair = test::build_small_pair(test::small_peg_hole_scene(params), params.oversampling);
-  s.engine = std::make_unique<PoseQueryEngine>(test::test_context(), s.pair.spectra,
+  s.engine = make_query_engine(test::test_context(), s.pair.spectra,
                                                query_variant_for(s.pair.scene, Interpolation::tricubic),
                                                test::test_program_cache());
   s.engine->set_modes(modes);
@@ -71,7 +72,7 @@ SmallEngine small_engine(const test::SmallPairParams& params, std::size_t modes)
 
 TEST_CASE("stability extreme: contact, interpenetration, near-180-degree rotations and the box edge are finite and match the energy's differences") {
   SmallEngine s = small_engine({}, 4096);
-  PoseQueryEngine& engine = *s.engine;
+  QueryEngine& engine = *s.engine;
   const double h = s.pair.spectra.spacing;
 
   // The edge of the padded box along +x and -z: the last translation the engine accepts
@@ -144,7 +145,7 @@ TEST_CASE("stability extreme: contact, interpenetration, near-180-degree rotatio
 
 TEST_CASE("stability extreme: beyond the padded box the query is zero and flagged, never an aliased force") {
   SmallEngine s = small_engine({}, 4096);
-  PoseQueryEngine& engine = *s.engine;
+  QueryEngine& engine = *s.engine;
   const PairSpectra& sp = s.pair.spectra;
   // Part 2 moved by a whole FFT period lands exactly on an image of part 1 in the
   // periodic sum: without the guard it would feel the same force as at the original pose.

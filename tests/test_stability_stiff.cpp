@@ -15,6 +15,7 @@
 #include "scheduler/haptic_loop.h"
 #include "scheduler/haptic_setup.h"
 #include "tests/stability_support.h"
+#include "engine/query_engine.h"
 
 using namespace snapfit;
 using Eigen::Vector3d;
@@ -72,7 +73,7 @@ struct StiffRun {
 struct StiffPair {
   Scene scene;
   AssemblyPair pair;
-  std::unique_ptr<PoseQueryEngine> engine;
+  std::unique_ptr<QueryEngine> engine;
   std::size_t modes = 0;
 };
 
@@ -81,7 +82,7 @@ StiffPair stiff_pair(const test::SmallPairParams& params, double stiffness) {
   s.scene = test::small_peg_hole_scene(params);
   s.scene.haptics.stiffness_n_per_m = stiffness;
   s.pair = test::build_small_pair(s.scene);
-  s.engine = std::make_unique<PoseQueryEngine>(test::test_context(), s.pair.spectra,
+  s.engine = make_query_engine(test::test_context(), s.pair.spectra,
                                                query_variant_for(s.scene, Interpolation::trilinear),
                                                test::test_program_cache());
   s.modes = std::min<std::size_t>(2048, s.engine->max_modes());
@@ -94,7 +95,7 @@ StiffPair stiff_pair(const test::SmallPairParams& params, double stiffness) {
 StiffRun run_static_contact(StiffPair& s, double strength, const Pose& device_pose, double seconds, bool passivity) {
   Scene scene = s.scene;
   scene.haptics.geometry_strength = strength;
-  PoseQueryEngine& engine = *s.engine;
+  QueryEngine& engine = *s.engine;
   StiffRun run;
   run.coupling = coupling_for(scene, s.pair.parts.part2.mesh);
   double force_scale = 0;

@@ -1,6 +1,6 @@
 #pragma once
-// Per-pose queries (seed 000 eq. 10-12; DESIGN.md): for part 2 at pose (R, t) relative
-// to part 1, with w' = -R^T w_k,
+// Per-pose queries (seed 000 eq. 10-12; docs/design.md "Correlation in the Fourier
+// domain"): for part 2 at pose (R, t) relative to part 1, with w' = -R^T w_k,
 //     f(R, t)     = sum_k rho1^(w_k) rho2^(w') exp(2 pi i w_k.t) dw          (score)
 //     df/dt       = sum_k (2 pi i w_k) [same term]
 //     df/dtheta   = R sum_k (2 pi i) (w' x Q2^(w')) rho1^(w_k) exp(2 pi i w_k.t) dw
@@ -11,13 +11,12 @@
 // the torque about part 2's reference point (its frame origin), for a rotation
 // increment applied on the left: R -> exp(theta [e]x) R.
 #include <Eigen/Core>
+#include <complex>
+#include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "snapfit/pose.h"
-#include "engine/program_cache.h"
-#include "engine/spectra.h"
 
 namespace snapfit {
 
@@ -36,12 +35,11 @@ struct QueryVariant {
   // float cube's results (tests/test_pose_query.cpp measures it, bound 5e-5): below the
   // interpolation error of both schemes at oversampling 2. Ignored for translation only.
   bool half_cube = false;
-  // When both parts' samples are real or both imaginary (the affinity i * rho always is:
-  // PairSpectra::conjugate_pairs), the 6-DOF terms at w and -w are complex conjugates, so
-  // each retained pair is evaluated once with twice the weight: half the work for the
-  // same m' and the same result (Re f, F, T; Im f is 0 for every complete pair). False
-  // sums every mode (for checks). Translation-only queries fold the same way, over half
-  // of their x-lines (engine/translation_lines.h).
+  // When both parts' samples are real or both imaginary (the affinity i * rho always
+  // is), the terms at w and -w are complex conjugates, so each retained pair is
+  // evaluated once with twice the weight: half the work for the same m' and the same
+  // result (Re f, F, T; Im f is 0 for every complete pair). False sums every mode (for
+  // checks).
   bool fold_conjugate_pairs = true;
 };
 
@@ -61,30 +59,32 @@ struct QueryResult {
   double seconds = 0;              // wall time of this query (batch: of the whole batch / count)
 };
 
-class PoseQueryEngine {
+// The per-frame engine of an assembly pair on one device. Two implementations: the
+// 6-DOF sum over interpolated, rotated spectra and the translation-only sum over
+// x-line intervals (part 2 never rotates). Make one with snapfit::Assembly.
+class QueryEngine {
  public:
-  // Uploads the spectra and builds the kernel variant. Throws snapfit::Error when the
-  // variant needs torque spectra that are missing, or the device fails.
-  PoseQueryEngine(const ComputeContext& ctx, const PairSpectra& spectra, QueryVariant variant,
-                  const ProgramCacheConfig& cache = default_program_cache());
-  ~PoseQueryEngine();
-  PoseQueryEngine(const PoseQueryEngine&) = delete;
-  PoseQueryEngine& operator=(const PoseQueryEngine&) = delete;
+  virtual ~QueryEngine() = default;
 
-  std::size_t max_modes() const;  // every mode of the FFT grid, by increasing |w|
-  std::size_t modes() const;
-  // Terms the kernel evaluates per query at the current m': m' with conjugate pairs
-  // folded (about m' / 2, see QueryVariant::fold_conjugate_pairs), else m'. Translation
-  // only: the nodes of the selected line intervals plus its extra single terms.
-  std::size_t evaluated_terms() const;
-  void set_modes(std::size_t m);  // clamped to [1, max_modes()]
+  virtual const QueryVariant& variant() const = 0;
+  virtual std::size_t max_modes() const = 0;  // every mode of the FFT grid, by increasing |w|
+  virtual std::size_t modes() const = 0;      // m'
+  // Terms the kernel evaluates per query at the current m': about m' / 2 with conjugate
+  // pairs folded (QueryVariant::fold_conjugate_pairs), else m'.
+  virtual std::size_t evaluated_terms() const = 0;
+  // Clamped to [1, max_modes()]. May allocate and upload; call it outside the frame.
+  virtual void set_modes(std::size_t m) = 0;
 
-  QueryResult query(const Pose& pose);
-  std::vector<QueryResult> query_batch(const std::vector<Pose>& poses);
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  // One pose: no heap allocation once set_modes has run (the haptic frame's path).
+  virtual QueryResult query(const Pose& pose) = 0;
+  // `count` poses in one launch into results[0 .. count). Allocates only when the batch
+  // is larger than every batch before it.
+  virtual void query_batch(const Pose* poses, std::size_t count, QueryResult* results) = 0;
+  std::vector<QueryResult> query_batch(const std::vector<Pose>& poses) {
+    std::vector<QueryResult> results(poses.size());
+    query_batch(poses.data(), poses.size(), results.data());
+    return results;
+  }
 };
 
 }  // namespace snapfit
