@@ -10,10 +10,9 @@
 #include "report/scene_summary.h"
 #include "engine/descriptors.h"
 #include "snapfit/error.h"
-#include "pipeline/part_fields.h"
+#include "pipeline/assembly_pair.h"
 #include "io/png_export.h"
 #include "io/vti_export.h"
-#include "pipeline/prepare_parts.h"
 #include "core/progress.h"
 
 namespace snapfit::cli {
@@ -60,21 +59,21 @@ void run_fields(const FieldsOptions& opt) {
   const Scene scene = load_scene(opt.scene);
   if (opt.part != "1" && opt.part != "2") throw Error("--part: expected 1 or 2 (got '" + opt.part + "')");
   const auto [axis, coordinate] = parse_slice(opt.slice);
-  const PreparedParts parts = prepare_parts(scene);
-  const Mesh& mesh = opt.part == "1" ? parts.part1.mesh : parts.part2.mesh;
-  const ScenePartGrids grids = scene_part_grids(scene.grid, parts.part1.mesh, parts.part2.mesh);
-  const GridSpec& grid = opt.part == "1" ? grids.part1 : grids.part2;
-  const double spacing = grids.spacing;
+  const int which = opt.part == "1" ? 1 : 2;
+  AssemblyPair pair = prepare_assembly_pair(scene);
+  const Mesh& mesh = pair.part(which).mesh;
+  const GridSpec& grid = pair.grid(which);
   const int slice = slice_index_for(grid, axis, coordinate);  // fail before the long work
 
   const ComputeContext ctx = make_compute_context(select_device(device_spec_from(opt.device)));
   std::cout << "part " << opt.part << ": " << mesh.triangles.size() << " triangles, grid " << grid.dims.x() << " x "
-            << grid.dims.y() << " x " << grid.dims.z() << " = " << grid.count() << " points at spacing " << spacing
-            << " " << scene.units << ", on " << ctx.device.info.name << "\n";
-  DescriptorOptions options;
-  options.progress = pass_progress_bars();
-  const PartFieldsResult result = part_fields(ctx, mesh, grid, scene.descriptor, options, !opt.no_cache,
-                                              [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; });
+            << grid.dims.y() << " x " << grid.dims.z() << " = " << grid.count() << " points at spacing "
+            << pair.grids.spacing << " " << scene.units << ", on " << ctx.device.info.name << "\n";
+  PairOptions options;
+  options.descriptors.progress = pass_progress_bars();
+  options.use_cache = !opt.no_cache;
+  compute_assembly_fields(pair, ctx, options, which);
+  const PartFieldsResult& result = pair.fields(which);
   const DescriptorFields& f = result.fields;
   print_fields_summary(std::cout, result);
 

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "pipeline/assembly_pair.h"
 #include "report/scene_summary.h"
 
 namespace snapfit::cli {
@@ -13,8 +14,8 @@ void add_scene_check_command(CLI::App& app) {
   cmd->add_option("scene", *file, "Scene file (JSON, see scenes/README.md)")->required();
   cmd->callback([file] {
     const Scene scene = load_scene(*file);
-    const PreparedParts parts = prepare_parts(scene);
-    print_scene_summary(std::cout, scene, parts, plan_computation(scene));
+    const AssemblyPair pair = prepare_assembly_pair(scene);
+    print_scene_summary(std::cout, scene, pair.parts, pair.plan);
     std::cout << "scene is valid\n";
   });
 }

@@ -14,7 +14,7 @@
 #include "snapfit/error.h"
 #include "scheduler/engine_tuning.h"
 #include "core/progress.h"
-#include "scheduler/trajectory.h"
+#include "scheduler/loop_devices.h"
 
 namespace snapfit::cli {
 namespace {
@@ -45,9 +45,7 @@ void run_tune(const TuneCommandOptions& opt) {
   std::cout << "variant " << variant_name(variant) << ", " << engine->max_modes() << " modes available, budget "
             << budget << " ms, margin " << opt.margin * 100 << " %\n";
 
-  const std::vector<Pose> poses = scene.trajectory.keyframes.empty()
-                                      ? std::vector<Pose>{scene.part2.pose}
-                                      : sample_trajectory(scene.trajectory, 100.0);
+  const std::vector<Pose> poses = tuning_poses(scene);
   TuneOptions tune;
   tune.repetitions = opt.repetitions;
   const auto bars = pass_progress_bars();  // one bar, finished when the sweep ends

@@ -26,6 +26,12 @@ void write_file_atomically(const std::string& path, const std::function<std::str
   }
 }
 
+void write_text_file(const std::string& path, const std::string& text) {
+  write_file_atomically(path, [&](std::FILE* f) {
+    return std::fwrite(text.data(), 1, text.size(), f) == text.size() ? std::string() : std::string("short write");
+  });
+}
+
 std::function<std::string(std::FILE*)> errno_status(std::function<bool(std::FILE*)> body) {
   return [body = std::move(body)](std::FILE* f) -> std::string {
     errno = 0;

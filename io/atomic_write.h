@@ -15,6 +15,9 @@ namespace snapfit {
 // one process do not collide (the last rename wins).
 void write_file_atomically(const std::string& path, const std::function<std::string(std::FILE*)>& body);
 
+// Writes `text` as the whole file, atomically as above.
+void write_text_file(const std::string& path, const std::string& text);
+
 // Adapts a writer that returns false on failure (with errno set) to the form above.
 std::function<std::string(std::FILE*)> errno_status(std::function<bool(std::FILE*)> body);
 

@@ -27,7 +27,6 @@
 #include "engine/device.h"
 #include "engine/reference_query.h"
 #include "report/plot.h"
-#include "pipeline/spectra_cache.h"
 #include "perf/bench_common.h"
 #include "scheduler/engine_tuning.h"
 #include "core/quantile.h"
@@ -107,20 +106,18 @@ int main(int argc, char** argv) try {
   const std::size_t max_ladder = quick ? 16384 : 262144;
   const int repeats = quick ? 30 : 200;
 
-  // Spectra per oversampling (from the spectra cache when present).
+  // Spectra per oversampling (pipeline stage 3, from the spectra cache when present).
   std::map<double, PairSpectra> spectra;
   for (double os : oversamplings) {
-    SpectrumOptions options;
-    options.oversampling = os;
-    const std::string key = spectra_cache_key(pair.fields1.fields, pair.fields2.fields, torque, options);
-    std::optional<PairSpectra> s = load_cached_spectra(key, nullptr);
-    if (!s) {
-      std::cout << "spectra at oversampling " << os << "...\n";
-      s = compute_pair_spectra(fft, ctx, pair.fields1.fields, pair.fields2.fields, torque, options);
-      save_cached_spectra(key, *s, nullptr);
-    }
-    std::cout << "oversampling " << os << ": FFT grid " << s->dims[0] << " x " << s->dims[1] << " x " << s->dims[2] << "\n";
-    spectra.emplace(os, std::move(*s));
+    AssemblyPair at = pair;
+    PairOptions options;
+    options.spectrum.oversampling = os;
+    options.note = [](const std::string&) {};
+    compute_assembly_spectra(at, ctx, fft, options);
+    const auto& d = at.spectra.dims;
+    std::cout << "oversampling " << os << ": FFT grid " << d[0] << " x " << d[1] << " x " << d[2]
+              << (at.spectra_from_cache ? " (cached)" : "") << "\n";
+    spectra.emplace(os, std::move(at.spectra));
   }
 
   // The reference: the most oversampled spectra, every mode, tricubic, double.

@@ -98,7 +98,7 @@
 #include "report/plot.h"
 #include "snapfit/scene.h"
 #include "perf/bench_common.h"
-#include "pipeline/prepare_parts.h"
+#include "pipeline/assembly_pair.h"
 
 namespace {
 
@@ -650,8 +650,7 @@ std::vector<MapRow> bench_maps(const snapfit::FftLibrary& lib, const snapfit::Co
 // larger part grid per axis, rounded up by next_fft_size), from the parts' grids.
 Dims scene_fft_dims(const std::string& path, double oversampling) {
   const snapfit::Scene scene = snapfit::load_scene(path);
-  const snapfit::PreparedParts parts = snapfit::prepare_parts(scene);
-  const snapfit::ScenePartGrids g = snapfit::scene_part_grids(scene.grid, parts.part1.mesh, parts.part2.mesh);
+  const snapfit::ScenePartGrids g = snapfit::prepare_assembly_pair(scene).grids;
   Dims d{};
   for (int a = 0; a < 3; ++a) {
     const double points = oversampling * std::max(g.part1.dims[a], g.part2.dims[a]);

@@ -5,7 +5,7 @@
 //   bench_peers [--quick] [--device SPEC] [--scene FILE] [--out DIR] [--poses N] [--no-cache]
 //
 // Part pair: the scene's two parts (default scenes/default.json: the peg and the hole
-// block, zero clearance, built by snapfit/scene.h + pipeline/prepare_parts.h), then refined by
+// block, zero clearance, built by the pipeline, pipeline/assembly_pair.h), then refined by
 // longest-edge bisection (mesh/triangle_refine.h; the surface and its orientation are
 // unchanged, only the triangles get smaller) to about 1e3 (the scene's own meshes when
 // they have about that many), 1e4, 1e5 and 1e6 triangles for both parts together
@@ -22,13 +22,12 @@
 //           abs_err = 0, no nearest points) per pose, wall clock of one call after setting
 //           part 2's transform; p50 / p99 over the poses. Distance queries stop after a time
 //           budget per level (30 s, --quick 3 s); the count done is reported.
-//   snapfit the same steps as pipeline/assembly_pair.h build_assembly_pair on the indicator
-//           version of the scene (descriptor kind "indicator", as scenes/collision_only.json;
-//           6-DOF with energy, force and torque, so torque spectra too): the scene's meshes
-//           go through build_assembly_pair itself, refined ones through the same calls
-//           (scene_part_grids, part_fields, compute_pair_spectra). Precompute time (fields,
-//           from the field cache when present: flagged; --no-cache recomputes) and spectra
-//           time. Then PoseQueryEngine per-query latency, each pose once after 20 warm-up
+//   snapfit the pipeline's stages (pipeline/assembly_pair.h) on the indicator version of
+//           the scene (descriptor kind "indicator", as scenes/collision_only.json; 6-DOF
+//           with energy, force and torque, so torque spectra too), refined levels with
+//           their meshes put in place of the scene's after stage 1. Precompute time
+//           (fields, from the field cache when present: flagged; --no-cache recomputes)
+//           and spectra time. Then QueryEngine per-query latency, each pose once after 20 warm-up
 //           queries, p50 / p99, at m' = 4096 and 32768, for the default scene's variant
 //           (6-DOF energy + force + torque, tricubic) and for the verdict variant (6-DOF
 //           energy + force, tricubic). The grid, and so the query cost, depends on the
@@ -85,7 +84,6 @@
 #include "report/plot.h"
 #include "snapfit/scene.h"
 #include "perf/bench_common.h"
-#include "pipeline/prepare_parts.h"
 #include "core/progress.h"
 #include "scheduler/trajectory.h"
 
@@ -342,7 +340,7 @@ int run(const Args& args) {
     if (scene.grid.resolution) scene.grid.resolution = std::max(8, *scene.grid.resolution / 2);
     std::cout << "  --quick: grid spacing doubled (figures are not the default scene's)\n";
   }
-  const snapfit::PreparedParts parts = snapfit::prepare_parts(scene);
+  const snapfit::PreparedParts parts = snapfit::prepare_assembly_pair(scene).parts;
   std::cout << "  scene " << args.scene << " (" << base_scene.name << "): " << base_scene.part1.name << " "
             << parts.part1.mesh.triangles.size() << " triangles, " << base_scene.part2.name << " "
             << parts.part2.mesh.triangles.size() << " triangles; descriptor switched to the indicator\n";
@@ -383,24 +381,20 @@ int run(const Args& args) {
     snapfit::PairSpectra spectra;
     {
       const auto t0 = Clock::now();
-      if (L.radius == 0) {
-        const snapfit::AssemblyPair pair = snapfit::build_assembly_pair(scene, ctx, fft, popt);
-        R.fields_cached = pair.fields1.from_cache && pair.fields2.from_cache;
-        R.fields_s = seconds_since(t0) - pair.spectra.seconds;
-        spectra = pair.spectra;
-        R.spectra_s = pair.spectra.seconds;  // 0 when loaded from the spectra cache
-      } else {
-        const snapfit::ScenePartGrids grids = snapfit::scene_part_grids(scene.grid, L.part1, L.part2);
-        const auto f1 = snapfit::part_fields(ctx, L.part1, grids.part1, scene.descriptor, popt.descriptors,
-                                             args.use_cache, popt.note);
-        const auto f2 = snapfit::part_fields(ctx, L.part2, grids.part2, scene.descriptor, popt.descriptors,
-                                             args.use_cache, popt.note);
-        R.fields_cached = f1.from_cache && f2.from_cache;
-        R.fields_s = seconds_since(t0);
-        const auto t1 = Clock::now();
-        spectra = snapfit::compute_pair_spectra(fft, ctx, f1.fields, f2.fields, true, snapfit::SpectrumOptions{});
-        R.spectra_s = seconds_since(t1);
+      // The pipeline's stages, with the level's meshes in place of the scene's (the same
+      // surface split finer: the same boxes, so the same grids).
+      snapfit::AssemblyPair pair = snapfit::prepare_assembly_pair(scene);
+      if (L.radius > 0) {
+        pair.parts.part1.mesh = L.part1;
+        pair.parts.part2.mesh = L.part2;
       }
+      snapfit::compute_assembly_fields(pair, ctx, popt);
+      R.fields_cached = pair.fields1.from_cache && pair.fields2.from_cache;
+      R.fields_s = seconds_since(t0);
+      const auto t1 = Clock::now();
+      snapfit::compute_assembly_spectra(pair, ctx, fft, popt);
+      R.spectra_s = pair.spectra_from_cache ? 0.0 : seconds_since(t1);
+      spectra = std::move(pair.spectra);
     }
     R.fft_dims = spectra.dims;
     spacing = spectra.spacing;

@@ -2,38 +2,67 @@
 
 #include <iostream>
 
-#include "pipeline/compute_plan.h"
 #include "pipeline/spectra_cache.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
+namespace {
 
-AssemblyPair build_assembly_pair(const Scene& scene, const ComputeContext& ctx, const FftLibrary& fft,
-                                 const PairOptions& options) {
+std::function<void(const std::string&)> note_of(const PairOptions& options) {
+  if (options.note) return options.note;
+  return [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; };
+}
+
+}  // namespace
+
+AssemblyPair prepare_assembly_pair(const Scene& scene) {
   AssemblyPair pair;
   pair.scene = scene;
+  pair.plan = plan_computation(scene);
   pair.parts = prepare_parts(scene);
-  // Translation-only motion keeps part 2 at its scene orientation: bake it into the
-  // mesh, so the queries run at R = identity (no spectrum rotation at all).
   if (scene.motion == Motion::translation && !scene.part2.pose.rotation.toRotationMatrix().isIdentity(1e-12)) {
     for (Eigen::Vector3d& v : pair.parts.part2.mesh.vertices) v = scene.part2.pose.rotation * v;
   }
-  const auto note = options.note ? options.note : [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; };
-  const ScenePartGrids grids = scene_part_grids(scene.grid, pair.parts.part1.mesh, pair.parts.part2.mesh);
-  pair.fields1 = part_fields(ctx, pair.parts.part1.mesh, grids.part1, scene.descriptor, options.descriptors,
-                             options.use_cache, note);
-  pair.fields2 = part_fields(ctx, pair.parts.part2.mesh, grids.part2, scene.descriptor, options.descriptors,
-                             options.use_cache, note);
-  const ComputePlan plan = plan_computation(scene);
-  const std::string key = options.use_cache ? spectra_cache_key(pair.fields1.fields, pair.fields2.fields,
-                                                                  plan.torque_fields, options.spectrum)
-                                            : std::string();
+  pair.grids = scene_part_grids(scene.grid, pair.parts.part1.mesh, pair.parts.part2.mesh);
+  return pair;
+}
+
+void compute_assembly_fields(AssemblyPair& pair, const ComputeContext& ctx, const PairOptions& options, int which) {
+  if (which < 0 || which > 2) throw Error("compute_assembly_fields: part must be 1, 2 or 0 for both (got " +
+                                          std::to_string(which) + ")");
+  const auto note = note_of(options);
+  for (int part = 1; part <= 2; ++part) {
+    if (which != 0 && which != part) continue;
+    PartFieldsResult& out = part == 1 ? pair.fields1 : pair.fields2;
+    out = part_fields(ctx, pair.part(part).mesh, pair.grid(part), pair.scene.descriptor, options.descriptors,
+                      options.use_cache, note);
+  }
+}
+
+void compute_assembly_spectra(AssemblyPair& pair, const ComputeContext& ctx, const FftLibrary& fft,
+                              const PairOptions& options) {
+  if (pair.fields1.fields.winding.empty() || pair.fields2.fields.winding.empty())
+    throw Error("compute_assembly_spectra: both parts' fields are needed first (compute_assembly_fields)");
+  const auto note = note_of(options);
+  const bool torque = pair.plan.torque_fields;
+  const std::string key = options.use_cache
+                              ? spectra_cache_key(pair.fields1.fields, pair.fields2.fields, torque, options.spectrum)
+                              : std::string();
+  pair.spectra_from_cache = false;
   if (auto cached = options.use_cache ? load_cached_spectra(key, note) : std::nullopt) {
     pair.spectra = std::move(*cached);
-  } else {
-    pair.spectra = compute_pair_spectra(fft, ctx, pair.fields1.fields, pair.fields2.fields, plan.torque_fields,
-                                        options.spectrum);
-    if (options.use_cache) save_cached_spectra(key, pair.spectra, note);
+    pair.spectra_from_cache = true;
+    return;
   }
+  pair.spectra = compute_pair_spectra(fft, ctx, pair.fields1.fields, pair.fields2.fields, torque, options.spectrum);
+  if (options.use_cache) save_cached_spectra(key, pair.spectra, note);
+}
+
+AssemblyPair build_assembly_pair(const Scene& scene, const ComputeContext& ctx, const FftLibrary& fft,
+                                 const PairOptions& options) {
+  AssemblyPair pair = prepare_assembly_pair(scene);
+  compute_assembly_fields(pair, ctx, options);
+  compute_assembly_spectra(pair, ctx, fft, options);
   return pair;
 }
 

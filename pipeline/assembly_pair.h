@@ -1,6 +1,12 @@
 #pragma once
-// The public entry point for a haptics program: build (or load from the caches) an
-// assembly pair from a scene, then ask for energy, force and torque per pose.
+// The pipeline from a scene to what the per-frame queries need, in three stages that
+// every command, benchmark and test goes through (so they all see the same parts,
+// grids, fields and spectra):
+//   1. prepare_assembly_pair: both parts built and validated (in parallel), in the
+//      frames the queries use; the compute plan; both grids at one spacing (no device);
+//   2. compute_assembly_fields: each part's descriptor fields (field cache, else computed);
+//   3. compute_assembly_spectra: both parts' spectra (spectra cache, else computed).
+// build_assembly_pair runs all three:
 //
 //   FftLibrary fft;
 //   ComputeContext ctx = make_compute_context(select_device(""));
@@ -9,16 +15,17 @@
 //   engine->set_modes(32768);
 //   QueryResult r = engine->query(pose_of_part2_in_part1_frame);   // r.energy, r.force, r.torque
 //
-// Frames and signs: engine/pose_query.h.
+// Frames and signs: include/snapfit/query.h.
 #include <functional>
 #include <string>
 
-#include "pipeline/part_fields.h"
-#include "snapfit/query.h"
-#include "engine/query_engine.h"
+#include "engine/fft3d.h"
 #include "engine/spectra.h"
-#include "snapfit/scene.h"
+#include "pipeline/compute_plan.h"
+#include "pipeline/part_fields.h"
 #include "pipeline/prepare_parts.h"
+#include "snapfit/query.h"
+#include "snapfit/scene.h"
 
 namespace snapfit {
 
@@ -31,13 +38,34 @@ struct PairOptions {
 
 struct AssemblyPair {
   Scene scene;
+  ComputePlan plan;
+  // Part 2's mesh is in the frame its queries use: for translation-only motion, part 2
+  // keeps its scene orientation, which is baked into the mesh (the queries then run at
+  // R = identity, with no spectrum rotation at all).
   PreparedParts parts;
-  PartFieldsResult fields1, fields2;
-  PairSpectra spectra;
+  ScenePartGrids grids;
+  PartFieldsResult fields1, fields2;  // empty until stage 2
+  PairSpectra spectra;                // empty until stage 3
+  bool spectra_from_cache = false;
+
+  const PartFieldsResult& fields(int part) const { return part == 1 ? fields1 : fields2; }
+  const PreparedPart& part(int part) const { return part == 1 ? parts.part1 : parts.part2; }
+  const GridSpec& grid(int part) const { return part == 1 ? grids.part1 : grids.part2; }
 };
 
-// Parts, descriptor fields (cached) and spectra, with only what the scene needs
-// (torque spectra only when the scene asks for torque with 6-DOF motion).
+// Stage 1. Throws snapfit::Error naming the part when a mesh cannot be made.
+AssemblyPair prepare_assembly_pair(const Scene& scene);
+
+// Stage 2 for part 1, part 2, or both (which = 0). Throws snapfit::Error for a device failure.
+void compute_assembly_fields(AssemblyPair& pair, const ComputeContext& ctx, const PairOptions& options = {},
+                             int which = 0);
+
+// Stage 3 (needs both parts' fields), with torque spectra only when the plan asks for
+// them (torque with 6-DOF motion).
+void compute_assembly_spectra(AssemblyPair& pair, const ComputeContext& ctx, const FftLibrary& fft,
+                              const PairOptions& options = {});
+
+// All three stages.
 AssemblyPair build_assembly_pair(const Scene& scene, const ComputeContext& ctx, const FftLibrary& fft,
                                  const PairOptions& options = {});
 

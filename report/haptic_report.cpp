@@ -8,14 +8,8 @@
 #include "report/plot.h"
 #include "core/quantile.h"
 
-namespace snapfit::cli {
+namespace snapfit {
 namespace {
-
-void write_text_file(const std::filesystem::path& path, const std::string& text) {
-  write_file_atomically(path.string(), [&](std::FILE* f) {
-    return std::fwrite(text.data(), 1, text.size(), f) == text.size() ? std::string() : std::string("short write");
-  });
-}
 
 std::string loop_csv(const LoopReport& loop) {
   std::ostringstream csv;
@@ -80,7 +74,7 @@ Chart tuning_chart(const TuningResult& t, const std::string& device_name) {
 nlohmann::json write_haptic_report(const std::filesystem::path& out, const Scene& scene, const SessionResult& run,
                                    const TuningResult& tuning) {
   const LoopReport& loop = run.loop;
-  write_text_file(out / "loop.csv", loop_csv(loop));
+  write_text_file((out / "loop.csv").string(), loop_csv(loop));
 
   Chart hist = histogram_chart("Frame time, " + std::to_string(loop.frames) + " frames at " +
                                    std::to_string(int(loop.rate_hz)) + " Hz",
@@ -147,4 +141,4 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Scene
                         {"reason", run.priority.reason}}}};
 }
 
-}  // namespace snapfit::cli
+}  // namespace snapfit

@@ -10,7 +10,7 @@
 #include "scheduler/assembly_session.h"
 #include "scheduler/auto_tune.h"
 
-namespace snapfit::cli {
+namespace snapfit {
 
 // Writes loop.csv, frame_times.png, energy.png, force_torque.png, pose_error.png and
 // tuning.png into `out`; returns the JSON summary of the run.
@@ -23,4 +23,4 @@ Chart tuning_chart(const TuningResult& tuning, const std::string& device_name);
 // The tuning table for people: one line per m' level.
 std::string tuning_table(const TuningResult& tuning);
 
-}  // namespace snapfit::cli
+}  // namespace snapfit

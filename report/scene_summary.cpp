@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <iomanip>
 
-namespace snapfit::cli {
+namespace snapfit {
 namespace {
 
 void print_part(std::ostream& out, const char* role, const PartSpec& spec, const PreparedPart& part, const std::string& units) {
@@ -60,4 +60,4 @@ void print_fields_summary(std::ostream& out, const PartFieldsResult& result) {
   out.precision(precision);
 }
 
-}  // namespace snapfit::cli
+}  // namespace snapfit

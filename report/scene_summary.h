@@ -7,11 +7,11 @@
 #include "snapfit/scene.h"
 #include "pipeline/prepare_parts.h"
 
-namespace snapfit::cli {
+namespace snapfit {
 
 void print_scene_summary(std::ostream& out, const Scene& scene, const PreparedParts& parts, const ComputePlan& plan);
 
 // Where a part's fields came from, how long they took, and their error bounds.
 void print_fields_summary(std::ostream& out, const PartFieldsResult& result);
 
-}  // namespace snapfit::cli
+}  // namespace snapfit

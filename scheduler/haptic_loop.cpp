@@ -231,7 +231,8 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
       handle = last_good_handle ? *last_good_handle : part;
     }
     last_good_handle = handle;
-    const QueryResult q = engine.evaluate(part.pose);
+    const Pose queried = part.pose;
+    const QueryResult q = engine.evaluate(queried);
     geometric = Wrench{};
     if (q.flags == query_ok) {
       geometric.force = config.geometry_gain * q.force;
@@ -275,7 +276,7 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     report.frame_ms.push_back(frame_ms);
     report.wake_late_ms.push_back(1e3 * (woke - tick_time));
     if (config.keep_log)
-      report.log.push_back(FrameRecord{tick_time, frame_ms, handle.pose, part.pose, q.energy, geometric, sent,
+      report.log.push_back(FrameRecord{tick_time, frame_ms, handle.pose, queried, q.energy, geometric, sent,
                                        q.modes, q.flags, missed});
     ++report.frames;
     if (missed) ++report.misses;

@@ -92,8 +92,9 @@ struct LoopConfig {
 struct FrameRecord {
   double time_s = 0;       // the frame's tick time
   double frame_ms = 0;     // tick to wrench sent
-  Pose device, part;
-  double energy = 0;       // engine energy at the part's pose
+  Pose device;             // the device's pose read this frame
+  Pose part;               // the part's pose the engine was queried at (before this frame's step)
+  double energy = 0;       // engine energy at `part`
   Wrench geometric;        // scaled to N, N m
   Wrench sent;             // to the device, after clamping
   std::size_t modes = 0;

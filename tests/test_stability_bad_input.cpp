@@ -45,23 +45,6 @@ void number_pointers(const nlohmann::json& j, const std::string& at, std::vector
     for (std::size_t i = 0; i < j.size(); ++i) number_pointers(j[i], at + "/" + std::to_string(i), out);
 }
 
-struct Command {
-  int status = -1;
-  std::string output;
-};
-
-Command run_command(const std::string& command) {
-  Command c;
-  std::FILE* p = ::popen((command + " 2>&1").c_str(), "r");
-  REQUIRE(p != nullptr);
-  std::array<char, 4096> buffer{};
-  std::size_t n;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), p)) > 0) c.output.append(buffer.data(), n);
-  const int raw = ::pclose(p);
-  c.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-  return c;
-}
-
 std::vector<std::string> files_under(const fs::path& dir) {
   std::vector<std::string> out;
   if (!fs::exists(dir)) return out;
@@ -188,12 +171,12 @@ TEST_CASE("stability bad input: non-finite and huge poses, library and CLI") {
            {"0,0", "expected 3 or 7 numbers"},
            {"1,2,3x", "is not a number"}}) {
     CAPTURE(pose);
-    const Command c = run_command(cli + " --pose '" + pose + "'");
+    const test::Command c = test::run_command(cli + " --pose '" + pose + "'");
     CHECK(c.status == 1);
     CHECK_MESSAGE(c.output.find("--pose " + pose) != std::string::npos, c.output);
     CHECK_MESSAGE(c.output.find(expect) != std::string::npos, c.output);
   }
-  const Command far = run_command(cli + " --pose 1e300,0,0 --pose 1,0,-8");
+  const test::Command far = test::run_command(cli + " --pose 1e300,0,0 --pose 1,0,-8");
   REQUIRE_MESSAGE(far.status == 0, far.output);
   CHECK(far.output.find("\"outside_grid\"") != std::string::npos);
   CHECK(far.output.find("nan") == std::string::npos);

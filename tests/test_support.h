@@ -1,5 +1,9 @@
 #pragma once
 // Small helpers shared by the test files: temporary folders and file bytes.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
 #include <filesystem>
 #include <cstdlib>
 #include <fstream>
@@ -66,6 +70,25 @@ inline void write_bytes(const std::string& file, const std::vector<char>& bytes)
 
 inline void write_text(const std::string& file, const std::string& text) {
   std::ofstream(file, std::ios::binary | std::ios::trunc) << text;
+}
+
+// Runs a shell command; its exit status and its output (stdout, with stderr too when
+// `with_stderr`).
+struct Command {
+  int status = -1;
+  std::string output;
+};
+
+inline Command run_command(const std::string& command, bool with_stderr = true) {
+  Command c;
+  std::FILE* p = ::popen((command + (with_stderr ? " 2>&1" : " 2>/dev/null")).c_str(), "r");
+  if (p == nullptr) return c;
+  std::array<char, 4096> buffer{};
+  std::size_t n;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), p)) > 0) c.output.append(buffer.data(), n);
+  const int raw = ::pclose(p);
+  c.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  return c;
 }
 
 }  // namespace snapfit::test

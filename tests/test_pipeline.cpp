@@ -1,0 +1,148 @@
+// One pipeline (pipeline/assembly_pair.h): for every shipped scene, `snapfit run` (its
+// loop log), `snapfit query` (its JSON lines) and the library give the same energy,
+// force and torque at the same pose and m'. The CLI runs as a user runs it, with the
+// test's cache folder, so it reuses the fields and spectra the library computed.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "engine/query_engine.h"
+#include "pipeline/assembly_pair.h"
+#include "tests/test_engine_support.h"
+
+namespace snapfit {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr std::size_t kModes = 4096;
+
+std::vector<std::vector<double>> read_csv(const fs::path& file, std::vector<std::string>& header) {
+  std::ifstream in(file);
+  std::string line;
+  std::vector<std::vector<double>> rows;
+  for (bool first = true; std::getline(in, line); first = false) {
+    std::stringstream cells(line);
+    std::string cell;
+    std::vector<double> row;
+    while (std::getline(cells, cell, ',')) {
+      if (first) header.push_back(cell);
+      else row.push_back(std::stod(cell));
+    }
+    if (!first) rows.push_back(row);
+  }
+  return rows;
+}
+
+std::string number(double v) {
+  std::ostringstream out;
+  out << std::setprecision(17) << v;
+  return out.str();
+}
+
+// A pose as `snapfit query --pose` reads it (x,y,z,ax,ay,az,deg), and the pose it makes.
+std::string pose_argument(const Pose& p, Pose& parsed) {
+  const Eigen::AngleAxisd aa(p.rotation.normalized());
+  const double deg = aa.angle() * 180.0 / M_PI;
+  parsed.translation = p.translation;
+  parsed.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(deg * M_PI / 180.0, aa.axis().normalized()));
+  return number(p.translation.x()) + "," + number(p.translation.y()) + "," + number(p.translation.z()) + "," +
+         number(aa.axis().x()) + "," + number(aa.axis().y()) + "," + number(aa.axis().z()) + "," + number(deg);
+}
+
+Eigen::Vector3d vec3(const nlohmann::json& j) { return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()}; }
+
+}  // namespace
+
+TEST_CASE("pipeline: snapfit run, snapfit query and the library give the same wrench on every shipped scene") {
+  const test::CacheDirScope cache;
+  const test::TempDir out;
+  std::vector<fs::path> scenes;
+  for (const auto& entry : fs::directory_iterator(fs::path(SNAPFIT_SOURCE_DIR) / "scenes"))
+    if (entry.path().extension() == ".json") scenes.push_back(entry.path());
+  std::sort(scenes.begin(), scenes.end());
+  REQUIRE(scenes.size() >= 5);
+  bool translation_scene = false;
+  for (const fs::path& file : scenes) {
+    CAPTURE(file.string());
+    const Scene scene = load_scene(file.string());
+    translation_scene |= scene.motion == Motion::translation;
+    const FftLibrary fft;
+    PairOptions options;
+    options.note = [](const std::string&) {};
+    const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, options);
+    auto engine = make_query_engine(test::test_context(), pair.spectra, query_variant_for(scene, Interpolation::tricubic),
+                                    test::test_program_cache());
+    engine->set_modes(kModes);
+
+    // snapfit run: the loop's log holds the pose each frame's wrench was computed at.
+    const fs::path run_dir = out.path / file.stem();
+    const test::Command run = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + file.string() + " --modes " +
+                                                std::to_string(kModes) + " --simulated-time --out " + run_dir.string());
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    std::ifstream summary_file(run_dir / "summary.json");
+    const nlohmann::json summary = nlohmann::json::parse(summary_file);
+    CHECK(summary["fft_dims"] == nlohmann::json(pair.spectra.dims));
+    std::vector<Pose> poses;
+    if (!scene.trajectory.keyframes.empty()) {
+      std::vector<std::string> h;
+      const auto rows = read_csv(run_dir / "loop.csv", h);
+      auto col = [&](const std::string& name) {
+        const auto it = std::find(h.begin(), h.end(), name);
+        REQUIRE(it != h.end());
+        return static_cast<std::size_t>(it - h.begin());
+      };
+      REQUIRE(rows.size() > 100);
+      const double gain = summary["haptic_loop"]["geometry_gain"].get<double>();
+      const double torque_gain = gain * metres_per_unit(scene.units);
+      for (std::size_t i = 0; i < rows.size(); i += rows.size() / 7) {
+        const auto& r = rows[i];
+        REQUIRE(r[col("modes")] == double(kModes));
+        Pose p;
+        p.translation = {r[col("part_x")], r[col("part_y")], r[col("part_z")]};
+        p.rotation = Eigen::Quaterniond(r[col("part_qw")], r[col("part_qx")], r[col("part_qy")], r[col("part_qz")]);
+        poses.push_back(p);
+        const QueryResult q = engine->query(p);
+        CAPTURE(i);
+        REQUIRE(q.flags == unsigned(r[col("flags")]));
+        const double e = r[col("energy")];
+        CHECK(std::abs(q.energy - e) <= 1e-6 * std::max(1.0, std::abs(e)));
+        const Eigen::Vector3d f(r[col("geo_fx")], r[col("geo_fy")], r[col("geo_fz")]);
+        const Eigen::Vector3d t(r[col("geo_tx")], r[col("geo_ty")], r[col("geo_tz")]);
+        CHECK((gain * q.force - f).norm() <= 1e-6 * std::max(1e-9, f.norm()) + 1e-12);
+        CHECK((torque_gain * q.torque - t).norm() <= 1e-6 * std::max(1e-12, t.norm()) + 1e-15);
+      }
+    }
+    if (poses.empty()) poses.push_back(scene.part2.pose);
+
+    // snapfit query at the same poses.
+    std::string arguments;
+    std::vector<Pose> parsed(poses.size());
+    for (std::size_t i = 0; i < poses.size(); ++i) arguments += " --pose " + pose_argument(poses[i], parsed[i]);
+    const test::Command query = test::run_command(std::string(SNAPFIT_CLI_PATH) + " query " + file.string() +
+                                                      " --modes " + std::to_string(kModes) + arguments,
+                                                  false);
+    INFO(query.output);
+    REQUIRE(query.status == 0);
+    std::stringstream lines(query.output);
+    std::string line;
+    std::size_t n = 0;
+    for (; std::getline(lines, line) && n < parsed.size(); ++n) {
+      const nlohmann::json j = nlohmann::json::parse(line);
+      const QueryResult q = engine->query(parsed[n]);
+      CAPTURE(n);
+      CHECK(j["modes"].get<std::size_t>() == kModes);
+      CHECK(j["energy"].get<double>() == doctest::Approx(q.energy).epsilon(1e-9).scale(1.0));
+      CHECK((vec3(j["force"]) - q.force).norm() <= 1e-9 * std::max(1.0, q.force.norm()));
+      CHECK((vec3(j["torque"]) - q.torque).norm() <= 1e-9 * std::max(1.0, q.torque.norm()));
+    }
+    CHECK(n == parsed.size());
+  }
+  CHECK(translation_scene);
+}
+
+}  // namespace snapfit
