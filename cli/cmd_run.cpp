@@ -175,7 +175,7 @@ void run_main_job(const RunOptions& opt) {
 void add_run_command(CLI::App& app) {
   auto opt = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "The main job: prepare a scene's parts and device, write a report folder");
-  cmd->add_option("scene", opt->scene, "Scene file (JSON, see scenes/README.md)")->required();
+  cmd->add_option("scene", opt->scene, "Scene file (JSON, see docs/scenes.md)")->required();
   cmd->add_option("--device", opt->device, "OpenCL device: index, platform:device, cpu|gpu|accelerator, or a name substring (default: $SNAPFIT_DEVICE, else PoCL's CPU device)");
   cmd->add_option("--out", opt->out, "Report folder (default: results/<scene name>)");
   cmd->add_option("--modes", opt->modes, "m': a fixed number of Fourier modes instead of the tuned one");

@@ -11,7 +11,7 @@ namespace snapfit::cli {
 void add_scene_check_command(CLI::App& app) {
   auto file = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand("scene-check", "Validate a scene file, build its parts and print the compute plan");
-  cmd->add_option("scene", *file, "Scene file (JSON, see scenes/README.md)")->required();
+  cmd->add_option("scene", *file, "Scene file (JSON, see docs/scenes.md)")->required();
   cmd->callback([file] {
     const Scene scene = load_scene(*file);
     const AssemblyPair pair = prepare_assembly_pair(scene);

@@ -1,6 +1,6 @@
 #pragma once
 // Shape descriptors of one part on a uniform grid (seed 000 sec. 2.3 and 3.1;
-// DESIGN.md "Shape descriptors"), computed by the OpenCL kernels
+// docs/design.md "Shape descriptors"), computed by the OpenCL kernels
 // kernels/unsigned_distance.cl, winding_number.cl and skeletal_density.cl over a
 // TriangleBvh of the part's mesh:
 //   w    generalized winding number (1 inside, 0 outside; robust on open meshes)
@@ -79,7 +79,7 @@ struct DescriptorFields {
 DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh, const GridSpec& grid,
                                      const DescriptorParams& params, const DescriptorOptions& options = {});
 
-// The affinity rho = i * lambda * s (DESIGN.md): its imaginary part lambda * s, with
+// The affinity rho = i * lambda * s (docs/design.md): its imaginary part lambda * s, with
 // lambda = lambda_in where w >= 1/2 and lambda_out elsewhere. For the indicator kind,
 // the indicator itself (1 inside, 0 outside), real-valued.
 std::vector<float> affinity_imaginary(const DescriptorFields& fields);

@@ -1,6 +1,6 @@
 #pragma once
 // The order in which queries retain modes (the "dominant" ones: the low-pass ball
-// |w| <= K grows with m'), shared by the device engine (engine/pose_query.h) and the
+// |w| <= K grows with m'), shared by the device engine (include/snapfit/query.h) and the
 // host reference (engine/reference_query.h) so that both sum the same m' modes.
 #include <cstddef>
 #include <limits>

@@ -1,5 +1,5 @@
 #pragma once
-// A host, double-precision evaluation of the per-pose sum of engine/pose_query.h (seed
+// A host, double-precision evaluation of the per-pose sum of include/snapfit/query.h (seed
 // 000 eq. 10-12) from the same spectra: every retained mode accumulated in double, the
 // spectra of part 2 interpolated in double with the same schemes. No OpenCL. It is the
 // reference for accuracy reports (perf/bench_accuracy: all modes, no truncation) and

@@ -1,5 +1,5 @@
 #pragma once
-// Fourier spectra of both parts' affinity fields (seed 000 eq. 8, 13; DESIGN.md
+// Fourier spectra of both parts' affinity fields (seed 000 eq. 8, 13; docs/design.md
 // "Correlation in the Fourier domain"), on one common zero-padded FFT grid so both
 // parts share the frequency nodes w_k = k / L (L_a = dims_a * h per axis).
 //

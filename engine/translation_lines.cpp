@@ -104,7 +104,7 @@ TranslationLines build_translation_lines(const PairSpectra& spectra, const std::
   t.weights.assign(std::size_t(t.box_dims[0]) * t.box_dims[1] * t.box_dims[2], std::complex<float>(0, 0));
   t.order.resize(total);
   std::vector<Key> rank(total);
-  // W_k = S1(w_k) S2(-w_k) dw (DESIGN.md; seed 000 section 3.3), S2(-w_k) at node -k
+  // W_k = S1(w_k) S2(-w_k) dw (docs/design.md; seed 000 section 3.3), S2(-w_k) at node -k
   // (a Nyquist index wraps onto itself).
   const double dw = 1.0 / (spectra.length.x() * spectra.length.y() * spectra.length.z());
   for (std::size_t i = 0; i < total; ++i) {

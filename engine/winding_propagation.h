@@ -1,5 +1,5 @@
 #pragma once
-// Winding number by sign propagation on closed meshes (issue 3).
+// Winding number by sign propagation on closed meshes.
 //
 // When the mesh's boundary is a cycle (every undirected edge occurs as often as a->b
 // as b->a), the triangles form a closed 2-cycle and the generalized winding number w

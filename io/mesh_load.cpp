@@ -92,7 +92,7 @@ void check_off_counts(const std::string& path, std::uintmax_t file_size) {
   }
 }
 
-// PLY (issue 7, found by truncating valid files): Debian's Assimp 5.2 loops forever on a
+// PLY (found by truncating valid files): Debian's Assimp 5.2 loops forever on a
 // PLY file cut inside its header, and aborts (ai_assert in TriangulateProcess) on one
 // cut inside its body. So a file that starts with the "ply" magic is walked here first:
 // the header must end with end_header, and the body must hold every element it declares
@@ -380,18 +380,13 @@ Mesh decode_mesh(const std::string& path, const std::string& bytes) {
   return m;
 }
 
-// Limits of the import child (issue 7: Assimp allocated 4.2 GB on a 2.8 kB .x file and
-// 18.9 GB on an 8.5 kB .dae file). Assimp's own need, from perf/bench_mesh_import (a
-// torus, imported in-process; peak address space above the start, 2026-11-22, 2 cores):
-//   1e6 triangles: binary STL, 47.7 MiB: +1681 MiB (peak RSS +1425 MiB), 1.8-2.7 s CPU
-//                  OBJ, 50.1 MiB:        +1201 MiB (peak RSS  +556 MiB), 1.1 s CPU
-//   3e6 triangles: STL 143 MiB: +5042 MiB, 6.3 s; OBJ 155 MiB: +3636 MiB, 3.8 s
-// so up to 35x the file size, linearly. Memory: 1 GiB + 64x the file size (4.0 GiB for
-// the 1e6-triangle STL, 2.4x its need; 1 GiB for the fuzzed files, which then stop within
-// a second), at most half the physical memory. CPU: 60 s + 1 s per MiB of file (108 s
-// for the STL, 40x its need), and 3x that of wall time. SNAPFIT_IMPORT_MEMORY_MIB sets
-// the memory limit; 0 or "inprocess" imports in this process, without limits (for
-// debugging).
+// Limits of the import child. Malformed files can make Assimp allocate gigabytes from
+// a few kilobytes (fuzzed .x and .dae files); on valid files its address space grows
+// up to about 35x the file size, linearly, with a few seconds of CPU per million
+// triangles (perf/bench_mesh_import measures both; docs/stability.md has the figures).
+// Memory: 1 GiB + 64x the file size, at most half the physical memory. CPU: 60 s + 1 s
+// per MiB of file, and 3x that of wall time. SNAPFIT_IMPORT_MEMORY_MIB sets the memory
+// limit; 0 or "inprocess" imports in this process, without limits (for debugging).
 std::optional<ChildLimits> import_limits(const std::string& path, std::uintmax_t file_size) {
   const std::uint64_t file_mib = (file_size + (1u << 20) - 1) >> 20;
   ChildLimits limits;

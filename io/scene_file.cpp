@@ -1,5 +1,5 @@
 // Scene files: JSON text <-> Scene, with validation that names the file and the field.
-// The format is documented field by field in scenes/README.md; keep the two in step.
+// The format is documented field by field in docs/scenes.md; keep the two in step.
 #include "snapfit/scene.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Full translational map for one rotation (seed 000 Fig. 1c, 5; DESIGN.md "Full map"):
+// Full translational map for one rotation (seed 000 Fig. 1c, 5; docs/design.md "Full map"):
 // the product P_k = S1(w_k) S2(-R^T w_k) exp(2 pi i w_k.(R c2 - c1)) dw on every FFT
 // node; one unnormalized inverse FFT of P then gives f(R, t) at every grid translation
 // t = h j (j signed, periodic). Nodes with |w|^2 > max_w2 are dropped (low-pass ball).

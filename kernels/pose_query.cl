@@ -1,5 +1,5 @@
 // Per-pose energy, force and torque from the truncated spectra (seed 000 eq. 10-12;
-// engine/pose_query.h has the formulas and frames). One work-group reduces a slice of
+// include/snapfit/query.h has the formulas and frames). One work-group reduces a slice of
 // the retained modes of one pose; the host adds the groups' partial sums.
 //
 // Options: -D WG_SIZE=n (power of two)  -D MAX_HALF=h (largest |k| on any axis)
@@ -147,7 +147,7 @@ void pose_query(__global const float4* modes, __global const CUBE_T* cube,
   const int lid = get_local_id(0);
   const float16 P = pose_count > 1 ? poses[pose] : pose_arg;
 
-  // exp(2 pi i w.tau) is separable per axis (DESIGN.md): tables of
+  // exp(2 pi i w.tau) is separable per axis (docs/design.md): tables of
   // exp(2 pi i k tau_a / L_a) for |k| <= table_half, one per axis, built by the group.
   __local float2 tables[3 * (2 * MAX_HALF + 1)];
   __local float2* tx = tables + MAX_HALF;
@@ -191,7 +191,7 @@ void pose_query(__global const float4* modes, __global const CUBE_T* cube,
 // hold retained modes and on each the interval [xa, xb] of retained kx (|w| grows with
 // |kx| along a line, so that is one interval): `lines` holds (index of the line's kx = 0
 // node, (ky, kz) as two shorts, xa, xb). Per line the phase factors, e^{i phi} =
-// tx[kx] (ty[ky] tz[kz]) (DESIGN.md, separable per axis), so the line is a contiguous,
+// tx[kx] (ty[ky] tz[kz]) (docs/design.md, separable per axis), so the line is a contiguous,
 // 8-wide complex dot product of W with the x table:
 //   s = sum_kx W tx[kx],  s_x = sum_kx kx W tx[kx];  f += s p,  p = ty[ky] tz[kz],
 //   F = Re(2 pi i w f-terms) = -2 pi (Im(s_x p) / L_x, ky Im(s p) / L_y, kz Im(s p) / L_z).

@@ -1,4 +1,4 @@
-// Skeletal density (seed 000 eq. 2 with the kernel of sec. 2.3; DESIGN.md):
+// Skeletal density (seed 000 eq. 2 with the kernel of sec. 2.3; docs/design.md):
 //     s(p) = integral over the boundary of g_sigma(eta/|xi| - 1) dOmega(q),
 //     dOmega = F(q).n dA,  F(q) = (q - p)/|q - p|^3,  eta = |q - p|,
 // g_sigma the normalized Gaussian, |xi| the distance from p to the mesh (input).

@@ -1,6 +1,6 @@
 // Unsigned distance from every grid point to the mesh: nearest-triangle search in the
 // BVH, nearer child first, pruning subtrees whose box is farther than the best so far.
-// (The sign comes from the winding number: DESIGN.md, xi < 0 inside.)
+// (The sign comes from the winding number: docs/design.md, xi < 0 inside.)
 
 __kernel void unsigned_distance(const long first_point, const long point_count, const float3 origin,
                                 const float spacing, const int nx, const int ny,

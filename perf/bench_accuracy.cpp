@@ -1,4 +1,4 @@
-// Error against run time (issue 6, the core report): for a scene, a reference energy,
+// Error against run time: for a scene, a reference energy,
 // force and torque at poses along its trajectory, computed without truncation in double
 // precision (engine/reference_query.h: every mode of the most oversampled spectra,
 // tricubic, double accumulation; validated exactly against a brute-force

@@ -1,4 +1,4 @@
-// The haptic loop benchmark (issue 5): the auto-tuned m' held in the 1 kHz loop for a
+// The haptic loop benchmark: the auto-tuned m' held in the 1 kHz loop for a
 // long run on this machine. The scene's scripted trajectory is played back and forth
 // by a ScriptedDevice for --seconds (default 60) of real time through the same code as
 // `snapfit run` (scheduler/assembly_session.h). Reported: measured rate, frame-time

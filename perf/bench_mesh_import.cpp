@@ -1,4 +1,4 @@
-// Mesh import cost and the import child's limits (issue 7, io/mesh_load.cpp). A torus of
+// Mesh import cost and the import child's limits (io/mesh_load.cpp). A torus of
 // --triangles triangles (default 1e6) is written as binary STL and as OBJ; each is
 // imported in this process (inside a child, to measure it alone: peak address space
 // and peak RSS above what the child started with, CPU and wall time) and then through

@@ -15,7 +15,7 @@
 // (scheduler/trajectory.h), each perturbed by up to +-0.5 (scene units) per axis and up
 // to 2 degrees about a random axis (seeded); poses that snapfit flags as outside its
 // padded box are dropped for both. Part 2's pose is relative to part 1 (part 1 at the
-// identity), as in engine/pose_query.h: x -> R x + t.
+// identity), as in include/snapfit/query.h: x -> R x + t.
 // Per triangle count:
 //   FCL     BVHModel<OBBRSSd> build time per part (beginModel/addSubModel/endModel);
 //           fcl::collide (1 contact, no contact data) and fcl::distance (exact: rel_err =

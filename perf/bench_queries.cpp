@@ -1,4 +1,4 @@
-// Benchmark of per-pose queries (engine/pose_query.h), batched queries, full
+// Benchmark of per-pose queries (include/snapfit/query.h), batched queries, full
 // translational maps (engine/full_map.h) and a roofline of the query kernel against
 // this device's measured memory bandwidth and arithmetic peak.
 //

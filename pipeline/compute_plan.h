@@ -1,6 +1,6 @@
 #pragma once
 // What the engine will compute for a scene, and why: only what the scene needs
-// (DESIGN.md "Leave out what a scene does not need").
+// (docs/design.md "Leave out what a scene does not need").
 #include <string>
 #include <vector>
 

@@ -36,18 +36,16 @@ PartFieldsResult part_fields(const ComputeContext& ctx, const Mesh& mesh, const 
   PartFieldsResult result;
   const std::string key = use_cache ? descriptor_cache_key(mesh, grid, params, options) : std::string();
   if (use_cache) {
-    auto cached = load_cached_descriptors(key, note);
-    if (cached && cached->winding.size() != grid.count()) {
+    if (std::optional<DescriptorFields> cached = load_cached_descriptors(key, note)) {
+      if (cached->winding.size() == grid.count()) {
+        result.fields = std::move(*cached);
+        result.fields.grid = grid;
+        result.fields.params = params;
+        result.from_cache = true;
+        return result;
+      }
       note("field cache entry holds " + std::to_string(cached->winding.size()) + " points, the grid has " +
            std::to_string(grid.count()) + "; recomputing");
-      cached.reset();
-    }
-    if (cached) {
-      result.fields = std::move(*cached);
-      result.fields.grid = grid;
-      result.fields.params = params;
-      result.from_cache = true;
-      return result;
     }
   }
   result.fields = compute_descriptors(ctx, mesh, grid, params, options);

@@ -13,35 +13,22 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, 
   if (scene.trajectory.keyframes.empty())
     throw Error(scene.source_path + ": no trajectory: a scripted assembly needs one (or use a real device)");
   SessionResult out;
-  out.coupling = coupling_for(scene, part2_mesh);
   out.limits = device_limits_for(scene);
   out.target = scene.assembled_pose.value_or(scene.trajectory.keyframes.back().pose);
   out.position_tolerance = scene.haptics.success_position.value_or(spacing);  // the descriptors' resolution
   out.angle_tolerance_deg = scene.haptics.success_angle_deg;
 
-  engine.set_modes(tuning.chosen_modes);
-  for (const QueryResult& r : engine.query_batch(gain_probe_poses(scene, spacing)))
-    if (r.flags == query_ok) out.force_scale = std::max(out.force_scale, r.force.norm());
-  out.geometry_gain = geometry_gain_for(scene, spacing, out.force_scale);
-
-  LoopConfig config;
-  config.rate_hz = scene.loop_rate_hz;
+  LoopConfig config = loop_config_for(scene, part2_mesh, spacing, engine, tuning, out.force_scale);
+  out.coupling = config.coupling;
+  out.geometry_gain = config.geometry_gain;
   const Trajectory& t = scene.trajectory;
-  config.duration_s = options.duration_s.value_or(t.keyframes.back().time_s - t.keyframes.front().time_s +
-                                                  scene.haptics.settle_s);
-  config.budget_ms = scene.frame_budget_ms;
-  config.coupling = out.coupling;
-  config.geometry_gain = out.geometry_gain;
-  config.modes.levels = loop_levels(tuning);
-  const CostModel model = tuning.model;
-  config.modes.predicted_ms = [model](std::size_t m) { return model.predict_ms(m); };
+  if (options.duration_s) config.duration_s = *options.duration_s;
   config.keep_log = options.keep_log;
 
   ScriptedDevice device(t, out.limits, options.loop_back);
   BodyState part;
   part.pose = device.read(0).pose;  // the part starts in the user's hand
-  WrenchEvaluator evaluator{[&engine](const Pose& p) { return engine.query(p); },
-                            [&engine](std::size_t m) { engine.set_modes(m); }};
+  const WrenchEvaluator evaluator = wrench_evaluator(engine);
   const bool raise = (options.priority.nice_value != 0 || options.priority.realtime_priority > 0) && !options.simulated_time;
   if (raise) out.priority = raise_process_priority(options.priority);
   {

@@ -9,7 +9,7 @@
 #include "mesh/mesh.h"
 #include "snapfit/scene.h"
 #include "scheduler/auto_tune.h"
-#include "scheduler/haptic_loop.h"
+#include "snapfit/haptic_loop.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/thread_priority.h"
 
@@ -19,7 +19,7 @@ struct SessionOptions {
   std::optional<double> duration_s;  // default: the trajectory's length + haptics.settle_s
   bool loop_back = false;            // replay the trajectory back and forth (long runs)
   bool keep_log = true;
-  bool simulated_time = false;       // scheduler/haptic_loop.h simulated_loop_clock (deterministic)
+  bool simulated_time = false;       // snapfit/haptic_loop.h simulated_loop_clock (deterministic)
   // The run's threads during the loop (scheduler/thread_priority.h), restored after it:
   // SCHED_FIFO 10 where allowed, else nice -10. {0, 0} leaves them.
   PriorityRequest priority{-10, 10};

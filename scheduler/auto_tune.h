@@ -1,5 +1,5 @@
 #pragma once
-// Auto-tuning of m' (DESIGN.md "Auto-tuning"): measure the per-query time against m'
+// Auto-tuning of m' (include/snapfit/tuning.h; docs/design.md "Auto-tuning"): measure the per-query time against m'
 // on a ladder of mode counts (many repetitions each; p99, not the mean), fit a cost
 // model, and pick the largest m' whose p99 fits the frame budget with a safety margin.
 //
@@ -13,20 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "snapfit/tuning.h"
+
 namespace snapfit {
-
-struct TimingPoint {
-  std::size_t modes = 0;
-  double p50_ms = 0, p99_ms = 0, max_ms = 0;
-  std::size_t samples = 0;
-};
-
-// p99(m') ~ fixed_ms + per_mode_ms * m', least squares over the measured p99 values.
-struct CostModel {
-  double fixed_ms = 0;
-  double per_mode_ms = 0;
-  double predict_ms(std::size_t modes) const { return fixed_ms + per_mode_ms * static_cast<double>(modes); }
-};
 
 CostModel fit_cost_model(const std::vector<TimingPoint>& points);
 
@@ -40,16 +29,6 @@ struct TuneOptions {
   // The sweep stops after the first level whose p99 exceeds this multiple of the target.
   double stop_factor = 1.5;
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;
-};
-
-struct TuningResult {
-  std::vector<TimingPoint> points;  // by increasing m'
-  CostModel model;
-  std::size_t chosen_modes = 0;
-  bool fits = false;                // the chosen m' meets the budget with margin
-  double budget_ms = 0, margin = 0;
-  std::string created;              // UTC date and time of the measurement
-  double target_ms() const { return budget_ms * (1.0 - margin); }
 };
 
 // m' levels from min_modes to max_modes, multiplying by `factor` (rounded to

@@ -1,5 +1,5 @@
 #pragma once
-// Heterogeneous devices (issue 5): with several OpenCL devices, the haptic loop runs on
+// Heterogeneous devices: with several OpenCL devices, the haptic loop runs on
 // the one with the lowest tuned latency; the others are left for background work.
 #include <vector>
 
@@ -17,9 +17,8 @@ std::size_t lowest_latency(const std::vector<TuningResult>& tunings);
 // none does), those whose chosen m' is at least half the largest chosen m'; of those,
 // the devices that run kernels in the calling thread when there are any
 // (`in_caller_thread`, DeviceInfo::runs_in_caller_thread: PoCL's basic driver, with no
-// worker thread to wake each frame: on the 2-core machine of the README it missed
-// 0.028-0.043 % of frames per minute at m' = 16,384 against 0.077-0.19 % for PoCL's
-// pthread driver at the same m'); then the lowest latency (lowest_latency). Throws
+// worker thread to wake each frame, so fewer late frames at the same m': docs/haptics.md
+// has the figures); then the lowest latency (lowest_latency). Throws
 // snapfit::Error when `tunings` is empty or the flags do not match it.
 std::size_t loop_device(const std::vector<TuningResult>& tunings, const std::vector<bool>& in_caller_thread);
 

@@ -3,8 +3,11 @@
 #include <chrono>
 #include <sstream>
 
+#include "pipeline/assembly_pair.h"
+#include "scheduler/trajectory.h"
+#include "snapfit/assembly.h"
 #include "snapfit/error.h"
-#include "scheduler/haptic_loop.h"
+#include "snapfit/haptic_loop.h"
 
 namespace snapfit {
 
@@ -32,6 +35,11 @@ TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, 
   key.margin = margin;
   key.pace_hz = pace_hz;
   return key;
+}
+
+std::vector<Pose> tuning_poses(const Scene& scene) {
+  if (scene.trajectory.keyframes.empty()) return {scene.part2.pose};
+  return sample_trajectory(scene.trajectory, 100.0);
 }
 
 QueryTimer engine_query_timer(QueryEngine& engine, std::vector<Pose> poses, double pace_hz) {
@@ -72,6 +80,16 @@ EngineTuning tune_engine(QueryEngine& engine, const TuningKey& key, const std::v
     if (note) note(std::string("tuning not saved: ") + e.what());
   }
   return out;
+}
+
+TuningResult auto_tune(const Assembly& assembly, QueryEngine& engine, const AutoTuneOptions& options) {
+  const Scene& scene = assembly.scene();
+  const TuningKey key = tuning_key_for(assembly.context().device.info, engine.variant(), assembly.pair().spectra,
+                                       scene.frame_budget_ms, options.margin, scene.loop_rate_hz);
+  TuneOptions sweep;
+  sweep.repetitions = options.repetitions;
+  sweep.progress = options.progress;
+  return tune_engine(engine, key, tuning_poses(scene), sweep, options.retune, nullptr).result;
 }
 
 }  // namespace snapfit

@@ -11,6 +11,7 @@
 #include "engine/spectra.h"
 #include "scheduler/auto_tune.h"
 #include "scheduler/tuning_file.h"
+#include "snapfit/scene.h"
 
 namespace snapfit {
 
@@ -25,6 +26,9 @@ TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, 
 // between, as in the haptic loop: an OpenCL runtime whose worker threads fall asleep
 // between frames shows its wake-up cost here, which back-to-back queries would hide.
 QueryTimer engine_query_timer(QueryEngine& engine, std::vector<Pose> poses, double pace_hz = 0);
+
+// The poses the tuner times queries at: the scene's trajectory at 100 Hz, else part 2's pose.
+std::vector<Pose> tuning_poses(const Scene& scene);
 
 struct EngineTuning {
   TuningResult result;

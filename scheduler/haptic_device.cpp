@@ -1,4 +1,4 @@
-#include "scheduler/haptic_device.h"
+#include "snapfit/haptic_device.h"
 
 namespace snapfit {
 

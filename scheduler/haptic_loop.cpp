@@ -1,4 +1,5 @@
-#include "scheduler/haptic_loop.h"
+#include "snapfit/haptic_loop.h"
+#include "scheduler/virtual_coupling.h"
 
 #include <algorithm>
 #include <chrono>
@@ -196,6 +197,11 @@ class PassivityController {
 };
 
 }  // namespace
+
+WrenchEvaluator wrench_evaluator(QueryEngine& engine) {
+  return WrenchEvaluator{[&engine](const Pose& p) { return engine.query(p); },
+                         [&engine](std::size_t m) { engine.set_modes(m); }};
+}
 
 LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, const LoopConfig& config,
                            const LoopClock& clock, BodyState part) {

@@ -1,9 +1,13 @@
 #include "scheduler/haptic_setup.h"
 
+#include <algorithm>
 #include <cmath>
 
-#include "snapfit/error.h"
 #include "mesh/mesh_mass_properties.h"
+#include "pipeline/assembly_pair.h"
+#include "scheduler/auto_tune.h"
+#include "snapfit/assembly.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 
@@ -47,6 +51,32 @@ PoseError pose_error(const Pose& actual, const Pose& target) {
   e.position = (actual.translation - target.translation).norm();
   e.angle_deg = rotation_between(actual.rotation, target.rotation).norm() * 180.0 / M_PI;
   return e;
+}
+
+LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
+                           const TuningResult& tuning, double& force_scale) {
+  LoopConfig config;
+  config.rate_hz = scene.loop_rate_hz;
+  const Trajectory& t = scene.trajectory;
+  config.duration_s = t.keyframes.empty() ? 0.0
+                                          : t.keyframes.back().time_s - t.keyframes.front().time_s + scene.haptics.settle_s;
+  config.budget_ms = scene.frame_budget_ms;
+  config.coupling = coupling_for(scene, part2_mesh);
+  engine.set_modes(tuning.chosen_modes);
+  force_scale = 0;
+  for (const QueryResult& r : engine.query_batch(gain_probe_poses(scene, spacing)))
+    if (r.flags == query_ok) force_scale = std::max(force_scale, r.force.norm());
+  config.geometry_gain = geometry_gain_for(scene, spacing, force_scale);
+  config.modes.levels = loop_levels(tuning);
+  const CostModel model = tuning.model;
+  config.modes.predicted_ms = [model](std::size_t m) { return model.predict_ms(m); };
+  return config;
+}
+
+LoopConfig loop_config(const Assembly& assembly, QueryEngine& engine, const TuningResult& tuning) {
+  const AssemblyPair& pair = assembly.pair();
+  double force_scale = 0;
+  return loop_config_for(pair.scene, pair.part(2).mesh, pair.grids.spacing, engine, tuning, force_scale);
 }
 
 }  // namespace snapfit

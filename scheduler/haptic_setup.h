@@ -7,7 +7,9 @@
 #include "snapfit/pose.h"
 #include "mesh/mesh.h"
 #include "snapfit/scene.h"
-#include "scheduler/haptic_device.h"
+#include "snapfit/haptic_device.h"
+#include "snapfit/haptic_loop.h"
+#include "snapfit/tuning.h"
 #include "scheduler/virtual_coupling.h"
 
 namespace snapfit {
@@ -33,6 +35,12 @@ Pose gain_reference_pose(const Scene& scene);
 // The reference pose moved by +-2 h along each axis of part 1's frame (6 poses); the
 // force scale is the largest engine force magnitude among them.
 std::vector<Pose> gain_probe_poses(const Scene& scene, double spacing);
+
+// The loop's configuration for `scene` (include/snapfit/haptic_loop.h loop_config):
+// `engine` is set to the tuned m' and probed at gain_probe_poses for the gain; the
+// largest force it saw goes to `force_scale`.
+LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
+                           const TuningResult& tuning, double& force_scale);
 
 struct PoseError {
   double position = 0;   // scene units

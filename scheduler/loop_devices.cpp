@@ -3,15 +3,9 @@
 #include "engine/device_check.h"
 #include "engine/query_engine.h"
 #include "scheduler/device_choice.h"
-#include "scheduler/trajectory.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
-
-std::vector<Pose> tuning_poses(const Scene& scene) {
-  if (scene.trajectory.keyframes.empty()) return {scene.part2.pose};
-  return sample_trajectory(scene.trajectory, 100.0);
-}
 
 namespace {
 

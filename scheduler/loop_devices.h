@@ -41,9 +41,6 @@ struct LoopDevices {
   const TunedDevice& loop() const { return devices[pick]; }
 };
 
-// The poses the tuner times queries at: the scene's trajectory at 100 Hz, else part 2's pose.
-std::vector<Pose> tuning_poses(const Scene& scene);
-
 // Tunes `ctx`'s device (and with options.other_devices every other one) for `variant`
 // on `spectra`, and picks the loop's device. Throws snapfit::Error when the chosen
 // device cannot be tuned; another device that fails is left out with a note.

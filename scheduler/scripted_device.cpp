@@ -1,5 +1,7 @@
 #include "scheduler/scripted_device.h"
 
+#include "scheduler/virtual_coupling.h"
+
 #include <cmath>
 
 #include "snapfit/error.h"

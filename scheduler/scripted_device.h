@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "snapfit/scene.h"
-#include "scheduler/haptic_device.h"
+#include "snapfit/haptic_device.h"
 
 namespace snapfit {
 

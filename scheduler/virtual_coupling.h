@@ -17,31 +17,11 @@
 // a critically damped coupling stays free of overshoot in the discrete system too.
 #include <Eigen/Core>
 
+#include "snapfit/haptic_device.h"
+#include "snapfit/haptic_loop.h"
 #include "snapfit/pose.h"
 
 namespace snapfit {
-
-struct Wrench {
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N
-  Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // N m, about part 2's reference point
-};
-
-// A rigid body's state: pose (scene units) and velocities in part 1's frame.
-struct BodyState {
-  Pose pose;
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          // scene units / s
-  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // rad / s
-};
-
-struct CouplingParams {
-  double metres_per_unit = 1e-3;
-  double mass_kg = 0.05;
-  double inertia_kg_m2 = 1e-5;  // isotropic, about the part's reference point
-  double stiffness = 800;       // k_T, N / m
-  double rot_stiffness = 0.08;  // k_R, N m / rad
-  double damping = 0;           // b_T, N s / m
-  double rot_damping = 0;       // b_R, N m s / rad
-};
 
 // b = 2 zeta sqrt(k m): zeta = 1 is critical damping.
 double critical_damping(double stiffness, double mass, double damping_ratio = 1.0);
@@ -64,7 +44,7 @@ Wrench coupling_wrench(const BodyState& part, const BodyState& device, const Cou
 // at rest (J): 1/2 m v^2 + 1/2 I w^2 + 1/2 k d^2 + 1/2 k_R theta^2. For passivity checks.
 double coupling_energy(const BodyState& part, const BodyState& device, const CouplingParams& c);
 
-// Implicit extras of one step, on top of the coupling (scheduler/haptic_loop.h's
+// Implicit extras of one step, on top of the coupling (snapfit/haptic_loop.h's
 // passivity measures use them): damping of the part's own velocity (relative to part 1,
 // not to the device), and the stiffness of the external wrench, linearised over the
 // step, F(x') ~ F(x) - K (x' - x), so a stiff external force is integrated implicitly

@@ -1,6 +1,6 @@
 #pragma once
 // Independent double-precision brute-force references for the shape descriptors
-// (DESIGN.md "Shape descriptors"; seed 000 sec. 2.3, 3.1), used only by the tests.
+// (docs/design.md "Shape descriptors"; seed 000 sec. 2.3, 3.1), used only by the tests.
 // No hierarchy, no far-field expansion, no code shared with kernels/*.cl:
 //   reference_distance          exact point-triangle distance (plane projection, then
 //                               the three edges as segments), minimum over triangles

@@ -1,4 +1,4 @@
-// Shape descriptors (engine/descriptors.h; DESIGN.md "Shape descriptors"; seed 000
+// Shape descriptors (engine/descriptors.h; docs/design.md "Shape descriptors"; seed 000
 // sec. 2.3, 3.1) against closed forms and the independent double-precision references
 // of tests/descriptor_reference.h: winding number, signed distance, skeletal density
 // and its error bound, limits, symmetry, sign, launch-configuration invariance,

@@ -1,4 +1,4 @@
-// The haptic loop (scheduler/haptic_loop.h) on a manual clock with injected frame
+// The haptic loop (snapfit/haptic_loop.h) on a manual clock with injected frame
 // costs: rate, miss counting without catch-up, stepping m' down and up; then on the
 // real clock with a cheap evaluator; then a scripted device pulling the part home.
 #include <doctest/doctest.h>
@@ -8,7 +8,8 @@
 #include <map>
 
 #include "snapfit/error.h"
-#include "scheduler/haptic_loop.h"
+#include "snapfit/haptic_loop.h"
+#include "scheduler/virtual_coupling.h"
 #include "scheduler/scripted_device.h"
 
 using namespace snapfit;

@@ -1,5 +1,5 @@
 // Work in a child process under limits (io/isolated_import.h), and load_mesh's import
-// child (io/mesh_load.cpp, issue 7): every way the child can fail is a result the
+// child (io/mesh_load.cpp): every way the child can fail is a result the
 // parent survives, and a large mesh comes back bit for bit.
 #include <doctest/doctest.h>
 #include <signal.h>

@@ -1,4 +1,4 @@
-// Per-pose queries (engine/pose_query.h, engine/spectra.h; DESIGN.md "Correlation in
+// Per-pose queries (include/snapfit/query.h, engine/spectra.h; docs/design.md "Correlation in
 // the Fourier domain") against closed forms: both parts are anisotropic Gaussians,
 // rho_n(p) = i a_n exp(-1/2 (p - m_n)^T B_n (p - m_n)), part 2's off-centre in its own
 // frame so the torque about its origin is not zero. With part 2 at (R, t) its Gaussian

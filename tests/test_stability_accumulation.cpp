@@ -1,4 +1,4 @@
-// Float32 accumulation over large m' (issue 7). kernels/pose_query.cl sums each work
+// Float32 accumulation over large m'. kernels/pose_query.cl sums each work
 // item's modes in float, reduces the work-group in float, and the host adds the groups'
 // partial sums in double. Here the same truncated sum, from the same stored (float)
 // spectra, mode order and trilinear interpolation, is evaluated on the host entirely in
@@ -42,7 +42,7 @@ struct DoubleSums {
 // kernels/pose_query.cl's summation order, with its terms given (8 per mode: Re f, Im f,
 // F, T in part 2's frame) and the engine's work-group size and group count.
 // With `kahan`, each work item keeps a compensated (Kahan) float sum: the change
-// proposed for the kernel (see README "Stability and bad input").
+// proposed for the kernel (see docs/stability.md).
 std::array<double, 8> kernel_order_float_sum(const std::vector<std::array<double, 8>>& terms, std::size_t wg,
                                              std::size_t max_groups, bool kahan = false) {
   const std::size_t modes = terms.size();

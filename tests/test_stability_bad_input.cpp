@@ -1,4 +1,4 @@
-// Bad input (issue 7): non-finite numbers in scene fields, poses (library and CLI) and
+// Bad input: non-finite numbers in scene fields, poses (library and CLI) and
 // device readings; unknown units; truncated mesh files; a kernel build with invalid
 // options; a cache root that is a file; a full disk while writing a cache entry. Each
 // gives a clear error naming the problem or a documented safe fallback, never a crash,
@@ -21,7 +21,8 @@
 #include "engine/kernel_sources.h"
 #include "io/cache_file.h"
 #include "io/mesh_load.h"
-#include "scheduler/haptic_loop.h"
+#include "snapfit/haptic_loop.h"
+#include "scheduler/virtual_coupling.h"
 #include "tests/stability_support.h"
 #include "engine/query_engine.h"
 

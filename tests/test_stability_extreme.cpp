@@ -1,4 +1,4 @@
-// Extreme poses and scales with the real engine (issue 7), on the small zero-clearance
+// Extreme poses and scales with the real engine, on the small zero-clearance
 // peg-and-hole pair (tests/stability_support.h): exact contact, deep interpenetration,
 // rotations near 180 degrees and translations at the edge of the padded box give finite
 // energy, force and torque that agree with central differences of the engine's own

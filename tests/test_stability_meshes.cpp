@@ -1,4 +1,4 @@
-// Pathological meshes through the descriptor kernels (issue 7): degenerate and sliver
+// Pathological meshes through the descriptor kernels: degenerate and sliver
 // triangles, duplicated and flipped faces, a mesh that is not watertight, and a
 // 1e6-triangle mesh. Every field must be finite; the documented behaviour (the winding
 // number and skeletal density are sums over triangles, engine/descriptors.h) is checked

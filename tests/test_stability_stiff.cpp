@@ -1,4 +1,4 @@
-// Stiff cases with the real engine (issue 7): sharp skeletons (sigma 0.15) and large
+// Stiff cases with the real engine: sharp skeletons (sigma 0.15) and large
 // penalty factors (lambda up to 1e3) on a small peg-and-hole pair, a virtual coupling at
 // a device's maximum stiffness, and the haptic loop run in simulated time for 60 s with
 // the device held still in contact. The loop must stay finite, must not oscillate with
@@ -12,7 +12,7 @@
 #include <iostream>
 #include <memory>
 
-#include "scheduler/haptic_loop.h"
+#include "snapfit/haptic_loop.h"
 #include "scheduler/haptic_setup.h"
 #include "tests/stability_support.h"
 #include "engine/query_engine.h"
@@ -188,7 +188,7 @@ TEST_CASE("stability stiff: sigma 0.15, lambda 1e3, coupling at a device's maxim
   }
 
   // The same stiff geometry without the passivity controller (LoopConfig::passivity_control
-  // = false, the loop before issue 7): the explicit geometric step is unstable; after
+  // = false, the loop without the passivity controller): the explicit geometric step is unstable; after
   // 10 s the part still oscillates at metres per second and energy has been created.
   const StiffRun off = run_static_contact(pairs.back(), 32, device_pose, 10, false);
   const std::vector<double>& w = off.energy.total;

@@ -8,7 +8,7 @@
 
 #include "snapfit/error.h"
 #include "mesh/mesh_mass_properties.h"
-#include "scheduler/haptic_device.h"
+#include "snapfit/haptic_device.h"
 #include "scheduler/virtual_coupling.h"
 #include "tests/test_meshes.h"
 

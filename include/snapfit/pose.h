@@ -1,6 +1,6 @@
 #pragma once
 // A rigid pose (R, t): a point p of a part's own frame maps to R p + t.
-// Part 2's pose is always given relative to part 1's frame (DESIGN.md: part 1 is the
+// Part 2's pose is always given relative to part 1's frame (docs/design.md: part 1 is the
 // frame of reference; rotation about part 2's reference point, then translation).
 #include <Eigen/Geometry>
 

@@ -1,7 +1,7 @@
 #pragma once
 // A scene: the two parts, their poses, the descriptor and grid parameters, what the
 // scene needs computed, and a scripted device trajectory for unattended runs.
-// File format: JSON, documented field by field in scenes/README.md.
+// File format: JSON, documented field by field in docs/scenes.md.
 // All lengths are in the scene's `units`; part 2's poses are relative to part 1's frame.
 #include <map>
 #include <optional>
@@ -33,7 +33,7 @@ struct PartSpec {
 };
 
 enum class DescriptorKind {
-  skeletal_density,  // rho = i * lambda * s_sigma (DESIGN.md "Shape descriptors")
+  skeletal_density,  // rho = i * lambda * s_sigma (docs/design.md "Shape descriptors")
   indicator,         // winding number only: collision gap function (seed 000 eq. 1)
 };
 
@@ -70,7 +70,7 @@ struct Trajectory {
   std::vector<Keyframe> keyframes;  // strictly increasing times; empty = no script
 };
 
-// The haptic loop's parameters (scheduler/haptic_loop.h): the virtual coupling
+// The haptic loop's parameters (snapfit/haptic_loop.h): the virtual coupling
 // (seed 002 eq. 1-2), the device's limits, the scale of the geometric wrench, and when
 // a scripted insertion counts as assembled. Every field is optional in the file.
 struct HapticsParams {

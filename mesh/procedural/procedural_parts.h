@@ -7,7 +7,7 @@
 //   three_peg_base   a base slab with three pegs of different diameters whose bases are
 //                    filleted (curved, toroidal mating faces), in the spirit of seed 000 Fig. 4
 //   three_peg_cover  its exact complement at zero clearance (holes with rounded entries)
-// Every parameter is described in scenes/README.md.
+// Every parameter is described in docs/scenes.md.
 //
 // All four are regular N-gon approximations (N = `segments`, vertices at angles
 // 2*pi*i/N), so their volumes have exact polygonal closed forms. Meshes are indexed

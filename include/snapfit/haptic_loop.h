@@ -4,8 +4,7 @@
 //   1. read the device pose and velocity;
 //   2. ask the engine for the geometric energy, force and torque at the part's pose;
 //   3. integrate the part one step under the virtual coupling (implicit) and the
-//      geometric wrench scaled by `geometry_gain` (explicit), scheduler/virtual_coupling.h,
-//      with the passivity controller's damping (below);
+//      geometric wrench scaled by `geometry_gain` (explicit), with the passivity controller's damping (below);
 //   4. send the coupling's reaction to the device, clamped to its limits.
 // A frame that ends after its deadline (tick i + 1) is a miss: the device kept the last
 // wrench meanwhile, and the ticks that passed are not replayed (no catch-up burst); the
@@ -14,8 +13,7 @@
 // of the budget is a late wake-up, which m' cannot fix; it is counted, not acted on.
 // So is a stall: a miss whose work took more than `stall_factor` times the cost model's
 // p99 at its m' (`predicted_ms`), which a smaller m' would not have avoided (the
-// machine stopped: measured here as a few ms of work at an m' whose p99 is 0.2-0.6 ms),
-// unless stalls fill more than half of the last `miss_window` frames, when the machine
+// machine stopped), unless stalls fill more than half of the last `miss_window` frames, when the machine
 // is simply slower than tuned and they count as work-bound misses.
 // When work-bound misses repeat (`misses_to_step_down` within `miss_window` frames),
 // m' steps down one level of the ladder at once; it steps up again, one level
@@ -23,18 +21,17 @@
 // (judged every `miss_window` frames) whose p99 frame time, scaled by the cost ratio of the next level, fits
 // `up_headroom` of the budget. Every change is reported.
 //
-// Passivity (issue 7): the geometric wrench is the gradient of the potential
+// Passivity: the geometric wrench is the gradient of the potential
 // V = gain * E * metres_per_unit, but it is held over each step (explicit), which
 // creates energy when the geometry is stiff against the step: dt^2 K_geometric above
-// about 4 m + 2 dt b + dt^2 k makes the loop unstable (measured with the real engine:
-// geometry_strength 32 at a 14.5 kN/m coupling oscillated at 4 m/s for 60 s; 128 blew
-// up). A passivity observer (Hannaford & Ryu 2002) compares, each frame, the work the
-// held wrench did over the last step, F.dx + tau.dtheta, with the drop of V the engine
-// reports at the new pose; the difference is energy the step created. The controller
-// removes it in the next frames with extra damping of the part's velocity (implicit,
-// mass-proportional: beta = alpha m, beta_R = alpha I, alpha dt <= 10), so the created
-// energy not yet removed never exceeds one step's. Frames whose query is flagged, whose
-// m' changed, or that follow a missed frame are not observed (V is not comparable there).
+// about 4 m + 2 dt b + dt^2 k makes the loop unstable. A passivity observer (Hannaford
+// & Ryu 2002) compares, each frame, the work the held wrench did over the last step,
+// F.dx + tau.dtheta, with the drop of V the engine reports at the new pose; the
+// difference is energy the step created. The controller removes it in the next frames
+// with extra damping of the part's velocity (implicit, mass-proportional:
+// beta = alpha m, beta_R = alpha I, alpha dt <= 10), so the created energy not yet
+// removed never exceeds one step's. Frames whose query is flagged, whose m' changed, or
+// that follow a missed frame are not observed (V is not comparable there).
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -42,11 +39,28 @@
 #include <string>
 #include <vector>
 
+#include "snapfit/haptic_device.h"
 #include "snapfit/query.h"
-#include "scheduler/haptic_device.h"
-#include "scheduler/virtual_coupling.h"
+#include "snapfit/tuning.h"
 
 namespace snapfit {
+
+class Assembly;
+
+// The 6-DOF virtual coupling between the device and part 2 (seed 002 eq. 1-2):
+// F = k_T d - b_T v, tau = k_R theta - b_R omega, d and theta from the part to the
+// device. Units: poses in scene units, forces in N, torques in N m, masses in kg; the
+// part is a proxy with isotropic inertia about its frame origin (part 2's reference
+// point, where the engine's torque acts).
+struct CouplingParams {
+  double metres_per_unit = 1e-3;
+  double mass_kg = 0.05;
+  double inertia_kg_m2 = 1e-5;  // isotropic, about the part's reference point
+  double stiffness = 800;       // k_T, N / m
+  double rot_stiffness = 0.08;  // k_R, N m / rad
+  double damping = 0;           // b_T, N s / m
+  double rot_damping = 0;       // b_R, N m s / rad
+};
 
 // Time source of the loop (seconds); the steady clock in use, a manual one in tests.
 struct LoopClock {
@@ -82,7 +96,7 @@ struct LoopConfig {
   double duration_s = 1;           // loop time to run; <= 0 runs until `stop` is set
   double budget_ms = 1;            // the frame budget the policy measures headroom against
   CouplingParams coupling;
-  double geometry_gain = 1;        // N per engine force unit (see scheduler/geometry_gain.h)
+  double geometry_gain = 1;        // N per engine force unit (loop_config sets it from the scene)
   ModePolicy modes;
   bool passivity_control = true;   // observer + damping controller on the geometric wrench (above)
   bool keep_log = true;            // one FrameRecord per frame
@@ -137,6 +151,17 @@ struct LoopReport {
 // the top level of the ladder first. Throws snapfit::Error for an invalid config.
 LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, const LoopConfig& config,
                            const LoopClock& clock, BodyState part);
+
+// The loop's view of a query engine: its query, and its set_modes.
+WrenchEvaluator wrench_evaluator(QueryEngine& engine);
+
+// The loop's configuration from the assembly's scene: rate, frame budget, the virtual
+// coupling from its `haptics` section (inertia from part 2's mesh), the geometric gain
+// calibrated with `engine` at the tuned m' (the force two grid spacings off the
+// assembled pose), and the mode ladder and cost model of `tuning`. duration_s is the
+// trajectory's length plus haptics.settle_s (0 without a trajectory: run until stopped).
+// Leaves `engine` at the tuned m'. Throws snapfit::Error when the haptics cannot be set up.
+LoopConfig loop_config(const Assembly& assembly, QueryEngine& engine, const TuningResult& tuning);
 
 // The same on its own thread (what a haptics program does); join() returns the report.
 class HapticLoopThread {

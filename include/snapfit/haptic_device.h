@@ -2,13 +2,28 @@
 // What the haptic loop needs from a device (CHAI3D / HAPI style): read the handle's
 // pose and velocity, send a force and torque, and know the device's limits. A real
 // device (CHAI3D's cGenericHapticDevice, OpenHaptics' HD API) plugs in by implementing
-// this interface; scheduler/scripted_device.h plays a scene's trajectory instead.
-// Poses are part 2's device pose relative to part 1, in scene units.
+// this interface; snapfit's own scripted device plays a scene's trajectory instead.
+// Poses are part 2's device pose relative to part 1, in scene units; velocities in
+// part 1's frame.
+#include <Eigen/Core>
 #include <limits>
 
-#include "scheduler/virtual_coupling.h"
+#include "snapfit/pose.h"
 
 namespace snapfit {
+
+// Force and torque on part 2 (or, sent to the device, on the user's hand).
+struct Wrench {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // N m, about part 2's reference point
+};
+
+// A rigid body's state: pose (scene units) and velocities in part 1's frame.
+struct BodyState {
+  Pose pose;
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          // scene units / s
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // rad / s
+};
 
 struct DeviceLimits {
   double max_force_n = std::numeric_limits<double>::infinity();

@@ -1,0 +1,53 @@
+#pragma once
+// Auto-tuning of m' (docs/design.md "Auto-tuning"): the per-query time measured against
+// m' on a ladder of mode counts (p99 over many paced repetitions, not the mean), a cost
+// model fitted to it, and the largest m' whose p99 fits the scene's frame budget with a
+// safety margin. Results are kept per machine in the tuning file, keyed by device,
+// driver, kernel variant and scene features, and reused while the key matches.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace snapfit {
+
+class Assembly;
+class QueryEngine;
+
+struct TimingPoint {
+  std::size_t modes = 0;
+  double p50_ms = 0, p99_ms = 0, max_ms = 0;
+  std::size_t samples = 0;
+};
+
+// p99(m') ~ fixed_ms + per_mode_ms * m', least squares over the measured p99 values.
+struct CostModel {
+  double fixed_ms = 0;
+  double per_mode_ms = 0;
+  double predict_ms(std::size_t modes) const { return fixed_ms + per_mode_ms * static_cast<double>(modes); }
+};
+
+struct TuningResult {
+  std::vector<TimingPoint> points;  // by increasing m'
+  CostModel model;
+  std::size_t chosen_modes = 0;
+  bool fits = false;                // the chosen m' meets the budget with margin
+  double budget_ms = 0, margin = 0;
+  std::string created;              // UTC date and time of the measurement
+  double target_ms() const { return budget_ms * (1.0 - margin); }
+};
+
+struct AutoTuneOptions {
+  double margin = 0.25;           // keep p99 at most (1 - margin) of the frame budget
+  bool retune = false;            // measure even when the tuning file matches
+  std::size_t repetitions = 400;  // timed queries per m' level
+  std::function<void(std::uint64_t done, std::uint64_t total)> progress;
+};
+
+// m' for the assembly's frame budget on its device, for `engine`'s variant, timed at the
+// scene's loop rate along its trajectory (else at part 2's pose). Leaves the engine at
+// the m' it had. Throws snapfit::Error when the engine cannot be timed.
+TuningResult auto_tune(const Assembly& assembly, QueryEngine& engine, const AutoTuneOptions& options = {});
+
+}  // namespace snapfit

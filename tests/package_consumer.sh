@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# The installed CMake package from a user's side: installs the build into a temporary
+# prefix, builds examples/consumer against it with find_package(snapfit), runs it on
+# the default scene, and checks that its energy and force equal `snapfit query`'s at
+# the same pose and m'.
+#   tests/package_consumer.sh BUILD_DIR SNAPFIT_CLI
+set -euo pipefail
+build="$1"
+cli="$2"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+export SNAPFIT_CACHE_DIR="$work/cache"
+
+cmake --install "$build" --prefix "$work/prefix" >/dev/null
+cmake -S examples/consumer -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+cmake --build "$work/consumer" >/dev/null
+
+scene=scenes/default.json
+pose="1,0.5,-12"
+consumer_out=$("$work/consumer/snapfit_consumer" "$scene" 4096 1 0.5 -12 2>/dev/null)
+query_out=$("$cli" query "$scene" --modes 4096 --pose "$pose" 2>/dev/null)
+echo "consumer: $consumer_out"
+echo "query:    $query_out"
+
+# The number after "key": in a JSON line (first element for arrays).
+field() { sed -E "s/.*\"$2\": *\[? *([-0-9.eE+]+).*/\1/" <<<"$1"; }
+for key in energy force; do
+  a=$(field "$consumer_out" "$key")
+  b=$(field "$query_out" "$key")
+  awk -v a="$a" -v b="$b" -v k="$key" 'BEGIN {
+    d = a - b; if (d < 0) d = -d; s = (b < 0 ? -b : b); if (s < 1e-30) s = 1e-30;
+    if (d / s > 1e-9) { printf "package_consumer: %s differs: consumer %s, snapfit query %s\n", k, a, b; exit 1 }
+  }'
+done
+# The installed tree holds the public headers only.
+test -f "$work/prefix/include/snapfit/snapfit.h"
+if find "$work/prefix/include" -name '*.h' | grep -v '/snapfit/' | grep -q .; then
+  echo "package_consumer: private headers were installed" >&2
+  exit 1
+fi
+echo "package_consumer: ok"
