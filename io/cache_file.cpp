@@ -126,4 +126,16 @@ void write_cache_file(const std::string& path, const std::string& kind, std::uin
   }));
 }
 
+std::optional<std::vector<unsigned char>> read_cache_payload(const std::string& path, const std::string& kind,
+                                                             std::uint32_t version, const std::string& key,
+                                                             const std::string& what,
+                                                             const std::function<void(const std::string&)>& note) {
+  CacheRead entry = read_cache_file(path, kind, version, key);
+  if (entry.status == CacheStatus::hit) return std::move(entry.payload);
+  if (entry.status != CacheStatus::missing && note)
+    note(what + " " + path + " is " + (entry.status == CacheStatus::corrupt ? "corrupt" : "stale") + " (" +
+         entry.reason + "); recomputing");
+  return std::nullopt;
+}
+
 }  // namespace snapfit

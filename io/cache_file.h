@@ -7,6 +7,8 @@
 // The full key text is stored, so a file-name hash collision can never return the
 // wrong entry; a reader that finds any mismatch treats the entry as absent.
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,13 @@ struct CacheRead {
 
 CacheRead read_cache_file(const std::string& path, const std::string& kind, std::uint32_t version,
                           const std::string& key);
+
+// The payload of a hit; nothing for a missing entry, and for a stale or corrupt one
+// nothing with a note: "<what> <path> is corrupt (<reason>); recomputing".
+std::optional<std::vector<unsigned char>> read_cache_payload(const std::string& path, const std::string& kind,
+                                                             std::uint32_t version, const std::string& key,
+                                                             const std::string& what,
+                                                             const std::function<void(const std::string&)>& note);
 
 // Creates parent folders and writes through io/atomic_write.h, so a
 // reader sees the old file or the new one, never half of one. Throws snapfit::Error

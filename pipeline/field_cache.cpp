@@ -59,15 +59,10 @@ std::string descriptor_cache_path(const std::string& key) {
 std::optional<DescriptorFields> load_cached_descriptors(const std::string& key,
                                                         const std::function<void(const std::string&)>& note) {
   const std::string path = descriptor_cache_path(key);
-  const CacheRead entry = read_cache_file(path, kKind, kFieldCacheVersion, key);
-  if (entry.status == CacheStatus::missing) return std::nullopt;
-  if (entry.status != CacheStatus::hit) {
-    note("field cache " + path + " is " + (entry.status == CacheStatus::corrupt ? "corrupt" : "stale") + " (" +
-         entry.reason + "); recomputing");
-    return std::nullopt;
-  }
+  const std::optional<std::vector<unsigned char>> payload = read_cache_payload(path, kKind, kFieldCacheVersion, key, "field cache", note);
+  if (!payload) return std::nullopt;
   DescriptorFields fields;
-  const std::vector<unsigned char>& bytes = entry.payload;
+  const std::vector<unsigned char>& bytes = *payload;
   std::uint64_t count = 0;
   std::uint32_t mask = 0;
   if (bytes.size() < 12) {

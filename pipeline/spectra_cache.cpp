@@ -86,14 +86,9 @@ std::string spectra_cache_key(const DescriptorFields& part1, const DescriptorFie
 
 std::optional<PairSpectra> load_cached_spectra(const std::string& key, const std::function<void(const std::string&)>& note) {
   const std::string path = path_for(key);
-  const CacheRead entry = read_cache_file(path, kKind, kSpectraCacheVersion, key);
-  if (entry.status == CacheStatus::missing) return std::nullopt;
-  if (entry.status != CacheStatus::hit) {
-    note("spectra cache " + path + " is " + (entry.status == CacheStatus::corrupt ? "corrupt" : "stale") + " (" +
-         entry.reason + "); recomputing");
-    return std::nullopt;
-  }
-  Reader r{entry.payload};
+  const std::optional<std::vector<unsigned char>> payload = read_cache_payload(path, kKind, kSpectraCacheVersion, key, "spectra cache", note);
+  if (!payload) return std::nullopt;
+  Reader r{*payload};
   PairSpectra s;
   for (auto& d : s.dims) d = r.get<std::uint64_t>();
   s.spacing = r.get<double>();
@@ -107,7 +102,7 @@ std::optional<PairSpectra> load_cached_spectra(const std::string& key, const std
     for (auto& m : part->moments) m = r.get_array();
   }
   const std::size_t count = s.dims[0] * s.dims[1] * s.dims[2];
-  if (!r.ok || r.at != entry.payload.size() || s.part1.rho.size() != count || s.part2.rho.size() != count) {
+  if (!r.ok || r.at != payload->size() || s.part1.rho.size() != count || s.part2.rho.size() != count) {
     note("spectra cache " + path + " does not hold what its header says; recomputing");
     return std::nullopt;
   }
