@@ -19,16 +19,23 @@ struct DevicesOptions {
 
 const char* origin_name(ProgramOrigin o) {
   switch (o) {
-    case ProgramOrigin::compiled: return "compiled";
-    case ProgramOrigin::cache_hit: return "cache hit";
-    case ProgramOrigin::recompiled_after_bad_cache: return "recompiled (bad cache entry)";
+    case ProgramOrigin::compiled:
+      return "compiled";
+    case ProgramOrigin::cache_hit:
+      return "cache hit";
+    case ProgramOrigin::recompiled_after_bad_cache:
+      return "recompiled (bad cache entry)";
   }
   return "?";
 }
 
 nlohmann::json check_json(const DeviceCheckResult& r) {
-  return {{"precision", r.precision}, {"passed", r.passed}, {"relative_error", r.relative_error},
-          {"tolerance", r.tolerance}, {"program", origin_name(r.origin)}, {"build_ms", r.build_ms},
+  return {{"precision", r.precision},
+          {"passed", r.passed},
+          {"relative_error", r.relative_error},
+          {"tolerance", r.tolerance},
+          {"program", origin_name(r.origin)},
+          {"build_ms", r.build_ms},
           {"kernel_ms", r.kernel_ms}};
 }
 
@@ -52,12 +59,21 @@ void run_devices(const DevicesOptions& opt) {
       }
     }
     if (opt.json) {
-      nlohmann::json j = {{"index", i.index}, {"platform_index", i.platform_index}, {"device_index", i.device_index},
-                          {"platform", i.platform_name}, {"name", i.name}, {"vendor", i.vendor}, {"type", i.type},
-                          {"device_version", i.device_version}, {"driver_version", i.driver_version},
-                          {"compute_units", i.compute_units}, {"global_memory_bytes", i.global_memory_bytes},
-                          {"max_alloc_bytes", i.max_alloc_bytes}, {"local_memory_bytes", i.local_memory_bytes},
-                          {"max_work_group_size", i.max_work_group_size}, {"fp64", i.fp64},
+      nlohmann::json j = {{"index", i.index},
+                          {"platform_index", i.platform_index},
+                          {"device_index", i.device_index},
+                          {"platform", i.platform_name},
+                          {"name", i.name},
+                          {"vendor", i.vendor},
+                          {"type", i.type},
+                          {"device_version", i.device_version},
+                          {"driver_version", i.driver_version},
+                          {"compute_units", i.compute_units},
+                          {"global_memory_bytes", i.global_memory_bytes},
+                          {"max_alloc_bytes", i.max_alloc_bytes},
+                          {"local_memory_bytes", i.local_memory_bytes},
+                          {"max_work_group_size", i.max_work_group_size},
+                          {"fp64", i.fp64},
                           {"selected", static_cast<std::size_t>(i.index) == chosen}};
       if (opt.check) j["check"] = checks;
       std::cout << j.dump() << "\n";
@@ -86,7 +102,8 @@ void run_devices(const DevicesOptions& opt) {
 void add_devices_command(CLI::App& app) {
   auto opt = std::make_shared<DevicesOptions>();
   CLI::App* cmd = app.add_subcommand("devices", "List every OpenCL platform and device, with capabilities");
-  cmd->add_flag("--check", opt->check, "Build and run the self-check kernel on every device (float, and double where supported)");
+  cmd->add_flag("--check", opt->check,
+                "Build and run the self-check kernel on every device (float, and double where supported)");
   cmd->add_flag("--json", opt->json, "One JSON object per device");
   cmd->callback([opt] { run_devices(*opt); });
 }

@@ -7,13 +7,13 @@
 #include <iostream>
 
 #include "cli/commands.h"
-#include "report/scene_summary.h"
+#include "core/progress.h"
 #include "engine/descriptors.h"
-#include "snapfit/error.h"
-#include "pipeline/assembly_pair.h"
 #include "io/png_export.h"
 #include "io/vti_export.h"
-#include "core/progress.h"
+#include "pipeline/assembly_pair.h"
+#include "report/scene_summary.h"
+#include "snapfit/error.h"
 
 namespace snapfit::cli {
 namespace {
@@ -44,11 +44,15 @@ std::pair<char, double> parse_slice(const std::string& text) {
   }
 }
 
-const std::vector<float>& pick_field(const DescriptorFields& f, const std::vector<float>& rho, const std::string& name) {
+const std::vector<float>& pick_field(const DescriptorFields& f, const std::vector<float>& rho,
+                                     const std::string& name) {
   if (name == "rho") return rho;
   if (name == "w") return f.winding;
   if (name == "s" || name == "bound" || name == "xi") {
-    if (f.skeletal_density.empty()) throw Error("--field " + name + ": the scene's descriptor is the indicator (collision response only), which computes the winding number alone");
+    if (f.skeletal_density.empty())
+      throw Error("--field " + name +
+                  ": the scene's descriptor is the indicator (collision response only), which computes the winding "
+                  "number alone");
     return name == "s" ? f.skeletal_density : name == "xi" ? f.signed_distance : f.density_bound;
   }
   throw Error("--field: expected rho, s, w, xi or bound (got '" + name + "')");
@@ -90,12 +94,14 @@ void run_fields(const FieldsOptions& opt) {
   }
   if (!opt.png.empty()) {
     const std::vector<float>& values = pick_field(f, rho, opt.field);
-    const ColorMap map = opt.field == "bound" || (opt.field == "rho" && f.skeletal_density.empty()) ? ColorMap::sequential
-                                                                                                     : ColorMap::diverging;
+    const ColorMap map = opt.field == "bound" || (opt.field == "rho" && f.skeletal_density.empty())
+                             ? ColorMap::sequential
+                             : ColorMap::diverging;
     const SliceImage image = render_slice(grid, values.data(), axis, slice, map, std::nullopt, opt.pixels);
     write_png(opt.png, image,
               {{"Title", "snapfit " + opt.field + " of part " + opt.part + " at " + opt.slice},
-               {"value_min", std::to_string(image.value_min)}, {"value_max", std::to_string(image.value_max)}});
+               {"value_min", std::to_string(image.value_min)},
+               {"value_max", std::to_string(image.value_max)}});
     std::cout << "wrote " << opt.png << " (" << opt.field << " at " << opt.slice << ", colour range ["
               << image.value_min << ", " << image.value_max << "])\n";
   }
@@ -105,7 +111,8 @@ void run_fields(const FieldsOptions& opt) {
 
 void add_fields_command(CLI::App& app) {
   auto opt = std::make_shared<FieldsOptions>();
-  CLI::App* cmd = app.add_subcommand("fields", "Compute a part's descriptor fields (cached) and export a PNG slice and/or a .vti volume");
+  CLI::App* cmd = app.add_subcommand(
+      "fields", "Compute a part's descriptor fields (cached) and export a PNG slice and/or a .vti volume");
   cmd->add_option("scene", opt->scene, "Scene file (JSON)")->required();
   cmd->add_option("--part", opt->part, "Which part: 1 (fixed) or 2 (moving)");
   cmd->add_option("--slice", opt->slice, "Slice for the PNG: x=V, y=V or z=V in the part's frame (scene units)");

@@ -5,12 +5,12 @@
 #include <sstream>
 
 #include "cli/commands.h"
-#include "pipeline/assembly_pair.h"
-#include "snapfit/error.h"
+#include "core/progress.h"
 #include "engine/full_map.h"
 #include "io/png_export.h"
 #include "io/vti_export.h"
-#include "core/progress.h"
+#include "pipeline/assembly_pair.h"
+#include "snapfit/error.h"
 
 namespace snapfit::cli {
 namespace {
@@ -37,7 +37,8 @@ Eigen::Matrix3d parse_rotation(const std::string& text) {
   }
   if (v.size() != 4) throw Error("--rotation: expected ax,ay,az,angle_deg");
   const Eigen::Vector3d axis(v[0], v[1], v[2]);
-  if (!(axis.norm() > 0) || !std::isfinite(v[3])) throw Error("--rotation: the axis must be non-zero and the angle finite");
+  if (!(axis.norm() > 0) || !std::isfinite(v[3]))
+    throw Error("--rotation: the axis must be non-zero and the angle finite");
   return Eigen::AngleAxisd(v[3] * M_PI / 180.0, axis.normalized()).toRotationMatrix();
 }
 
@@ -71,10 +72,12 @@ void run_map(const MapOptions& opt) {
     // Energy: negative (fit, red would read as "hot"): show -E so fits are red, collisions blue.
     std::vector<float> score(map.energy.size());
     for (std::size_t i = 0; i < score.size(); ++i) score[i] = -map.energy[i];
-    const SliceImage image = render_slice(map.grid, score.data(), axis, index, ColorMap::diverging, std::nullopt, opt.pixels);
+    const SliceImage image =
+        render_slice(map.grid, score.data(), axis, index, ColorMap::diverging, std::nullopt, opt.pixels);
     write_png(opt.png, image, {{"Title", "snapfit -energy over translations at " + opt.slice}});
-    std::cout << "wrote " << opt.png << " (-E at " << opt.slice << ": red = fit, blue = collision or separation; range ["
-              << image.value_min << ", " << image.value_max << "], magenta = aliased)\n";
+    std::cout << "wrote " << opt.png << " (-E at " << opt.slice
+              << ": red = fit, blue = collision or separation; range [" << image.value_min << ", " << image.value_max
+              << "], magenta = aliased)\n";
   }
 }
 

@@ -2,9 +2,9 @@
 #include <iostream>
 
 #include "cli/commands.h"
-#include "snapfit/error.h"
 #include "io/mesh_load.h"
 #include "mesh/mesh_report.h"
+#include "snapfit/error.h"
 
 namespace snapfit::cli {
 namespace {
@@ -19,7 +19,8 @@ struct MeshInfoOptions {
 
 void add_mesh_info_command(CLI::App& app) {
   auto opt = std::make_shared<MeshInfoOptions>();
-  CLI::App* cmd = app.add_subcommand("mesh-info", "Load a mesh (any format Assimp reads) and print a validation report");
+  CLI::App* cmd =
+      app.add_subcommand("mesh-info", "Load a mesh (any format Assimp reads) and print a validation report");
   cmd->add_option("file", opt->file, "Mesh file (STL, OBJ, PLY, glTF, OFF, ...)")->required();
   cmd->add_option("--scale", opt->scale, "Multiply every coordinate by this (file units -> your units)");
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");

@@ -7,10 +7,10 @@
 
 #include "cli/commands.h"
 #include "cli/parse_options.h"
-#include "pipeline/assembly_pair.h"
-#include "engine/query_engine.h"
-#include "snapfit/error.h"
 #include "core/progress.h"
+#include "engine/query_engine.h"
+#include "pipeline/assembly_pair.h"
+#include "snapfit/error.h"
 
 namespace snapfit::cli {
 namespace {
@@ -39,7 +39,8 @@ Pose parse_pose(const std::string& text, const std::string& where) {
     }
   }
   if (v.size() != 3 && v.size() != 7)
-    throw Error(where + ": expected 3 or 7 numbers (x,y,z or x,y,z,ax,ay,az,angle_deg), got " + std::to_string(v.size()));
+    throw Error(where + ": expected 3 or 7 numbers (x,y,z or x,y,z,ax,ay,az,angle_deg), got " +
+                std::to_string(v.size()));
   for (double x : v)
     if (!std::isfinite(x)) throw Error(where + ": pose has a non-finite number");
   Pose pose;
@@ -72,7 +73,8 @@ nlohmann::json result_json(const Pose& pose, const QueryResult& r) {
 void run_query(const QueryOptions& opt) {
   const Scene scene = load_scene(opt.scene);
   std::vector<Pose> poses;
-  for (std::size_t i = 0; i < opt.poses.size(); ++i) poses.push_back(parse_pose(opt.poses[i], "--pose " + opt.poses[i]));
+  for (std::size_t i = 0; i < opt.poses.size(); ++i)
+    poses.push_back(parse_pose(opt.poses[i], "--pose " + opt.poses[i]));
   if (!opt.poses_file.empty()) {
     std::ifstream in(opt.poses_file);
     if (!in) throw Error(opt.poses_file + ": cannot read the poses file");
@@ -102,7 +104,9 @@ void add_query_command(CLI::App& app) {
   auto opt = std::make_shared<QueryOptions>();
   CLI::App* cmd = app.add_subcommand("query", "Energy, force and torque of part 2 at poses (one JSON line per pose)");
   cmd->add_option("scene", opt->scene, "Scene file (JSON)")->required();
-  cmd->add_option("--pose", opt->poses, "Part 2 in part 1's frame: x,y,z or x,y,z,ax,ay,az,angle_deg (repeatable; default: the scene's initial pose)");
+  cmd->add_option(
+      "--pose", opt->poses,
+      "Part 2 in part 1's frame: x,y,z or x,y,z,ax,ay,az,angle_deg (repeatable; default: the scene's initial pose)");
   cmd->add_option("--poses", opt->poses_file, "File with one pose per line (same format; # comments)");
   cmd->add_option("--modes", opt->modes, "m': number of retained Fourier modes (lowest |w| first)");
   cmd->add_option("--interpolation", opt->interpolation, "trilinear (seed 000) or tricubic (Catmull-Rom)");

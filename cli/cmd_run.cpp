@@ -43,8 +43,8 @@ void print_loop(const Scene& scene, const SessionResult& session) {
   const LoopReport& loop = session.loop;
   std::cout << "    " << loop.frames << " frames, measured " << loop.measured_rate_hz << " Hz; frame time p50 "
             << quantile(loop.frame_ms, 0.5) << " ms, p99 " << quantile(loop.frame_ms, 0.99) << " ms, max "
-            << quantile(loop.frame_ms, 1.0) << " ms; " << loop.misses << " misses (" << 100 * loop.miss_rate()
-            << " %; " << loop.late_wakeup_misses << " late wake-ups, " << loop.stall_misses << " stalls), "
+            << quantile(loop.frame_ms, 1.0) << " ms; " << loop.misses << " misses (" << 100 * loop.miss_rate() << " %; "
+            << loop.late_wakeup_misses << " late wake-ups, " << loop.stall_misses << " stalls), "
             << loop.mode_changes.size() << " m' changes; threads: " << session.priority.describe() << "\n";
   for (const ModeChange& c : loop.mode_changes)
     std::cout << "      t = " << c.time_s << " s: m' " << c.from << " -> " << c.to << " (" << c.reason << ")\n";
@@ -94,8 +94,8 @@ void run_main_job(const RunOptions& opt) {
   compute_assembly_spectra(pair, ctx, fft, pair_options);
   const QueryVariant variant = query_variant_for(scene, Interpolation::tricubic);
   const auto& dims = pair.spectra.dims;
-  std::cout << "    FFT grid " << dims[0] << " x " << dims[1] << " x " << dims[2] << (pair.spectra_from_cache ? " (cached)" : "")
-            << ", kernel variant: " << variant_name(variant) << "\n";
+  std::cout << "    FFT grid " << dims[0] << " x " << dims[1] << " x " << dims[2]
+            << (pair.spectra_from_cache ? " (cached)" : "") << ", kernel variant: " << variant_name(variant) << "\n";
 
   // m' for this device: the tuning file, else a measured sweep; with several devices the
   // loop goes to the one scheduler/device_choice.h picks.
@@ -127,7 +127,8 @@ void run_main_job(const RunOptions& opt) {
     };
     tune.on_tuned = [](const TunedDevice& d) {
       std::cout << "    " << (d.tuning.from_file ? "from the tuning file " : "measured and saved to ") << d.tuning.path
-                << "\n" << tuning_table(d.tuning.result);
+                << "\n"
+                << tuning_table(d.tuning.result);
     };
     devices = tune_loop_devices(ctx, scene, pair.spectra, variant, tune);
     const TunedDevice& chosen = devices->loop();
@@ -176,7 +177,9 @@ void add_run_command(CLI::App& app) {
   auto opt = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "The main job: prepare a scene's parts and device, write a report folder");
   cmd->add_option("scene", opt->scene, "Scene file (JSON, see docs/scenes.md)")->required();
-  cmd->add_option("--device", opt->device, "OpenCL device: index, platform:device, cpu|gpu|accelerator, or a name substring (default: $SNAPFIT_DEVICE, else PoCL's CPU device)");
+  cmd->add_option("--device", opt->device,
+                  "OpenCL device: index, platform:device, cpu|gpu|accelerator, or a name substring (default: "
+                  "$SNAPFIT_DEVICE, else PoCL's CPU device)");
   cmd->add_option("--out", opt->out, "Report folder (default: results/<scene name>)");
   cmd->add_option("--modes", opt->modes, "m': a fixed number of Fourier modes instead of the tuned one");
   cmd->add_option("--margin", opt->margin, "Tuning safety margin: p99 at most (1 - margin) of the frame budget")

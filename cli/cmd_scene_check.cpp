@@ -10,7 +10,8 @@ namespace snapfit::cli {
 
 void add_scene_check_command(CLI::App& app) {
   auto file = std::make_shared<std::string>();
-  CLI::App* cmd = app.add_subcommand("scene-check", "Validate a scene file, build its parts and print the compute plan");
+  CLI::App* cmd =
+      app.add_subcommand("scene-check", "Validate a scene file, build its parts and print the compute plan");
   cmd->add_option("scene", *file, "Scene file (JSON, see docs/scenes.md)")->required();
   cmd->callback([file] {
     const Scene scene = load_scene(*file);

@@ -6,15 +6,15 @@
 #include <optional>
 
 #include "cli/commands.h"
-#include "report/haptic_report.h"
 #include "cli/parse_options.h"
-#include "pipeline/assembly_pair.h"
-#include "engine/query_engine.h"
-#include "engine/device.h"
-#include "snapfit/error.h"
-#include "scheduler/engine_tuning.h"
 #include "core/progress.h"
+#include "engine/device.h"
+#include "engine/query_engine.h"
+#include "pipeline/assembly_pair.h"
+#include "report/haptic_report.h"
+#include "scheduler/engine_tuning.h"
 #include "scheduler/loop_devices.h"
+#include "snapfit/error.h"
 
 namespace snapfit::cli {
 namespace {
@@ -51,8 +51,8 @@ void run_tune(const TuneCommandOptions& opt) {
   const auto bars = pass_progress_bars();  // one bar, finished when the sweep ends
   tune.progress = [bars](std::uint64_t done, std::uint64_t total) { bars("tuning m'", done, total); };
   const TuningKey key = tuning_key_for(device.info, variant, pair.spectra, budget, opt.margin, scene.loop_rate_hz);
-  const EngineTuning tuned = tune_engine(*engine, key, poses, tune, true,
-                                         [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; });
+  const EngineTuning tuned =
+      tune_engine(*engine, key, poses, tune, true, [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; });
   std::cout << tuning_table(tuned.result) << "saved to " << tuned.path << "\n";
   if (!opt.png.empty()) {
     write_chart_png(opt.png, tuning_chart(tuned.result, device.info.name));
@@ -64,7 +64,8 @@ void run_tune(const TuneCommandOptions& opt) {
 
 void add_tune_command(CLI::App& app) {
   auto opt = std::make_shared<TuneCommandOptions>();
-  CLI::App* cmd = app.add_subcommand("tune", "Measure query time against m' and pick m' for the frame budget (saved per device)");
+  CLI::App* cmd =
+      app.add_subcommand("tune", "Measure query time against m' and pick m' for the frame budget (saved per device)");
   cmd->add_option("scene", opt->scene, "Scene file (JSON)")->required();
   cmd->add_option("--budget", opt->budget_ms, "Frame budget in ms (default: the scene's frame.budget_ms)");
   cmd->add_option("--margin", opt->margin, "Safety margin: p99 at most (1 - margin) of the budget")

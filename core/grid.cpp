@@ -54,11 +54,20 @@ namespace snapfit {
 std::vector<long long> brick_point_order(const GridSpec& grid, int lanes) {
   Eigen::Vector3i brick;
   switch (lanes) {
-    case 1: brick = {1, 1, 1}; break;
-    case 4: brick = {2, 2, 1}; break;
-    case 8: brick = {2, 2, 2}; break;
-    case 16: brick = {4, 2, 2}; break;
-    default: throw Error("point packets of " + std::to_string(lanes) + " lanes: expected 1, 4, 8 or 16");
+    case 1:
+      brick = {1, 1, 1};
+      break;
+    case 4:
+      brick = {2, 2, 1};
+      break;
+    case 8:
+      brick = {2, 2, 2};
+      break;
+    case 16:
+      brick = {4, 2, 2};
+      break;
+    default:
+      throw Error("point packets of " + std::to_string(lanes) + " lanes: expected 1, 4, 8 or 16");
   }
   const Eigen::Vector3i bricks = (grid.dims + brick - Eigen::Vector3i::Ones()).cwiseQuotient(brick);
   std::vector<long long> order;

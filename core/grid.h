@@ -19,8 +19,9 @@ struct GridSpec {
     return static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(dims.z());
   }
   std::size_t index(int i, int j, int k) const {
-    return static_cast<std::size_t>(i) + static_cast<std::size_t>(dims.x()) *
-                                             (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(k));
+    return static_cast<std::size_t>(i) +
+           static_cast<std::size_t>(dims.x()) *
+               (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(k));
   }
   Eigen::Vector3d point(int i, int j, int k) const { return origin + spacing * Eigen::Vector3d(i, j, k); }
   // The point of grid index `id` (the inverse of index()).

@@ -13,8 +13,8 @@ inline std::uint16_t float_to_half(float f) {
   const auto sign = static_cast<std::uint16_t>((x >> 16) & 0x8000u);
   x &= 0x7fffffffu;
   if (x >= 0x7f800000u) return sign | 0x7c00u | (x > 0x7f800000u ? 0x200u : 0u);  // inf, nan
-  if (x >= 0x477ff000u) return sign | 0x7c00u;                                     // rounds past 65504
-  if (x < 0x38800000u) {                                                            // below 2^-14: subnormal
+  if (x >= 0x477ff000u) return sign | 0x7c00u;                                    // rounds past 65504
+  if (x < 0x38800000u) {                                                          // below 2^-14: subnormal
     float a;
     std::memcpy(&a, &x, 4);
     return sign | static_cast<std::uint16_t>(std::nearbyint(a * 16777216.0f));  // units of 2^-24

@@ -1,21 +1,19 @@
 // Progress reports for long host work (core/progress.h).
 #include "core/progress.h"
 
-#include <memory>
-
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
+#include <unistd.h>
 #include <utility>
 
 namespace snapfit {
 namespace {
 
-constexpr std::int64_t kTerminalPeriodNs = 100'000'000;     // 100 ms
-constexpr std::int64_t kPlainPeriodNs = 10'000'000'000;     // 10 s
+constexpr std::int64_t kTerminalPeriodNs = 100'000'000;  // 100 ms
+constexpr std::int64_t kPlainPeriodNs = 10'000'000'000;  // 10 s
 constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
 constexpr int kBarWidth = 24;
 
@@ -80,7 +78,8 @@ std::string progress_line(const std::string& label, std::uint64_t done, std::uin
   if (final) return line + (complete ? "done in " : "stopped after ") + format_duration(elapsed_s);
   line += format_duration(elapsed_s) + " elapsed";
   if (done > 0 && !complete && (f >= 0.02 || elapsed_s >= 1.0))
-    line += ", ~" + format_duration(elapsed_s * static_cast<double>(total - done) / static_cast<double>(done)) + " left";
+    line +=
+        ", ~" + format_duration(elapsed_s * static_cast<double>(total - done) / static_cast<double>(done)) + " left";
   return line;
 }
 
@@ -104,7 +103,9 @@ void Progress::advance(std::uint64_t n) {
   const std::uint64_t d = done_.fetch_add(n, std::memory_order_relaxed) + n;
   if (finished_.load(std::memory_order_relaxed)) return;
   const std::int64_t t = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start_).count();
-  auto due = [&] { return t >= next_draw_ns_.load(std::memory_order_relaxed) || d >= next_count_.load(std::memory_order_relaxed); };
+  auto due = [&] {
+    return t >= next_draw_ns_.load(std::memory_order_relaxed) || d >= next_count_.load(std::memory_order_relaxed);
+  };
   if (!due()) return;
   // Whoever holds the lock is drawing already; the next advance catches up.
   std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);

@@ -4,11 +4,11 @@
 #include <climits>
 #include <cmath>
 
-#include "snapfit/error.h"
 #include "engine/kernel_sources.h"
 #include "engine/triangle_bvh.h"
-#include "mesh/triangle_refine.h"
 #include "engine/winding_propagation.h"
+#include "mesh/triangle_refine.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
@@ -99,8 +99,8 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& scen
   const bool need_distance = skeletal || options.indicator_signed_distance;
   // Sign propagation needs the distance too (cheap next to the winding kernel).
   // (Component labels are 32-bit: larger grids, far beyond memory here, keep the full pass.)
-  const bool propagate = options.winding_sign_propagation && grid.count() <= static_cast<std::size_t>(INT32_MAX) &&
-                         mesh_is_closed(mesh);
+  const bool propagate =
+      options.winding_sign_propagation && grid.count() <= static_cast<std::size_t>(INT32_MAX) && mesh_is_closed(mesh);
   const bool compute_distance = need_distance || propagate;
   if (skeletal && !(params.sigma > 0)) throw Error("descriptor sigma must be positive");
 
@@ -134,12 +134,13 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& scen
     const std::size_t chunk = std::min(options.chunk_points, count);
     cl::Buffer nodes(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(BvhNode) * bvh.nodes.size(),
                      const_cast<BvhNode*>(bvh.nodes.data()));
-    cl::Buffer triangles(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                         sizeof(cl_float4) * bvh.triangles.size(), const_cast<cl_float4*>(bvh.triangles.data()));
+    cl::Buffer triangles(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * bvh.triangles.size(),
+                         const_cast<cl_float4*>(bvh.triangles.data()));
     cl::Buffer density_nodes = nodes, density_triangles = triangles;
     if (&density_bvh != &bvh) {
-      density_nodes = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                                 sizeof(BvhNode) * density_bvh.nodes.size(), const_cast<BvhNode*>(density_bvh.nodes.data()));
+      density_nodes =
+          cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(BvhNode) * density_bvh.nodes.size(),
+                     const_cast<BvhNode*>(density_bvh.nodes.data()));
       density_triangles = cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                                      sizeof(cl_float4) * density_bvh.triangles.size(),
                                      const_cast<cl_float4*>(density_bvh.triangles.data()));
@@ -171,8 +172,7 @@ DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& scen
     winding_kernel.setArg(9, chunk_a);
     winding_kernel.setArg(10, chunk_b);
     if (propagate) {
-      const WindingComponents components =
-          winding_components(grid, distance, distance_rounding_slack(grid, mesh));
+      const WindingComponents components = winding_components(grid, distance, distance_rounding_slack(grid, mesh));
       const std::size_t seeds = components.seeds.size();
       std::vector<cl_long> ids(components.seeds.begin(), components.seeds.end());
       cl::Buffer id_buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_long) * seeds, ids.data());
@@ -267,7 +267,8 @@ std::vector<float> affinity_imaginary(const DescriptorFields& fields) {
   return rho;
 }
 
-std::vector<std::vector<float>> affinity_moments(const DescriptorFields& fields, const Eigen::Vector3d& reference_point) {
+std::vector<std::vector<float>> affinity_moments(const DescriptorFields& fields,
+                                                 const Eigen::Vector3d& reference_point) {
   const std::vector<float> rho = affinity_imaginary(fields);
   std::vector<std::vector<float>> moments(3, std::vector<float>(rho.size()));
   const GridSpec& g = fields.grid;

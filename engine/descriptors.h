@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/compute_context.h"
 #include "core/grid.h"
+#include "engine/compute_context.h"
 #include "engine/program_cache.h"
 #include "mesh/mesh.h"
 #include "snapfit/scene.h"
@@ -66,9 +66,9 @@ struct DescriptorFields {
   // How w was computed: "sign propagation" (closed mesh: the kernel at one seed per
   // component, engine/winding_propagation.h) or "full" (the kernel at every point).
   std::string winding_method = "full";
-  int density_lanes = 0;                  // points per density work item (0: not computed here)
-  std::size_t winding_kernel_points = 0;  // points where the winding kernel ran (not known from the cache)
-  double seconds = 0;                   // wall time of the computation
+  int density_lanes = 0;                       // points per density work item (0: not computed here)
+  std::size_t winding_kernel_points = 0;       // points where the winding kernel ran (not known from the cache)
+  double seconds = 0;                          // wall time of the computation
   double refine_seconds = 0, bvh_seconds = 0;  // host work on TBB
   double distance_seconds = 0, winding_seconds = 0, density_seconds = 0;  // kernels (incl. build)
   std::size_t refined_triangles = 0;
@@ -86,6 +86,7 @@ std::vector<float> affinity_imaginary(const DescriptorFields& fields);
 
 // The three fields q_a * Im(rho)(q), a = x, y, z, with q measured from
 // `reference_point` (part 2's rotation centre): the torque spectra's inputs (seed 000 eq. 12).
-std::vector<std::vector<float>> affinity_moments(const DescriptorFields& fields, const Eigen::Vector3d& reference_point);
+std::vector<std::vector<float>> affinity_moments(const DescriptorFields& fields,
+                                                 const Eigen::Vector3d& reference_point);
 
 }  // namespace snapfit

@@ -145,7 +145,8 @@ Device select_device(const std::string& spec) {
   try {
     devices = enumerate_devices();
   } catch (const cl::Error& e) {
-    throw Error(std::string("OpenCL device enumeration failed: ") + e.what() + " (error " + std::to_string(e.err()) + ")");
+    throw Error(std::string("OpenCL device enumeration failed: ") + e.what() + " (error " + std::to_string(e.err()) +
+                ")");
   }
   std::vector<DeviceInfo> infos;
   for (const Device& d : devices) infos.push_back(d.info);
@@ -154,8 +155,8 @@ Device select_device(const std::string& spec) {
 
 std::string describe_device(const DeviceInfo& d) {
   std::ostringstream out;
-  out << "[" << d.index << "] " << d.platform_index << ":" << d.device_index << " " << d.name << " (" << d.type
-      << ", " << d.platform_name << ", driver " << d.driver_version << ")";
+  out << "[" << d.index << "] " << d.platform_index << ":" << d.device_index << " " << d.name << " (" << d.type << ", "
+      << d.platform_name << ", driver " << d.driver_version << ")";
   return out.str();
 }
 

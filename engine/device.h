@@ -2,7 +2,6 @@
 // OpenCL platforms and devices: enumeration, a plain description of each device's
 // capabilities, and selection by a user's device spec (--device or SNAPFIT_DEVICE).
 #include <CL/opencl.hpp>
-
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -11,14 +10,14 @@
 namespace snapfit {
 
 struct DeviceInfo {
-  int index = 0;           // position in enumeration order (what `snapfit devices` lists)
+  int index = 0;  // position in enumeration order (what `snapfit devices` lists)
   int platform_index = 0;
-  int device_index = 0;    // position within its platform
+  int device_index = 0;  // position within its platform
   std::string platform_name;
   std::string platform_version;
   std::string name;
   std::string vendor;
-  std::string type;        // "cpu", "gpu", "accelerator" or "other"
+  std::string type;  // "cpu", "gpu", "accelerator" or "other"
   std::string device_version;
   std::string driver_version;
   unsigned compute_units = 0;

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <vector>
 
-#include "snapfit/error.h"
 #include "engine/kernel_sources.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
@@ -29,8 +29,8 @@ DeviceCheckResult check(const ComputeContext& ctx, const ProgramCacheConfig& cac
     scale += static_cast<double>(2.0L * v * v + 3.0L * std::abs(v) + 2.0L);
   }
 
-  const std::string options = std::string("-D REAL=") + (is_double ? "double -D SNAPFIT_FP64" : "float") +
-                              " -D WG_SIZE=" + std::to_string(wg);
+  const std::string options =
+      std::string("-D REAL=") + (is_double ? "double -D SNAPFIT_FP64" : "float") + " -D WG_SIZE=" + std::to_string(wg);
   DeviceCheckResult result;
   result.precision = is_double ? "double" : "float";
   const BuiltProgram built = build_program(ctx, "device_check", kernel_source("device_check"), options, cache);
@@ -48,8 +48,9 @@ DeviceCheckResult check(const ComputeContext& ctx, const ProgramCacheConfig& cac
     ctx.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(groups * wg), cl::NDRange(wg), nullptr, &event);
     std::vector<Real> sums(groups);
     ctx.queue.enqueueReadBuffer(sums_buf, CL_TRUE, 0, sizeof(Real) * groups, sums.data());
-    result.kernel_ms = (event.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
-                        event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) * 1e-6;
+    result.kernel_ms =
+        (event.getProfilingInfo<CL_PROFILING_COMMAND_END>() - event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) *
+        1e-6;
     double total = 0.0;
     for (Real s : sums) total += static_cast<double>(s);
     // Tolerance: each term is a few roundings (sin: <= 4 ulp in OpenCL C), and each

@@ -14,7 +14,7 @@ struct DeviceCheckResult {
   double tolerance = 0;
   ProgramOrigin origin = ProgramOrigin::compiled;
   double build_ms = 0;
-  double kernel_ms = 0;       // from the OpenCL event's profiling counters
+  double kernel_ms = 0;  // from the OpenCL event's profiling counters
 };
 
 // `use_double` requires fp64 (throws snapfit::Error naming the device otherwise).

@@ -2,9 +2,8 @@
 
 #include <clFFT.h>
 #include <fcntl.h>
-#include <unistd.h>
-
 #include <string>
+#include <unistd.h>
 
 #include "snapfit/error.h"
 

@@ -9,7 +9,6 @@
 // the process and must outlive every plan. Plans are baked once per (context, dims)
 // and reused; baking compiles kernels and takes seconds on PoCL.
 #include <CL/opencl.hpp>
-
 #include <array>
 #include <cstddef>
 #include <memory>

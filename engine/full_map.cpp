@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 
-#include "snapfit/error.h"
 #include "engine/kernel_sources.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 
@@ -24,8 +24,9 @@ TranslationMap translational_energy_map(const FftLibrary& library, const Compute
     for (std::size_t z = 0; z < dims[2]; ++z)
       for (std::size_t y = 0; y < dims[1]; ++y)
         for (std::size_t x = 0; x < dims[0]; ++x)
-          w2[x + dims[0] * (y + dims[1] * z)] = float(std::pow(spectra.frequency(0, x), 2) + std::pow(spectra.frequency(1, y), 2) +
-                                                      std::pow(spectra.frequency(2, z), 2));
+          w2[x + dims[0] * (y + dims[1] * z)] =
+              float(std::pow(spectra.frequency(0, x), 2) + std::pow(spectra.frequency(1, y), 2) +
+                    std::pow(spectra.frequency(2, z), 2));
     std::nth_element(w2.begin(), w2.begin() + (modes - 1), w2.end());
     max_w2 = w2[modes - 1];
   }
@@ -33,9 +34,12 @@ TranslationMap translational_energy_map(const FftLibrary& library, const Compute
   TranslationMap map;
   std::vector<std::complex<float>> f(total);
   try {
-    const std::string options = std::string("-cl-std=CL1.2") + (interpolation == Interpolation::tricubic ? " -D TRICUBIC" : "");
-    cl::Kernel kernel(build_program(ctx, "full_map", kernel_source("spectrum_sample") + kernel_source("full_map"), options, cache).program,
-                      "spectrum_product");
+    const std::string options =
+        std::string("-cl-std=CL1.2") + (interpolation == Interpolation::tricubic ? " -D TRICUBIC" : "");
+    cl::Kernel kernel(
+        build_program(ctx, "full_map", kernel_source("spectrum_sample") + kernel_source("full_map"), options, cache)
+            .program,
+        "spectrum_product");
     auto upload = [&](const std::vector<Complex>& v) {
       return cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * v.size(),
                         const_cast<Complex*>(v.data()));
@@ -50,7 +54,8 @@ TranslationMap translational_energy_map(const FftLibrary& library, const Compute
     kernel.setArg(0, s1);
     kernel.setArg(1, s2);
     kernel.setArg(2, cl_int4{{int(dims[0]), int(dims[1]), int(dims[2]), 0}});
-    kernel.setArg(3, cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
+    kernel.setArg(3,
+                  cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
     kernel.setArg(4, pose);
     kernel.setArg(5, static_cast<float>(1.0 / (spectra.length.x() * spectra.length.y() * spectra.length.z())));
     kernel.setArg(6, max_w2);
@@ -60,7 +65,8 @@ TranslationMap translational_energy_map(const FftLibrary& library, const Compute
     fft.transform(FftDirection::inverse, product, result);  // f(t_j) = sum_k P_k e^{2 pi i k.j / N}
     ctx.queue.enqueueReadBuffer(result, CL_TRUE, 0, sizeof(Complex) * total, f.data());
   } catch (const cl::Error& e) {
-    throw Error("full map failed on " + ctx.device.info.name + ": " + e.what() + " (error " + std::to_string(e.err()) + ")");
+    throw Error("full map failed on " + ctx.device.info.name + ": " + e.what() + " (error " + std::to_string(e.err()) +
+                ")");
   }
   // Regular order: translation index j' from -floor(N/2) to N - 1 - floor(N/2) per axis.
   map.grid.spacing = spectra.spacing;

@@ -12,7 +12,7 @@
 namespace snapfit {
 
 struct TranslationMap {
-  GridSpec grid;             // translations t of part 2 (part 1's frame), regular order
+  GridSpec grid;              // translations t of part 2 (part 1's frame), regular order
   std::vector<float> energy;  // E(R, t) = -Re f; NaN where the periodic sum would alias
   double seconds = 0;
 };

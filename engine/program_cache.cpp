@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <iostream>
 
-#include "snapfit/error.h"
-#include "io/cache_file.h"
 #include "core/hash.h"
+#include "io/cache_file.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
@@ -69,8 +69,8 @@ ProgramCacheConfig default_program_cache() {
 
 std::string program_cache_key(const DeviceInfo& device, const std::string& source, const std::string& options) {
   return "platform=" + device.platform_name + " " + device.platform_version + "|device=" + device.name +
-         "|vendor=" + device.vendor + "|device_version=" + device.device_version +
-         "|driver=" + device.driver_version + "|source_fnv1a64=" + hex64(fnv1a64(source)) + "|options=" + options;
+         "|vendor=" + device.vendor + "|device_version=" + device.device_version + "|driver=" + device.driver_version +
+         "|source_fnv1a64=" + hex64(fnv1a64(source)) + "|options=" + options;
 }
 
 BuiltProgram build_program(const ComputeContext& ctx, const std::string& name, const std::string& source,

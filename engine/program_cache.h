@@ -11,7 +11,7 @@
 namespace snapfit {
 
 struct ProgramCacheConfig {
-  std::string directory;  // "" disables the disk cache; default: cache_root()/programs
+  std::string directory;                         // "" disables the disk cache; default: cache_root()/programs
   std::function<void(const std::string&)> note;  // messages about cache misuse; default: stderr
 };
 
@@ -23,8 +23,8 @@ enum class ProgramOrigin { compiled, cache_hit, recompiled_after_bad_cache };
 struct BuiltProgram {
   cl::Program program;
   ProgramOrigin origin = ProgramOrigin::compiled;
-  std::string cache_path;   // the entry used or written ("" when caching is off)
-  double build_ms = 0.0;    // wall time of this call
+  std::string cache_path;  // the entry used or written ("" when caching is off)
+  double build_ms = 0.0;   // wall time of this call
 };
 
 // The exact text the cache key is made of (device, driver, source hash, options).

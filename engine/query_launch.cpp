@@ -56,7 +56,8 @@ QueryLaunch::QueryLaunch(const ComputeContext& ctx, const PairSpectra& spectra, 
   const DeviceInfo& info = ctx.device.info;
   wg_ = 1;
   while (wg_ * 2 <= std::min<std::size_t>(env_size("SNAPFIT_QUERY_WG", 64), info.max_work_group_size)) wg_ *= 2;
-  max_groups_ = std::max<std::size_t>(1, env_size("SNAPFIT_QUERY_GROUPS", std::max<std::size_t>(2, 2 * info.compute_units)));
+  max_groups_ =
+      std::max<std::size_t>(1, env_size("SNAPFIT_QUERY_GROUPS", std::max<std::size_t>(2, 2 * info.compute_units)));
   work_per_group_ = std::max<std::size_t>(1, env_size("SNAPFIT_QUERY_MODES_PER_GROUP", wg_));
   // Phase tables for |k| <= reach (+ 8 for the translation lines' last chunk) on every
   // axis, and the reduction scratch, in local memory.
@@ -64,14 +65,17 @@ QueryLaunch::QueryLaunch(const ComputeContext& ctx, const PairSpectra& spectra, 
   if (local_bytes > info.local_memory_bytes) {
     const auto& d = spectra.dims;
     throw Error("FFT grid of " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]) +
-                " needs " + std::to_string(local_bytes) + " bytes of local memory for the query kernel's phase tables; " +
-                info.name + " has " + std::to_string(info.local_memory_bytes));
+                " needs " + std::to_string(local_bytes) +
+                " bytes of local memory for the query kernel's phase tables; " + info.name + " has " +
+                std::to_string(info.local_memory_bytes));
   }
   try {
     queue_ = cl::CommandQueue(ctx.context, ctx.device.device, 0);
-    const std::string all = "-cl-std=CL1.2 -D WG_SIZE=" + std::to_string(wg_) + " -D MAX_HALF=" + std::to_string(reach) + options;
+    const std::string all =
+        "-cl-std=CL1.2 -D WG_SIZE=" + std::to_string(wg_) + " -D MAX_HALF=" + std::to_string(reach) + options;
     kernel_ = cl::Kernel(
-        build_program(ctx, "pose_query", kernel_source("spectrum_sample") + kernel_source("pose_query"), all, cache).program,
+        build_program(ctx, "pose_query", kernel_source("spectrum_sample") + kernel_source("pose_query"), all, cache)
+            .program,
         kernel_name.c_str());
     kernel_.setArg(args_.pose, cl_float16{});
     reserve(16);

@@ -7,7 +7,6 @@
 // a single query is one kernel argument, one launch and one blocking read into memory
 // held since set-up.
 #include <CL/opencl.hpp>
-
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>

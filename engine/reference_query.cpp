@@ -1,14 +1,13 @@
 #include "engine/reference_query.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
-
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <complex>
 #include <numeric>
-#include <algorithm>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 #include "snapfit/error.h"
 

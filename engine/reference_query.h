@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "engine/mode_order.h"
-#include "snapfit/query.h"
 #include "engine/spectra.h"
+#include "snapfit/query.h"
 
 namespace snapfit {
 
@@ -17,7 +17,7 @@ struct ReferenceOptions {
   Interpolation interpolation = Interpolation::tricubic;
   std::size_t modes = 0;  // m': the first modes of mode_order (engine/mode_order.h); 0 = every mode
   bool force = true;
-  bool torque = true;     // needs spectra with torque terms
+  bool torque = true;  // needs spectra with torque terms
 };
 
 // The result for part 2 at `pose` in part 1's frame, with the engine's frames, signs

@@ -14,21 +14,21 @@ namespace {
 
 // Arguments of the pose_query kernel (kernels/pose_query.cl), in order.
 enum PoseQueryArg : cl_uint {
-  kRecords = 0,      // global float4*: the mode records in mode order
-  kCube,             // global Sample*: part 2's spectrum near the low-pass ball
-  kCubeDims,         // int4
-  kCubeOffset,       // int4: cube index of signed frequency index 0
-  kLength,           // float4: L
-  kCubeScale,        // float4: the half cube's scales (S2, SQ)
-  kPose,             // float16
-  kPoses,            // global float16*
-  kPoseCount,        // int
-  kRecordCount,      // int
-  kGroupsPerPose,    // int
-  kTableHalf,        // int
-  kPartials,         // global float*
-  kInvLength,        // float4: 1 / L
-  kExtraMode,        // float4: the first mode of a pair that m' cuts (weight 0 otherwise)
+  kRecords = 0,    // global float4*: the mode records in mode order
+  kCube,           // global Sample*: part 2's spectrum near the low-pass ball
+  kCubeDims,       // int4
+  kCubeOffset,     // int4: cube index of signed frequency index 0
+  kLength,         // float4: L
+  kCubeScale,      // float4: the half cube's scales (S2, SQ)
+  kPose,           // float16
+  kPoses,          // global float16*
+  kPoseCount,      // int
+  kRecordCount,    // int
+  kGroupsPerPose,  // int
+  kTableHalf,      // int
+  kPartials,       // global float*
+  kInvLength,      // float4: 1 / L
+  kExtraMode,      // float4: the first mode of a pair that m' cuts (weight 0 otherwise)
 };
 
 cl_float4 xyz(const Eigen::Vector3d& v) { return cl_float4{{float(v.x()), float(v.y()), float(v.z()), 0.0f}}; }
@@ -50,7 +50,8 @@ class SixDofQuery final : public QueryEngine {
     mode_radius_.resize(total);
     for (std::size_t i = 0; i < total; ++i) {
       const std::size_t k = order[i];
-      const float wx = float(spectra.frequency(0, k % dims_[0])), wy = float(spectra.frequency(1, (k / dims_[0]) % dims_[1])),
+      const float wx = float(spectra.frequency(0, k % dims_[0])),
+                  wy = float(spectra.frequency(1, (k / dims_[0]) % dims_[1])),
                   wz = float(spectra.frequency(2, k / (dims_[0] * dims_[1])));
       mode_radius_[i] = std::sqrt(wx * wx + wy * wy + wz * wz);
     }
@@ -80,13 +81,13 @@ class SixDofQuery final : public QueryEngine {
     if (variant.torque) options += " -D TORQUE";
     if (variant.interpolation == Interpolation::tricubic) options += " -D TRICUBIC";
     if (variant.half_cube) options += " -D HALF_CUBE";
-    launch_ = std::make_unique<QueryLaunch>(ctx, spectra, variant, reach_.back(), "pose_query", options,
-                                            SharedQueryArgs{kPose, kPoses, kPoseCount, kGroupsPerPose, kPartials},
-                                            cache);
+    launch_ =
+        std::make_unique<QueryLaunch>(ctx, spectra, variant, reach_.back(), "pose_query", options,
+                                      SharedQueryArgs{kPose, kPoses, kPoseCount, kGroupsPerPose, kPartials}, cache);
     try {
       cl::Kernel& k = launch_->kernel();
-      records_ = cl::Buffer(launch_->context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_float4) * records.size(),
-                            records.data());
+      records_ = cl::Buffer(launch_->context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                            sizeof(cl_float4) * records.size(), records.data());
       k.setArg(kRecords, records_);
       k.setArg(kLength, xyz(length_));
       k.setArg(kCubeScale, cl_float4{{1.0f, 1.0f, 0.0f, 0.0f}});
@@ -126,8 +127,8 @@ class SixDofQuery final : public QueryEngine {
     mode_count_ = modes;
     // The records that hold the first m' modes: all of records [0, n), and when m' cuts a
     // pair, the pair's first mode alone as the extra mode.
-    record_count_ = static_cast<std::size_t>(
-        std::upper_bound(record_modes_.begin(), record_modes_.end(), mode_count_) - record_modes_.begin());
+    record_count_ = static_cast<std::size_t>(std::upper_bound(record_modes_.begin(), record_modes_.end(), mode_count_) -
+                                             record_modes_.begin());
     const std::size_t held = record_count_ == 0 ? 0 : record_modes_[record_count_ - 1];
     cut_pair_ = held < mode_count_;
     try {
@@ -183,7 +184,8 @@ class SixDofQuery final : public QueryEngine {
         for (int x = 0; x < n[0]; ++x) {
           const std::size_t k = wrap(x - half[0], dims_[0]) +
                                 dims_[0] * (wrap(y - half[1], dims_[1]) + dims_[1] * wrap(z - half[2], dims_[2]));
-          Complex* node = &data[per_node * (static_cast<std::size_t>(x) + n[0] * (static_cast<std::size_t>(y) + n[1] * z))];
+          Complex* node =
+              &data[per_node * (static_cast<std::size_t>(x) + n[0] * (static_cast<std::size_t>(y) + n[1] * z))];
           node[0] = s2_[k];
           if (variant_.torque)
             for (int a = 0; a < 3; ++a) node[1 + a] = sq_[a][k];
@@ -207,8 +209,8 @@ class SixDofQuery final : public QueryEngine {
         halves[2 * i] = float_to_half(data[i].real() * inv);
         halves[2 * i + 1] = float_to_half(data[i].imag() * inv);
       }
-      cube_ = cl::Buffer(launch_->context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(std::uint16_t) * halves.size(),
-                         halves.data());
+      cube_ = cl::Buffer(launch_->context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                         sizeof(std::uint16_t) * halves.size(), halves.data());
     } else {
       cube_ = cl::Buffer(launch_->context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * data.size(),
                          data.data());
@@ -224,8 +226,8 @@ class SixDofQuery final : public QueryEngine {
   QueryVariant variant_;
   std::array<std::size_t, 3> dims_;
   Eigen::Vector3d length_;
-  std::vector<int> reach_;           // max |k| of the modes [0, i]: the phase tables' reach
-  std::vector<float> mode_radius_;   // |w| of every mode, in order
+  std::vector<int> reach_;          // max |k| of the modes [0, i]: the phase tables' reach
+  std::vector<float> mode_radius_;  // |w| of every mode, in order
   std::vector<std::size_t> record_modes_;
   std::vector<cl_float4> first_of_record_;
   // Part 2's spectra (host), for the cube; the |w| radius the device cube covers.

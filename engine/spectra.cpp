@@ -1,7 +1,6 @@
 #include "engine/spectra.h"
 
 #include <algorithm>
-
 #include <chrono>
 #include <cmath>
 
@@ -28,15 +27,16 @@ Placement place(const GridSpec& grid, const std::array<std::size_t, 3>& dims) {
 
 // S(w_k) = rho^(w_k) exp(2 pi i w_k.c) = h^3 exp(-2 pi i w_k.(o' - c)) DFT[k] with
 // o' - c = -h N / 2: the factor is h^3 (-1)^(k'x + k'y + k'z) (seed 000 eq. 13).
-std::vector<Complex> centred_spectrum(const ComputeContext& ctx, const Fft3d& fft,
-                                      const GridSpec& grid, const Placement& placement,
+std::vector<Complex> centred_spectrum(const ComputeContext& ctx, const Fft3d& fft, const GridSpec& grid,
+                                      const Placement& placement,
                                       const std::function<Complex(std::size_t, int, int, int)>& sample) {
   const auto dims = fft.dims();
   std::vector<Complex> padded(fft.count(), Complex(0, 0));
   for (int k = 0; k < grid.dims.z(); ++k)
     for (int j = 0; j < grid.dims.y(); ++j)
       for (int i = 0; i < grid.dims.x(); ++i) {
-        const std::size_t at = (i + placement.offset[0]) + dims[0] * ((j + placement.offset[1]) + dims[1] * (k + placement.offset[2]));
+        const std::size_t at =
+            (i + placement.offset[0]) + dims[0] * ((j + placement.offset[1]) + dims[1] * (k + placement.offset[2]));
         padded[at] = sample(grid.index(i, j, k), i, j, k);
       }
   cl::Buffer in(ctx.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * padded.size(), padded.data());

@@ -32,8 +32,8 @@ struct SpectrumOptions {
 struct PartSpectrum {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();       // c, in the part's own frame
   Eigen::Vector3d half_extent = Eigen::Vector3d::Zero();  // samples lie within c +- this
-  std::vector<Complex> rho;                           // S(w_k), FFT order (k_x fastest, negative k wrapped)
-  std::array<std::vector<Complex>, 3> moments;        // SQ_a(w_k); empty unless torque
+  std::vector<Complex> rho;                               // S(w_k), FFT order (k_x fastest, negative k wrapped)
+  std::array<std::vector<Complex>, 3> moments;            // SQ_a(w_k); empty unless torque
   // +1: the samples were real, -1: imaginary (the affinity i * rho), 0: general complex.
   // Real samples give S(-w) = conj S(w), imaginary ones S(-w) = -conj S(w) (the torque
   // samples q * rho share rho's), which lets queries fold conjugate pairs of modes.
@@ -41,8 +41,8 @@ struct PartSpectrum {
 };
 
 struct PairSpectra {
-  std::array<std::size_t, 3> dims{};  // common FFT grid
-  double spacing = 0;                 // h, scene units
+  std::array<std::size_t, 3> dims{};                 // common FFT grid
+  double spacing = 0;                                // h, scene units
   Eigen::Vector3d length = Eigen::Vector3d::Zero();  // L_a = dims_a * h
   PartSpectrum part1, part2;
   bool torque = false;

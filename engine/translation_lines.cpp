@@ -6,8 +6,8 @@
 #include <numeric>
 #include <string>
 
-#include "snapfit/error.h"
 #include "engine/mode_order.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 
@@ -28,7 +28,8 @@ std::int32_t pack_shorts(int a, int b) {
 // The box node of signed frequency index k.
 std::size_t box_node(const TranslationLines& t, int kx, int ky, int kz) {
   return std::size_t(kx - t.box_min[0]) +
-         std::size_t(t.box_dims[0]) * (std::size_t(ky - t.box_min[1]) + std::size_t(t.box_dims[1]) * std::size_t(kz - t.box_min[2]));
+         std::size_t(t.box_dims[0]) *
+             (std::size_t(ky - t.box_min[1]) + std::size_t(t.box_dims[1]) * std::size_t(kz - t.box_min[2]));
 }
 
 // Groups the nodes with a key (key_of(FFT node) != kExcluded) into x-lines ordered by
@@ -95,7 +96,8 @@ TranslationLines build_translation_lines(const PairSpectra& spectra, const std::
   const auto& d = t.dims;
   const std::size_t total = d[0] * d[1] * d[2];
   if (order.size() != total) throw Error("translation-only lines: the mode order does not list every FFT node");
-  if (total >= std::size_t(kExcluded)) throw Error("translation-only lines: FFT grid of " + std::to_string(total) + " nodes is too large");
+  if (total >= std::size_t(kExcluded))
+    throw Error("translation-only lines: FFT grid of " + std::to_string(total) + " nodes is too large");
   for (int a = 0; a < 3; ++a) {
     t.box_max[a] = int(d[a] / 2);
     t.box_min[a] = t.box_max[a] - int(d[a]) + 1;
@@ -114,7 +116,8 @@ TranslationLines build_translation_lines(const PairSpectra& spectra, const std::
     const std::size_t x = k % d[0], y = (k / d[0]) % d[1], z = k / (d[0] * d[1]);
     const std::size_t neg = (d[0] - x) % d[0] + d[0] * ((d[1] - y) % d[1] + d[1] * ((d[2] - z) % d[2]));
     const std::array<int, 3> kk = signed_node(d, k);
-    t.weights[box_node(t, kk[0], kk[1], kk[2])] = spectra.part1.rho[k] * static_cast<float>(dw) * spectra.part2.rho[neg];
+    t.weights[box_node(t, kk[0], kk[1], kk[2])] =
+        spectra.part1.rho[k] * static_cast<float>(dw) * spectra.part2.rho[neg];
   }
   t.unfolded = group_lines(t, [&](std::size_t k, int, int, int) { return rank[k]; });
   if (!fold || spectra.conjugate_pairs() != 1) return t;
@@ -148,14 +151,18 @@ void select_lines(const TranslationLines& t, std::size_t modes, LineSelection& o
   out.folded = !t.folded.first_key.empty() && modes <= t.fold_limit;
   const LineSet& set = out.folded ? t.folded : t.unfolded;
   const Key m = static_cast<Key>(modes);
-  const std::size_t n = static_cast<std::size_t>(std::lower_bound(set.first_key.begin(), set.first_key.end(), m) - set.first_key.begin());
+  const std::size_t n =
+      static_cast<std::size_t>(std::lower_bound(set.first_key.begin(), set.first_key.end(), m) - set.first_key.begin());
   out.lines.resize(n);
   out.nodes = 0;
   for (std::size_t j = 0; j < n; ++j) {
     const Key* keys = set.keys.data();
-    const std::size_t right = static_cast<std::size_t>(std::lower_bound(keys + set.right_begin[j], keys + set.left_begin[j], m) - (keys + set.right_begin[j]));
-    const std::size_t left = static_cast<std::size_t>(std::lower_bound(keys + set.left_begin[j], keys + set.right_begin[j + 1], m) - (keys + set.left_begin[j]));
-    out.lines[j] = LineRecord{set.row0[j], set.kykz[j], -static_cast<std::int32_t>(left), static_cast<std::int32_t>(right) - 1};
+    const std::size_t right = static_cast<std::size_t>(
+        std::lower_bound(keys + set.right_begin[j], keys + set.left_begin[j], m) - (keys + set.right_begin[j]));
+    const std::size_t left = static_cast<std::size_t>(
+        std::lower_bound(keys + set.left_begin[j], keys + set.right_begin[j + 1], m) - (keys + set.left_begin[j]));
+    out.lines[j] =
+        LineRecord{set.row0[j], set.kykz[j], -static_cast<std::int32_t>(left), static_cast<std::int32_t>(right) - 1};
     out.nodes += left + right;
   }
   out.extras.clear();

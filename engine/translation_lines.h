@@ -60,10 +60,10 @@ struct LineSet {
 
 struct TranslationLines {
   std::array<int, 3> box_min{}, box_max{}, box_dims{};  // signed k of node 0; rows padded by 8 nodes
-  std::vector<std::complex<float>> weights;             // W_k at box node (kx - min) + dims_x ((ky - min) + dims_y (kz - min))
-  LineSet unfolded;                                     // every line; key = rank in the mode order
-  LineSet folded;                                       // empty unless the correlation is real
-  std::size_t fold_limit = 0;                           // folded lines serve m' <= fold_limit (0: never)
+  std::vector<std::complex<float>> weights;  // W_k at box node (kx - min) + dims_x ((ky - min) + dims_y (kz - min))
+  LineSet unfolded;                          // every line; key = rank in the mode order
+  LineSet folded;                            // empty unless the correlation is real
+  std::size_t fold_limit = 0;                // folded lines serve m' <= fold_limit (0: never)
   // For the extras: the FFT grid, the mode order, and the ranks of the unpartnered nodes
   // that the folded lines visit (ascending; at most kMaxUnpairedExtras below fold_limit).
   std::array<std::size_t, 3> dims{};

@@ -38,9 +38,9 @@ class TranslationQuery final : public QueryEngine {
     lines_ = build_translation_lines(spectra, order, variant.fold_conjugate_pairs);
     std::string options = " -D TRANSLATION_ONLY";
     if (variant.force) options += " -D FORCE";
-    launch_ = std::make_unique<QueryLaunch>(ctx, spectra, variant, reach_.back(), "translation_lines", options,
-                                            SharedQueryArgs{kPose, kPoses, kPoseCount, kGroupsPerPose, kPartials},
-                                            cache);
+    launch_ =
+        std::make_unique<QueryLaunch>(ctx, spectra, variant, reach_.back(), "translation_lines", options,
+                                      SharedQueryArgs{kPose, kPoses, kPoseCount, kGroupsPerPose, kPartials}, cache);
     try {
       const auto& box = lines_.weights;
       weights_ = cl::Buffer(launch_->context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * box.size(),

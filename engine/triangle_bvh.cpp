@@ -1,11 +1,10 @@
 #include "engine/triangle_bvh.h"
 
-#include <tbb/task_group.h>
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <atomic>
 #include <numeric>
+#include <tbb/task_group.h>
 
 #include "snapfit/error.h"
 
@@ -29,7 +28,8 @@ int subtree_size(int n, int leaf_size) {
 }
 
 cl_float4 f4(const Vec3& v, double w = 0.0) {
-  return cl_float4{{static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()), static_cast<float>(w)}};
+  return cl_float4{
+      {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()), static_cast<float>(w)}};
 }
 
 struct Builder {
@@ -116,7 +116,8 @@ TriangleBvh build_triangle_bvh(const Mesh& mesh, int leaf_size) {
     TriangleData& t = tris[i];
     for (int k = 0; k < 3; ++k) {
       const int idx = mesh.triangles[i][k];
-      if (idx < 0 || idx >= static_cast<int>(mesh.vertices.size())) throw Error("triangle " + std::to_string(i) + " has an out-of-range vertex index");
+      if (idx < 0 || idx >= static_cast<int>(mesh.vertices.size()))
+        throw Error("triangle " + std::to_string(i) + " has an out-of-range vertex index");
       t.v[k] = mesh.vertices[idx];
     }
     t.centroid = (t.v[0] + t.v[1] + t.v[2]) / 3.0;

@@ -8,7 +8,6 @@
 // I = integral over the node's triangles of |q - c|^2 dA (<= r^2 A), which bounds the
 // far-field remainders more tightly than r^2 A (kernels/skeletal_density.cl).
 #include <CL/opencl.hpp>
-
 #include <vector>
 
 #include "mesh/mesh.h"

@@ -65,7 +65,8 @@ bool mesh_is_closed(const Mesh& mesh) {
         return false;
       const std::int64_t a = welded[ia], b = welded[ib];
       if (a == b) continue;
-      const std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint64_t>(std::max(a, b));
+      const std::uint64_t key =
+          (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint64_t>(std::max(a, b));
       balance[key] += a < b ? 1 : -1;
     }
   }

@@ -2,16 +2,15 @@
 // The first byte picks the file extension (Assimp chooses its importer by extension
 // and content); the rest is written to a temporary file and loaded. Every input must
 // either load a finite mesh with valid indices or throw snapfit::Error.
-#include <unistd.h>
-
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <unistd.h>
 
-#include "snapfit/error.h"
 #include "io/mesh_load.h"
+#include "snapfit/error.h"
 
 namespace {
 const char* const kExtensions[] = {".stl", ".obj", ".ply", ".off", ".gltf", ".glb", ".3ds", ".dae", ".fbx", ".x"};

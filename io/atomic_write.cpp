@@ -1,10 +1,9 @@
 #include "io/atomic_write.h"
 
-#include <unistd.h>
-
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <unistd.h>
 
 #include "snapfit/error.h"
 
@@ -12,8 +11,8 @@ namespace snapfit {
 
 void write_file_atomically(const std::string& path, const std::function<std::string(std::FILE*)>& body) {
   static std::atomic<unsigned> counter{0};
-  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid())) + "." +
-                          std::to_string(counter.fetch_add(1));
+  const std::string tmp =
+      path + ".tmp." + std::to_string(static_cast<long>(::getpid())) + "." + std::to_string(counter.fetch_add(1));
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (f == nullptr) throw Error(path + ": cannot create file: " + std::strerror(errno));
   std::string problem = body(f);

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "snapfit/error.h"
-#include "io/atomic_write.h"
 #include "core/hash.h"
+#include "io/atomic_write.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
@@ -80,8 +80,8 @@ CacheRead read_cache_file(const std::string& path, const std::string& kind, std:
   const std::uint32_t container = static_cast<std::uint32_t>(r.uint(4));
   if (r.ok && container != kContainerVersion) {
     result.status = CacheStatus::stale;
-    result.reason = "cache container version " + std::to_string(container) + ", expected " +
-                    std::to_string(kContainerVersion);
+    result.reason =
+        "cache container version " + std::to_string(container) + ", expected " + std::to_string(kContainerVersion);
     return result;
   }
   const std::string file_kind = r.text();
@@ -93,8 +93,9 @@ CacheRead read_cache_file(const std::string& path, const std::string& kind, std:
   if (file_kind != kind || file_version != version || file_key != key) {
     result.status = CacheStatus::stale;
     result.reason = file_kind != kind ? "written for '" + file_kind + "'"
-                    : file_version != version ? "format version " + std::to_string(file_version) + ", expected " + std::to_string(version)
-                                              : "written for a different key";
+                    : file_version != version
+                        ? "format version " + std::to_string(file_version) + ", expected " + std::to_string(version)
+                        : "written for a different key";
     return result;
   }
   if (bytes.size() - r.at != size)
@@ -105,8 +106,8 @@ CacheRead read_cache_file(const std::string& path, const std::string& kind, std:
   return result;
 }
 
-void write_cache_file(const std::string& path, const std::string& kind, std::uint32_t version,
-                      const std::string& key, const void* payload, std::size_t payload_size) {
+void write_cache_file(const std::string& path, const std::string& kind, std::uint32_t version, const std::string& key,
+                      const void* payload, std::size_t payload_size) {
   namespace fs = std::filesystem;
   std::string header(kMagic, sizeof kMagic);
   put_u32(header, kContainerVersion);
@@ -121,9 +122,9 @@ void write_cache_file(const std::string& path, const std::string& kind, std::uin
   if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
   if (ec) throw Error(path + ": cannot create cache folder: " + ec.message());
   write_file_atomically(path, errno_status([&](std::FILE* f) {
-    return std::fwrite(header.data(), 1, header.size(), f) == header.size() &&
-           std::fwrite(payload, 1, payload_size, f) == payload_size;
-  }));
+                          return std::fwrite(header.data(), 1, header.size(), f) == header.size() &&
+                                 std::fwrite(payload, 1, payload_size, f) == payload_size;
+                        }));
 }
 
 std::optional<std::vector<unsigned char>> read_cache_payload(const std::string& path, const std::string& kind,

@@ -19,15 +19,15 @@ namespace snapfit {
 std::string cache_root();
 
 enum class CacheStatus {
-  hit,       // payload returned
-  missing,   // no file
-  stale,     // readable, but written for another kind, version or key
-  corrupt,   // truncated, bad magic, or checksum mismatch
+  hit,      // payload returned
+  missing,  // no file
+  stale,    // readable, but written for another kind, version or key
+  corrupt,  // truncated, bad magic, or checksum mismatch
 };
 
 struct CacheRead {
   CacheStatus status = CacheStatus::missing;
-  std::string reason;                 // why it is not a hit, for messages
+  std::string reason;                  // why it is not a hit, for messages
   std::vector<unsigned char> payload;  // only on a hit
 };
 
@@ -44,7 +44,7 @@ std::optional<std::vector<unsigned char>> read_cache_payload(const std::string& 
 // Creates parent folders and writes through io/atomic_write.h, so a
 // reader sees the old file or the new one, never half of one. Throws snapfit::Error
 // naming the path on failure (unwritable folder, full disk); no temp file is left.
-void write_cache_file(const std::string& path, const std::string& kind, std::uint32_t version,
-                      const std::string& key, const void* payload, std::size_t payload_size);
+void write_cache_file(const std::string& path, const std::string& kind, std::uint32_t version, const std::string& key,
+                      const void* payload, std::size_t payload_size);
 
 }  // namespace snapfit

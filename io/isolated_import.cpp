@@ -1,21 +1,20 @@
 // Work in a child process under limits (io/isolated_import.h).
 #include "io/isolated_import.h"
 
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <exception>
 #include <fcntl.h>
+#include <fstream>
+#include <new>
 #include <poll.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <algorithm>
-#include <cerrno>
-#include <chrono>
-#include <cstring>
-#include <exception>
-#include <fstream>
-#include <new>
 
 #include "snapfit/error.h"
 
@@ -166,7 +165,8 @@ struct ChildProcess {
 bool read_all(int fd, std::chrono::steady_clock::time_point deadline, std::string& out) {
   char buf[1 << 16];
   for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) return false;
     pollfd p{fd, POLLIN, 0};
     const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
@@ -217,9 +217,9 @@ ChildResult run_in_child(const std::function<std::string()>& work, const ChildLi
   write_end.close();  // else the read below never sees end of file
 
   // Drained before waiting: a child blocked on a full pipe would never exit.
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                            std::chrono::duration<double>(limits.wall_seconds));
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                             std::chrono::duration<double>(limits.wall_seconds));
   std::string reply;
   const bool in_time = read_all(read_end.fd, deadline, reply);
   if (!in_time) ::kill(pid, SIGKILL);

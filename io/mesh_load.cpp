@@ -1,14 +1,12 @@
 // Mesh import through Assimp (io/mesh_load.h).
 #include "io/mesh_load.h"
 
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
-#include <unistd.h>
-
 #include <Eigen/Core>
 #include <Eigen/LU>  // determinant
 #include <algorithm>
 #include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -22,20 +20,19 @@
 #include <optional>
 #include <sstream>
 #include <system_error>
+#include <unistd.h>
 #include <utility>
 #include <vector>
 
-#include "snapfit/error.h"
 #include "io/isolated_import.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem) {
-  throw Error(path + ": " + problem);
-}
+[[noreturn]] void fail(const std::string& path, const std::string& problem) { throw Error(path + ": " + problem); }
 
 // Whitespace-separated tokens in the first 4 KiB of a file, '#' comments skipped.
 std::vector<std::string> leading_tokens(const std::string& path, std::size_t count) {
@@ -74,8 +71,7 @@ void check_off_counts(const std::string& path, std::uintmax_t file_size) {
   std::size_t first = 0;  // index of the vertex count
   // Header keyword: [ST][C][N][4][n]OFF, then (with 'n') the dimension, then the counts.
   const std::string& k = t[0];
-  if (k.size() >= 3 && k.compare(k.size() - 3, 3, "OFF") == 0 &&
-      k.find_first_not_of("STCN4nOF") == std::string::npos) {
+  if (k.size() >= 3 && k.compare(k.size() - 3, 3, "OFF") == 0 && k.find_first_not_of("STCN4nOF") == std::string::npos) {
     first = (k.find('n') != std::string::npos) ? 2 : 1;
   } else if (lowercase_extension(path) != ".off" || !is_count(k)) {
     return;  // not OFF; headerless OFF starts with the counts
@@ -86,8 +82,8 @@ void check_off_counts(const std::string& path, std::uintmax_t file_size) {
   const unsigned long long limit = std::numeric_limits<unsigned int>::max();
   if (vertices > limit || faces > limit || 2 * (vertices + faces) > file_size) {
     std::ostringstream msg;
-    msg << "cannot read mesh: OFF header declares " << vertices << " vertices and " << faces
-        << " faces, more than the " << file_size << "-byte file can hold";
+    msg << "cannot read mesh: OFF header declares " << vertices << " vertices and " << faces << " faces, more than the "
+        << file_size << "-byte file can hold";
     fail(path, msg.str());
   }
 }
@@ -140,8 +136,9 @@ void check_ply_complete(const std::string& path, std::uintmax_t file_size) {
       words >> e.name >> count;
       if (!is_count(count)) fail(path, "cannot read mesh: PLY element '" + e.name + "' has no valid count");
       e.count = std::stoull(count);
-      if (e.count > file_size) fail(path, "cannot read mesh: PLY element '" + e.name + "' declares " + count +
-                                              " entries, more than the " + std::to_string(file_size) + "-byte file can hold");
+      if (e.count > file_size)
+        fail(path, "cannot read mesh: PLY element '" + e.name + "' declares " + count + " entries, more than the " +
+                       std::to_string(file_size) + "-byte file can hold");
       elements.push_back(e);
     } else if (key == "property" && !elements.empty()) {
       std::string type;
@@ -249,10 +246,7 @@ std::uintmax_t check_input_file(const std::string& path) {
 // aiMatrix4x4 is row-major: a1..a4 is the first row.
 Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
   Eigen::Matrix4d e;
-  e << m.a1, m.a2, m.a3, m.a4,
-       m.b1, m.b2, m.b3, m.b4,
-       m.c1, m.c2, m.c3, m.c4,
-       m.d1, m.d2, m.d3, m.d4;
+  e << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3, m.d4;
   return e;
 }
 
@@ -278,8 +272,8 @@ void append_mesh(const Walk& w, unsigned mesh_index, const Eigen::Matrix4d& tran
       const unsigned idx = face.mIndices[k];
       if (idx >= am.mNumVertices) {
         std::ostringstream msg;
-        msg << "face " << f << " of mesh " << mesh_index << " refers to vertex " << idx
-            << " but the mesh has " << am.mNumVertices << " vertices";
+        msg << "face " << f << " of mesh " << mesh_index << " refers to vertex " << idx << " but the mesh has "
+            << am.mNumVertices << " vertices";
         fail(w.path, msg.str());
       }
       if (remap[idx] < 0) {
@@ -291,8 +285,7 @@ void append_mesh(const Walk& w, unsigned mesh_index, const Eigen::Matrix4d& tran
         if (!q.allFinite()) {
           std::ostringstream msg;
           msg << "vertex " << idx << " of mesh " << mesh_index << " ('" << am.mName.C_Str()
-              << "') has a non-finite coordinate (" << v.x << ", " << v.y << ", " << v.z
-              << " in file units)";
+              << "') has a non-finite coordinate (" << v.x << ", " << v.y << ", " << v.z << " in file units)";
           fail(w.path, msg.str());
         }
         remap[idx] = static_cast<int>(w.out.vertices.size());
@@ -322,8 +315,8 @@ void walk_node(const Walk& w, const aiNode& node, const Eigen::Matrix4d& parent)
 Mesh import_mesh(const std::string& path, double scale) {
   // No aiProcess_FindDegenerates: degenerate triangles are reported, not removed.
   // ValidateDataStructure rejects out-of-range indices and similar broken data.
-  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                         aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+  const unsigned flags =
+      aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
   Assimp::Importer importer;
   const aiScene* scene = nullptr;
   try {
@@ -393,7 +386,8 @@ std::optional<ChildLimits> import_limits(const std::string& path, std::uintmax_t
   limits.memory_mib = 1024 + 64 * file_mib;
   const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
   if (pages > 0 && page_size > 0)
-    limits.memory_mib = std::min<std::uint64_t>(limits.memory_mib, (static_cast<std::uint64_t>(pages) * page_size >> 20) / 2);
+    limits.memory_mib =
+        std::min<std::uint64_t>(limits.memory_mib, (static_cast<std::uint64_t>(pages) * page_size >> 20) / 2);
   limits.seconds = static_cast<unsigned>(std::min<std::uint64_t>(60 + file_mib, 1u << 30));
   limits.wall_seconds = 3.0 * limits.seconds;  // a loaded machine, or a child that waits
   if (const char* env = std::getenv("SNAPFIT_IMPORT_MEMORY_MIB")) {

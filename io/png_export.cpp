@@ -1,9 +1,6 @@
 // Colour-mapped grid slices as PNG (io/png_export.h).
 #include "io/png_export.h"
 
-#include <png.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -12,10 +9,12 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <png.h>
 #include <string>
+#include <unistd.h>
 
-#include "snapfit/error.h"
 #include "io/atomic_write.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
@@ -47,9 +46,9 @@ Rgb diverging(double t) {
 
 // t in [0, 1]: matplotlib's viridis sampled at every 10%.
 Rgb sequential(double t) {
-  static constexpr unsigned char kStops[11][3] = {
-      {68, 1, 84},    {72, 36, 117},  {65, 68, 135},  {53, 95, 141},  {42, 120, 142}, {33, 145, 140},
-      {34, 168, 132}, {68, 191, 112}, {122, 209, 81}, {189, 223, 38}, {253, 231, 37}};
+  static constexpr unsigned char kStops[11][3] = {{68, 1, 84},    {72, 36, 117},  {65, 68, 135},  {53, 95, 141},
+                                                  {42, 120, 142}, {33, 145, 140}, {34, 168, 132}, {68, 191, 112},
+                                                  {122, 209, 81}, {189, 223, 38}, {253, 231, 37}};
   const double pos = std::clamp(t, 0.0, 1.0) * 10.0;
   const int i = std::min(static_cast<int>(pos), 9);
   const double f = pos - i;
@@ -127,8 +126,9 @@ SliceImage render_slice(const GridSpec& grid, const float* values, char axis, in
                 std::to_string(d.z()) + ")");
   if (values == nullptr) throw Error(who + ": no values (null pointer)");
   if (index < 0 || index >= d[a])
-    throw Error(who + ": " + std::string(1, axis) + " index " + std::to_string(index) + " is outside the grid, which has " +
-                std::to_string(d[a]) + " points along " + std::string(1, axis) + " (0.." + std::to_string(d[a] - 1) + ")");
+    throw Error(who + ": " + std::string(1, axis) + " index " + std::to_string(index) +
+                " is outside the grid, which has " + std::to_string(d[a]) + " points along " + std::string(1, axis) +
+                " (0.." + std::to_string(d[a] - 1) + ")");
   if (symmetric_limit && !(*symmetric_limit > 0.0 && std::isfinite(*symmetric_limit)))
     throw Error(who + ": symmetric limit " + num(*symmetric_limit) + " is not a positive number");
   const int u = a == 0 ? 1 : 0;  // horizontal grid axis
@@ -136,7 +136,8 @@ SliceImage render_slice(const GridSpec& grid, const float* values, char axis, in
   const int w = d[u], h = d[v];
   if (scale < 1 || static_cast<long long>(w) * scale > kMaxSide || static_cast<long long>(h) * scale > kMaxSide)
     throw Error(who + ": scale " + std::to_string(scale) + " must be at least 1 and keep each side of the " +
-                std::to_string(w) + " x " + std::to_string(h) + " slice within " + std::to_string(kMaxSide) + " pixels");
+                std::to_string(w) + " x " + std::to_string(h) + " slice within " + std::to_string(kMaxSide) +
+                " pixels");
 
   // The slice in image order (row 0 = top = largest index along v).
   std::vector<float> slice(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));

@@ -1,7 +1,5 @@
 // Scene files: JSON text <-> Scene, with validation that names the file and the field.
 // The format is documented field by field in docs/scenes.md; keep the two in step.
-#include "snapfit/scene.h"
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -13,8 +11,9 @@
 #include <set>
 #include <sstream>
 
-#include "snapfit/error.h"
 #include "mesh/procedural/procedural_parts.h"
+#include "snapfit/error.h"
+#include "snapfit/scene.h"
 
 namespace snapfit {
 namespace {
@@ -38,9 +37,9 @@ class DomBuilder : public nlohmann::json_sax<json> {
  public:
   json root;
   bool has_syntax_error = false;
-  std::size_t error_byte = 0;     // characters read when the error was found
-  std::string error_text;         // nlohmann's description, without its prefix
-  std::string duplicate_path;     // set when a key repeats within one object
+  std::size_t error_byte = 0;  // characters read when the error was found
+  std::string error_text;      // nlohmann's description, without its prefix
+  std::string duplicate_path;  // set when a key repeats within one object
 
   bool null() override { return add(json(nullptr)) != nullptr; }
   bool boolean(bool v) override { return add(json(v)) != nullptr; }
@@ -133,12 +132,8 @@ std::string fmt(double v) {
   os << std::setprecision(12) << v;
   return os.str();
 }
-std::string join(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
-}
-std::string at_index(const std::string& path, std::size_t i) {
-  return path + "[" + std::to_string(i) + "]";
-}
+std::string join(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
+std::string at_index(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
 
 [[noreturn]] void fail(const Ctx& c, const std::string& path, const std::string& problem) {
   throw Error(c.origin + ": " + (path.empty() ? "" : path + ": ") + problem);
@@ -149,8 +144,7 @@ void expect_object(const Ctx& c, const json& v, const std::string& path) {
 }
 
 // Rejects any key not in `allowed`, naming the full path and the keys that are allowed.
-void check_fields(const Ctx& c, const json& obj, const std::string& path,
-                  std::initializer_list<const char*> allowed) {
+void check_fields(const Ctx& c, const json& obj, const std::string& path, std::initializer_list<const char*> allowed) {
   expect_object(c, obj, path);
   for (const auto& item : obj.items()) {
     if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return item.key() == a; })) {
@@ -193,10 +187,8 @@ double non_negative(const Ctx& c, const json& v, const std::string& path) {
 }
 
 std::vector<double> numbers(const Ctx& c, const json& v, const std::string& path, std::size_t n) {
-  if (!v.is_array())
-    fail(c, path, "expected an array of " + std::to_string(n) + " numbers, got " + v.type_name());
-  if (v.size() != n)
-    fail(c, path, "expected " + std::to_string(n) + " numbers, got " + std::to_string(v.size()));
+  if (!v.is_array()) fail(c, path, "expected an array of " + std::to_string(n) + " numbers, got " + v.type_name());
+  if (v.size() != n) fail(c, path, "expected " + std::to_string(n) + " numbers, got " + std::to_string(v.size()));
   std::vector<double> out;
   for (std::size_t i = 0; i < n; ++i) out.push_back(number(c, v[i], at_index(path, i)));
   return out;
@@ -316,9 +308,12 @@ DescriptorParams read_descriptor(const Ctx& c, const json& v, const std::string&
   DescriptorParams d;
   if (const json* k = find(v, "kind")) {
     const std::string kind = text(c, *k, join(path, "kind"));
-    if (kind == "skeletal_density") d.kind = DescriptorKind::skeletal_density;
-    else if (kind == "indicator") d.kind = DescriptorKind::indicator;
-    else fail(c, join(path, "kind"), "unknown kind '" + kind + "' (expected skeletal_density or indicator)");
+    if (kind == "skeletal_density")
+      d.kind = DescriptorKind::skeletal_density;
+    else if (kind == "indicator")
+      d.kind = DescriptorKind::indicator;
+    else
+      fail(c, join(path, "kind"), "unknown kind '" + kind + "' (expected skeletal_density or indicator)");
   }
   if (d.kind == DescriptorKind::indicator)
     for (const char* key : {"sigma", "lambda_in", "lambda_out"})
@@ -347,8 +342,9 @@ GridParams read_grid(const Ctx& c, const json& v, const std::string& path) {
     const double r = number(c, *resolution, p);
     if (r != std::floor(r)) fail(c, p, "must be an integer (got " + fmt(r) + ")");
     if (r < kMinResolution || r > kMaxResolution)
-      fail(c, p, "must be in [" + std::to_string(kMinResolution) + ", " + std::to_string(kMaxResolution) +
-                     "] (got " + fmt(r) + ")");
+      fail(c, p,
+           "must be in [" + std::to_string(kMinResolution) + ", " + std::to_string(kMaxResolution) + "] (got " +
+               fmt(r) + ")");
     g.resolution = static_cast<int>(r);
   }
   if (const json* x = find(v, "padding")) g.padding = non_negative(c, *x, join(path, "padding"));
@@ -361,18 +357,20 @@ void read_frame(const Ctx& c, const json& v, const std::string& path, Scene& s) 
   if (const json* x = find(v, "rate_hz")) s.loop_rate_hz = positive(c, *x, join(path, "rate_hz"));
   const double period_ms = 1000.0 / s.loop_rate_hz;
   if (s.frame_budget_ms > period_ms)
-    fail(c, join(path, "budget_ms"), "must not exceed the loop period 1000 / rate_hz = " + fmt(period_ms) +
-                                         " ms (got " + fmt(s.frame_budget_ms) + ")");
+    fail(c, join(path, "budget_ms"),
+         "must not exceed the loop period 1000 / rate_hz = " + fmt(period_ms) + " ms (got " + fmt(s.frame_budget_ms) +
+             ")");
 }
 
 HapticsParams read_haptics(const Ctx& c, const json& v, const std::string& path) {
-  check_fields(c, v, path,
-               {"mass_kg", "stiffness_n_per_m", "rot_stiffness_nm_per_rad", "damping_ratio", "max_force_n",
-                "max_torque_nm", "geometry_gain", "geometry_strength", "settle_s", "success_position",
-                "success_angle_deg"});
+  check_fields(
+      c, v, path,
+      {"mass_kg", "stiffness_n_per_m", "rot_stiffness_nm_per_rad", "damping_ratio", "max_force_n", "max_torque_nm",
+       "geometry_gain", "geometry_strength", "settle_s", "success_position", "success_angle_deg"});
   HapticsParams h;
   if (const json* x = find(v, "mass_kg")) h.mass_kg = positive(c, *x, join(path, "mass_kg"));
-  if (const json* x = find(v, "stiffness_n_per_m")) h.stiffness_n_per_m = positive(c, *x, join(path, "stiffness_n_per_m"));
+  if (const json* x = find(v, "stiffness_n_per_m"))
+    h.stiffness_n_per_m = positive(c, *x, join(path, "stiffness_n_per_m"));
   if (const json* x = find(v, "rot_stiffness_nm_per_rad"))
     h.rot_stiffness_nm_per_rad = positive(c, *x, join(path, "rot_stiffness_nm_per_rad"));
   if (const json* x = find(v, "damping_ratio")) h.damping_ratio = non_negative(c, *x, join(path, "damping_ratio"));
@@ -427,8 +425,9 @@ Trajectory read_trajectory(const Ctx& c, const json& v, const std::string& path)
     k.time_s = number(c, require(c, keys[i], p, "time_s"), join(p, "time_s"));
     if (i == 0 && !(k.time_s >= 0)) fail(c, join(p, "time_s"), "must be >= 0 (got " + fmt(k.time_s) + ")");
     if (i > 0 && !(k.time_s > t.keyframes.back().time_s))
-      fail(c, join(p, "time_s"), "must be greater than the previous keyframe's time " +
-                                     fmt(t.keyframes.back().time_s) + " (got " + fmt(k.time_s) + ")");
+      fail(c, join(p, "time_s"),
+           "must be greater than the previous keyframe's time " + fmt(t.keyframes.back().time_s) + " (got " +
+               fmt(k.time_s) + ")");
     k.pose = read_pose_fields(c, keys[i], p);
     t.keyframes.push_back(k);
   }
@@ -442,8 +441,7 @@ void check_fixed_orientation(const Ctx& c, const Scene& s, const Pose& pose, con
 }
 
 Scene read_scene(const Ctx& c, const json& root) {
-  if (!root.is_object())
-    throw Error(c.origin + ": expected a JSON object at the top level, got " + root.type_name());
+  if (!root.is_object()) throw Error(c.origin + ": expected a JSON object at the top level, got " + root.type_name());
   // The version first: a file that is not a scene at all should say so.
   const json* version = find(root, "snapfit_scene");
   if (!version) fail(c, "snapfit_scene", "missing (the format version, must be 1)");
@@ -451,8 +449,8 @@ Scene read_scene(const Ctx& c, const json& root) {
   if (version->get<double>() != kFormatVersion)
     fail(c, "snapfit_scene", "unsupported format version " + fmt(version->get<double>()) + " (this build reads 1)");
   check_fields(c, root, "",
-               {"snapfit_scene", "name", "units", "part1", "part2", "assembled_pose", "descriptor", "grid",
-                "frame", "outputs", "motion", "trajectory", "haptics"});
+               {"snapfit_scene", "name", "units", "part1", "part2", "assembled_pose", "descriptor", "grid", "frame",
+                "outputs", "motion", "trajectory", "haptics"});
 
   Scene s;
   s.source_path = c.origin;
@@ -465,16 +463,17 @@ Scene read_scene(const Ctx& c, const json& root) {
   s.grid = read_grid(c, require(c, root, "", "grid"), "grid");
   if (const json* f = find(root, "frame")) read_frame(c, *f, "frame", s);
   if (const json* m = find(root, "motion")) s.motion = read_motion(c, *m, "motion");
-  if (const json* o = find(root, "outputs")) s.outputs = read_outputs(c, *o, "outputs", s.motion);
-  else s.outputs = Outputs{true, true, s.motion == Motion::six_dof};
+  if (const json* o = find(root, "outputs"))
+    s.outputs = read_outputs(c, *o, "outputs", s.motion);
+  else
+    s.outputs = Outputs{true, true, s.motion == Motion::six_dof};
   if (const json* t = find(root, "trajectory")) s.trajectory = read_trajectory(c, *t, "trajectory");
   if (const json* h = find(root, "haptics")) s.haptics = read_haptics(c, *h, "haptics");
 
   if (s.motion == Motion::translation) {
     if (s.assembled_pose) check_fixed_orientation(c, s, *s.assembled_pose, "assembled_pose.rotation");
     for (std::size_t i = 0; i < s.trajectory.keyframes.size(); ++i)
-      check_fixed_orientation(c, s, s.trajectory.keyframes[i].pose,
-                              at_index("trajectory.keyframes", i) + ".rotation");
+      check_fixed_orientation(c, s, s.trajectory.keyframes[i].pose, at_index("trajectory.keyframes", i) + ".rotation");
   }
   return s;
 }

@@ -1,8 +1,6 @@
 // VTK XML ImageData export (io/vti_export.h).
 #include "io/vti_export.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -12,29 +10,38 @@
 #include <functional>
 #include <set>
 #include <string>
+#include <unistd.h>
 
-#include "snapfit/error.h"
 #include "io/atomic_write.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
 
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem) {
-  throw Error(path + ": " + problem);
-}
+[[noreturn]] void fail(const std::string& path, const std::string& problem) { throw Error(path + ": " + problem); }
 
 // Attribute values: names may hold any character, the XML must stay well formed.
 std::string xml_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -49,8 +56,8 @@ std::string number(double x) {
 void check_inputs(const std::string& path, const GridSpec& grid, const std::vector<GridField>& fields) {
   const Eigen::Vector3i& d = grid.dims;
   if (d.x() < 1 || d.y() < 1 || d.z() < 1)
-    fail(path, "cannot write VTI: empty grid (dims " + std::to_string(d.x()) + " x " + std::to_string(d.y()) +
-                   " x " + std::to_string(d.z()) + ")");
+    fail(path, "cannot write VTI: empty grid (dims " + std::to_string(d.x()) + " x " + std::to_string(d.y()) + " x " +
+                   std::to_string(d.z()) + ")");
   if (!(grid.spacing > 0.0) || !std::isfinite(grid.spacing))
     fail(path, "cannot write VTI: grid spacing " + number(grid.spacing) + " is not a positive number");
   if (!grid.origin.allFinite()) fail(path, "cannot write VTI: grid origin is not finite");
@@ -102,8 +109,8 @@ bool put_floats(std::FILE* f, const float* v, std::size_t n) {
 void write_vti(const std::string& path, const GridSpec& grid, const std::vector<GridField>& fields) {
   check_inputs(path, grid, fields);
   const Eigen::Vector3i& d = grid.dims;
-  const std::string extent = "0 " + std::to_string(d.x() - 1) + " 0 " + std::to_string(d.y() - 1) + " 0 " +
-                             std::to_string(d.z() - 1);
+  const std::string extent =
+      "0 " + std::to_string(d.x() - 1) + " 0 " + std::to_string(d.y() - 1) + " 0 " + std::to_string(d.z() - 1);
   const std::string s = number(grid.spacing);
 
   // The first scalar and the first 3-vector become ParaView's active arrays.
@@ -141,15 +148,16 @@ void write_vti(const std::string& path, const GridSpec& grid, const std::vector<
   xml += "  <AppendedData encoding=\"raw\">\n   _";
   const std::string tail = "\n  </AppendedData>\n</VTKFile>\n";
 
-  write_file_atomically(path, errno_status([&](std::FILE* out) {
-    if (std::fwrite(xml.data(), 1, xml.size(), out) != xml.size()) return false;
-    for (std::size_t f = 0; f < fields.size(); ++f) {
-      if (!put_u64(out, bytes[f])) return false;
-      if (!put_floats(out, fields[f].values, grid.count() * static_cast<std::size_t>(fields[f].components)))
-        return false;
-    }
-    return std::fwrite(tail.data(), 1, tail.size(), out) == tail.size();
-  }));
+  write_file_atomically(
+      path, errno_status([&](std::FILE* out) {
+        if (std::fwrite(xml.data(), 1, xml.size(), out) != xml.size()) return false;
+        for (std::size_t f = 0; f < fields.size(); ++f) {
+          if (!put_u64(out, bytes[f])) return false;
+          if (!put_floats(out, fields[f].values, grid.count() * static_cast<std::size_t>(fields[f].components)))
+            return false;
+        }
+        return std::fwrite(tail.data(), 1, tail.size(), out) == tail.size();
+      }));
 }
 
 }  // namespace snapfit

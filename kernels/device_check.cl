@@ -13,8 +13,9 @@
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #endif
 
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void device_check(__global const REAL* x, __global REAL* partial_sums, const int n) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_check(__global const REAL* x,
+                                                                                __global REAL* partial_sums,
+                                                                                const int n) {
   __local REAL scratch[WG_SIZE];
   const int gid = get_global_id(0);
   const int lid = get_local_id(0);

@@ -9,15 +9,17 @@ __kernel void spectrum_product(__global const float2* s1, __global const float2*
   const int k = get_global_id(0);
   if (k >= dims.x * dims.y * dims.z) return;
   const int x = k % dims.x, y = (k / dims.x) % dims.y, z = k / (dims.x * dims.y);
-  const float3 w = (float3)((x <= dims.x / 2 ? x : x - dims.x) / length.x, (y <= dims.y / 2 ? y : y - dims.y) / length.y,
-                            (z <= dims.z / 2 ? z : z - dims.z) / length.z);
+  const float3 w =
+      (float3)((x <= dims.x / 2 ? x : x - dims.x) / length.x, (y <= dims.y / 2 ? y : y - dims.y) / length.y,
+               (z <= dims.z / 2 ? z : z - dims.z) / length.z);
   if (dot(w, w) > max_w2) {
     product[k] = (float2)(0.0f);
     return;
   }
   // pose: R row-major in s0..s8, shift = R c2 - c1 in s9..sb.
-  const float3 wp = -(float3)(pose.s0 * w.x + pose.s3 * w.y + pose.s6 * w.z, pose.s1 * w.x + pose.s4 * w.y + pose.s7 * w.z,
-                              pose.s2 * w.x + pose.s5 * w.y + pose.s8 * w.z);
+  const float3 wp =
+      -(float3)(pose.s0 * w.x + pose.s3 * w.y + pose.s6 * w.z, pose.s1 * w.x + pose.s4 * w.y + pose.s7 * w.z,
+                pose.s2 * w.x + pose.s5 * w.y + pose.s8 * w.z);
   const float2 v = sample_spectrum(s2, dims, wp * length.xyz);
   float c;
   const float s = sincos(TWO_PI * dot(w, (float3)(pose.s9, pose.sa, pose.sb)), &c);

@@ -51,7 +51,7 @@ typedef float2 Sample;
 inline float2 axis_phase(const int k, const float hi, const float lo) {
   const float kf = (float)k;
   const float p = kf * hi;
-  const float e = fma(kf, hi, -p);                // k hi = p + e exactly
+  const float e = fma(kf, hi, -p);                    // k hi = p + e exactly
   const float turns = (p - rint(p)) + (e + kf * lo);  // k x mod 1, in [-0.5, 0.5] + tiny
   return (float2)(cospi(2.0f * turns), sinpi(2.0f * turns));
 }
@@ -59,7 +59,8 @@ inline float2 axis_phase(const int k, const float hi, const float lo) {
 // The spectrum sample at fractional cube index u (rows summed first, then planes:
 // short dependency chains, so the loads of neighbouring taps overlap).
 #ifndef TRANSLATION_ONLY
-__attribute__((always_inline)) inline Sample sample_cube(__global const CUBE_T* cube, const int4 cube_dims, const int4 offset, const float3 u) {
+__attribute__((always_inline)) inline Sample sample_cube(__global const CUBE_T* cube, const int4 cube_dims,
+                                                         const int4 offset, const float3 u) {
   float wx[TAPS], wy[TAPS], wz[TAPS];
   const int ix = axis_weights(u.x, wx) + offset.x, iy = axis_weights(u.y, wy) + offset.y,
             iz = axis_weights(u.z, wz) + offset.z;
@@ -103,10 +104,11 @@ inline void reduce_partials(__local float* scratch, const int lid, const float2 
 }
 
 // One mode's term (seed 000 eq. 10-12) added to the sums f, force, torque.
-__attribute__((always_inline)) inline void add_mode(const float4 mode, const float16 P, __local const float2* tx, __local const float2* ty,
-                     __local const float2* tz, __global const CUBE_T* cube, const int4 cube_dims, const int4 offset,
-                     const float4 length, const float4 inv_length, const float4 cube_scale, float2* f,
-                     float3* force, float3* torque) {
+__attribute__((always_inline)) inline void add_mode(const float4 mode, const float16 P, __local const float2* tx,
+                                                    __local const float2* ty, __local const float2* tz,
+                                                    __global const CUBE_T* cube, const int4 cube_dims,
+                                                    const int4 offset, const float4 length, const float4 inv_length,
+                                                    const float4 cube_scale, float2* f, float3* force, float3* torque) {
   const short2 kxy = as_short2(mode.z), kzf = as_short2(mode.w);
   const int3 k = (int3)(kxy.x, kxy.y, kzf.x);
   const float3 w = convert_float3(k) * inv_length.xyz;  // w_k = k / L
@@ -135,12 +137,11 @@ __attribute__((always_inline)) inline void add_mode(const float4 mode, const flo
 #endif
 }
 
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void pose_query(__global const float4* modes, __global const CUBE_T* cube,
-                const int4 cube_dims, const int4 offset, const float4 length, const float4 cube_scale,
-                const float16 pose_arg, __global const float16* poses, const int pose_count,
-                const int mode_count, const int groups_per_pose, const int table_half,
-                __global float* partials, const float4 inv_length, const float4 extra_mode) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void pose_query(
+    __global const float4* modes, __global const CUBE_T* cube, const int4 cube_dims, const int4 offset,
+    const float4 length, const float4 cube_scale, const float16 pose_arg, __global const float16* poses,
+    const int pose_count, const int mode_count, const int groups_per_pose, const int table_half,
+    __global float* partials, const float4 inv_length, const float4 extra_mode) {
   const int group = get_group_id(0);
   const int pose = group / groups_per_pose;
   const int slice = group % groups_per_pose;
@@ -167,11 +168,11 @@ void pose_query(__global const float4* modes, __global const CUBE_T* cube,
   int m = slice * WG_SIZE + lid;
   for (; m + stride < mode_count; m += 2 * stride) {
     add_mode(modes[m], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f, &force, &torque);
-    add_mode(modes[m + stride], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f1, &force1, &torque1);
+    add_mode(modes[m + stride], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f1, &force1,
+             &torque1);
   }
   if (m < mode_count)
-    add_mode(modes[m], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f,
-             &force, &torque);
+    add_mode(modes[m], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f, &force, &torque);
   if (slice == 0 && lid == 0)
     add_mode(extra_mode, P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f1, &force1,
              &torque1);
@@ -201,11 +202,10 @@ void pose_query(__global const float4* modes, __global const CUBE_T* cube,
 // are single terms added once per pose: code 1 weighs 1 everywhere (the mode of a pair
 // that m' cuts), code 2 weighs -1 in the real outputs and +1 in Im f (a node without a
 // partner, which the folded lines counted twice).
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void translation_lines(__global const float2* W, __global const int4* lines, __global const float4* extras,
-                       const int extra_count, const int folded, const float16 pose_arg, __global const float16* poses,
-                       const int pose_count, const int line_count, const int groups_per_pose, const int table_half,
-                       __global float* partials, const float4 inv_length) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void translation_lines(
+    __global const float2* W, __global const int4* lines, __global const float4* extras, const int extra_count,
+    const int folded, const float16 pose_arg, __global const float16* poses, const int pose_count, const int line_count,
+    const int groups_per_pose, const int table_half, __global float* partials, const float4 inv_length) {
   const int group = get_group_id(0);
   const int pose = group / groups_per_pose;
   const int slice = group % groups_per_pose;
@@ -258,7 +258,8 @@ void translation_lines(__global const float2* W, __global const int4* lines, __g
     const float2 term = real_weight * cmul(s, p);
     f += (float2)(term.x, folded ? 0.0f : term.y);
 #ifdef FORCE
-    force += -TWO_PI * (float3)(real_weight * cmul(sx, p).y, (float)kyz.x * term.y, (float)kyz.y * term.y) * inv_length.xyz;
+    force +=
+        -TWO_PI * (float3)(real_weight * cmul(sx, p).y, (float)kyz.x * term.y, (float)kyz.y * term.y) * inv_length.xyz;
 #endif
   }
   if (slice == 0 && lid == 0) {

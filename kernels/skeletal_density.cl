@@ -117,7 +117,8 @@ inline real_v accepted_error(const Gaussian g, const mask_v active, const real_v
   m1 = select(m1, (real_v)(g.g0 * 0.60653066f / s), ((lo <= s) & (hi >= s)) | ((lo <= -s) & (hi >= -s)));  // e^-1/2
   real_v m2 = fmax(fabs(lo * lo * g.inv_sigma2 - 1.0f) * glo, fabs(hi * hi * g.inv_sigma2 - 1.0f) * ghi) * g.inv_sigma2;
   m2 = select(m2, fmax(m2, g.g0 * g.inv_sigma2), has0);
-  m2 = select(m2, fmax(m2, 0.44626032f * g.g0 * g.inv_sigma2), ((lo <= s3) & (hi >= s3)) | ((lo <= -s3) & (hi >= -s3)));  // 2e^-3/2
+  m2 = select(m2, fmax(m2, 0.44626032f * g.g0 * g.inv_sigma2),
+              ((lo <= s3) & (hi >= s3)) | ((lo <= -s3) & (hi >= -s3)));  // 2e^-3/2
   const real_v err2 = cluster_error_with(m0, m1, m2, d, r, second, xi);
   return select(err, err2, retry & acceptable(g, err2, area, dm, tolerance));
 }
@@ -137,12 +138,16 @@ inline real_v triangle_solid_angle_v(const Points p, const float3 va, const floa
 }
 
 // One triangle for the lanes in `active`, split adaptively. Adds to *s and *bound.
-inline void integrate_triangle(const Points p, const mask_v active, const Gaussian g, const float tolerance,
-                               float3 a0, float3 b0, float3 c0, real_v* s, real_v* bound) {
+inline void integrate_triangle(const Points p, const mask_v active, const Gaussian g, const float tolerance, float3 a0,
+                               float3 b0, float3 c0, real_v* s, real_v* bound) {
   float3 sa[MAX_SPLIT_DEPTH + 1], sb[MAX_SPLIT_DEPTH + 1], sc[MAX_SPLIT_DEPTH + 1];
   int sdepth[MAX_SPLIT_DEPTH + 1];
   mask_v smask[MAX_SPLIT_DEPTH + 1];
-  sa[0] = a0; sb[0] = b0; sc[0] = c0; sdepth[0] = 0; smask[0] = active;
+  sa[0] = a0;
+  sb[0] = b0;
+  sc[0] = c0;
+  sdepth[0] = 0;
+  smask[0] = active;
   int top = 1;
   while (top > 0) {
     --top;
@@ -187,23 +192,42 @@ inline void integrate_triangle(const Points p, const mask_v active, const Gaussi
     // Split the longest edge; the two halves go on the stack for the lanes still open.
     const float lab = dot(b - a, b - a), lbc = dot(c - b, c - b), lca = dot(a - c, a - c);
     float3 x0, x1, x2;  // x0-x1 is the longest edge
-    if (lab >= lbc && lab >= lca) { x0 = a; x1 = b; x2 = c; }
-    else if (lbc >= lca) { x0 = b; x1 = c; x2 = a; }
-    else { x0 = c; x1 = a; x2 = b; }
+    if (lab >= lbc && lab >= lca) {
+      x0 = a;
+      x1 = b;
+      x2 = c;
+    } else if (lbc >= lca) {
+      x0 = b;
+      x1 = c;
+      x2 = a;
+    } else {
+      x0 = c;
+      x1 = a;
+      x2 = b;
+    }
     const float3 mid = 0.5f * (x0 + x1);
-    sa[top] = x0; sb[top] = mid; sc[top] = x2; sdepth[top] = depth + 1; smask[top] = rest; ++top;
-    sa[top] = mid; sb[top] = x1; sc[top] = x2; sdepth[top] = depth + 1; smask[top] = rest; ++top;
+    sa[top] = x0;
+    sb[top] = mid;
+    sc[top] = x2;
+    sdepth[top] = depth + 1;
+    smask[top] = rest;
+    ++top;
+    sa[top] = mid;
+    sb[top] = x1;
+    sc[top] = x2;
+    sdepth[top] = depth + 1;
+    smask[top] = rest;
+    ++top;
   }
 }
 
 // Work item i evaluates the LANES points point_ids[first_item + LANES i + lane] (a
 // negative id: padding); distance_in and the outputs hold the chunk's items in that order.
-__kernel void skeletal_density(const long first_item, const long item_count, const float3 origin,
-                               const float spacing, const int nx, const int ny,
-                               __global const BvhNode* nodes, __global const float4* triangles,
-                               __global const float* distance_in, const float min_distance,
-                               const float sigma, const float tolerance, const int triangle_count,
-                               __global float* density_out, __global float* bound_out,
+__kernel void skeletal_density(const long first_item, const long item_count, const float3 origin, const float spacing,
+                               const int nx, const int ny, __global const BvhNode* nodes,
+                               __global const float4* triangles, __global const float* distance_in,
+                               const float min_distance, const float sigma, const float tolerance,
+                               const int triangle_count, __global float* density_out, __global float* bound_out,
                                __global const long* point_ids) {
   const long gid = get_global_id(0);
   if (gid * LANES >= item_count) return;
@@ -224,8 +248,8 @@ __kernel void skeletal_density(const long first_item, const long item_count, con
   // The paper's O(m n) sum (seed 000 sec. 3.1): every triangle, split adaptively, no
   // hierarchy. `nodes` is unused; `triangle_count` triangles are read in order.
   for (int t = 0; t < triangle_count; ++t)
-    integrate_triangle(p, valid, g, tolerance, triangles[3 * t].xyz, triangles[3 * t + 1].xyz,
-                       triangles[3 * t + 2].xyz, &s, &bound);
+    integrate_triangle(p, valid, g, tolerance, triangles[3 * t].xyz, triangles[3 * t + 1].xyz, triangles[3 * t + 2].xyz,
+                       &s, &bound);
 #else
   int stack[STACK_SIZE];
   mask_v stack_mask[STACK_SIZE];

@@ -37,7 +37,6 @@ inline int axis_weights(const float u, float* w) {
 #endif
 #endif
 
-
 #ifndef TRANSLATION_ONLY
 // One spectrum interpolated at fractional FFT index u (periodic).
 inline float2 sample_spectrum(__global const float2* s, const int4 dims, const float3 u) {

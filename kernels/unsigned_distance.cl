@@ -3,9 +3,8 @@
 // (The sign comes from the winding number: docs/design.md, xi < 0 inside.)
 
 __kernel void unsigned_distance(const long first_point, const long point_count, const float3 origin,
-                                const float spacing, const int nx, const int ny,
-                                __global const BvhNode* nodes, __global const float4* triangles,
-                                __global float* distance_out) {
+                                const float spacing, const int nx, const int ny, __global const BvhNode* nodes,
+                                __global const float4* triangles, __global float* distance_out) {
   const long id = first_point + get_global_id(0);
   if (get_global_id(0) >= point_count) return;
   const float3 p = grid_point(id, origin, spacing, nx, ny);
@@ -20,7 +19,8 @@ __kernel void unsigned_distance(const long first_point, const long point_count, 
     const int4 links = node->links;
     if (links.x < 0) {
       for (int t = links.y; t < links.y + links.z; ++t) {
-        const float d2 = point_triangle_distance2(p, triangles[3 * t].xyz, triangles[3 * t + 1].xyz, triangles[3 * t + 2].xyz);
+        const float d2 =
+            point_triangle_distance2(p, triangles[3 * t].xyz, triangles[3 * t + 1].xyz, triangles[3 * t + 2].xyz);
         best2 = fmin(best2, d2);
       }
       continue;

@@ -11,14 +11,15 @@
 // With -D POINT_LIST the points are grid indices point_ids[first_point + i] (the seeds
 // of engine/winding_propagation.h) instead of the range first_point + i.
 
-__kernel void winding_number(const long first_point, const long point_count, const float3 origin,
-                             const float spacing, const int nx, const int ny,
-                             __global const BvhNode* nodes, __global const float4* triangles,
-                             const float tolerance, __global float* winding_out, __global float* bound_out
+__kernel void winding_number(const long first_point, const long point_count, const float3 origin, const float spacing,
+                             const int nx, const int ny, __global const BvhNode* nodes,
+                             __global const float4* triangles, const float tolerance, __global float* winding_out,
+                             __global float* bound_out
 #ifdef POINT_LIST
-                             , __global const long* point_ids
+                             ,
+                             __global const long* point_ids
 #endif
-                             ) {
+) {
   if (get_global_id(0) >= point_count) return;
 #ifdef POINT_LIST
   const long id = point_ids[first_point + get_global_id(0)];

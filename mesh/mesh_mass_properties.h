@@ -7,8 +7,8 @@
 namespace snapfit {
 
 struct SolidMoments {
-  double volume = 0;               // signed: < 0 for inward normals
-  double mean_square_radius = 0;   // <|q - origin|^2> over the solid
+  double volume = 0;              // signed: < 0 for inward normals
+  double mean_square_radius = 0;  // <|q - origin|^2> over the solid
 };
 
 // int_V |q|^2 dV = (1/5) sum_T (q.n) int_T |q|^2 dA, exact per triangle:

@@ -52,8 +52,7 @@ MeshReport validate_mesh(const Mesh& mesh) {
     for (int k = 0; k < 3; ++k)
       if (mesh.triangles[t][k] < 0 || mesh.triangles[t][k] >= n)
         throw Error("mesh: triangle " + std::to_string(t) + " refers to vertex " +
-                    std::to_string(mesh.triangles[t][k]) + " but there are " +
-                    std::to_string(n) + " vertices");
+                    std::to_string(mesh.triangles[t][k]) + " but there are " + std::to_string(n) + " vertices");
 
   const std::vector<int> id = weld(mesh.vertices, r.vertex_count);
   if (!mesh.vertices.empty()) {
@@ -86,14 +85,20 @@ MeshReport validate_mesh(const Mesh& mesh) {
     const std::array<std::pair<int, int>, 3> directed{{{a, b}, {b, d}, {d, a}}};
     for (const auto& [from, to] : directed) {
       EdgeUse& use = edges[{std::min(from, to), std::max(from, to)}];
-      if (from < to) ++use.forward; else ++use.backward;
+      if (from < to)
+        ++use.forward;
+      else
+        ++use.backward;
     }
   }
   for (const auto& [key, use] : edges) {
     const int total = use.forward + use.backward;
-    if (total == 1) ++r.boundary_edges;
-    else if (total > 2) ++r.non_manifold_edges;
-    else if (use.forward != 1) ++r.inconsistent_edges;  // total 2, same direction twice
+    if (total == 1)
+      ++r.boundary_edges;
+    else if (total > 2)
+      ++r.non_manifold_edges;
+    else if (use.forward != 1)
+      ++r.inconsistent_edges;  // total 2, same direction twice
   }
   return r;
 }
@@ -120,10 +125,8 @@ std::string format_mesh_report(const MeshReport& r) {
   s << "enclosed volume: " << r.enclosed_volume << "\n";
   if (r.enclosed_volume < 0.0)
     s << "warning: enclosed volume is negative: normals point inward (triangles wound clockwise seen from outside)\n";
-  if (!r.watertight())
-    s << "warning: mesh is not watertight: enclosed volume is not well defined\n";
-  if (r.degenerate_triangles > 0)
-    s << "warning: " << r.degenerate_triangles << " degenerate triangle(s)\n";
+  if (!r.watertight()) s << "warning: mesh is not watertight: enclosed volume is not well defined\n";
+  if (r.degenerate_triangles > 0) s << "warning: " << r.degenerate_triangles << " degenerate triangle(s)\n";
   return s.str();
 }
 

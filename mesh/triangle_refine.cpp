@@ -1,11 +1,9 @@
 #include "mesh/triangle_refine.h"
 
-#include <tbb/parallel_for.h>
-
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <string>
+#include <tbb/parallel_for.h>
 
 #include "snapfit/error.h"
 
@@ -23,8 +21,12 @@ double centroid_radius(const Vec3& a, const Vec3& b, const Vec3& c) {
 std::size_t piece_count(const Vec3& a, const Vec3& b, const Vec3& c, double max_radius, int depth = 0) {
   if (centroid_radius(a, b, c) <= max_radius || depth >= 60) return 1;
   const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
-  if (ab >= bc && ab >= ca) return piece_count(a, (a + b) / 2, c, max_radius, depth + 1) + piece_count((a + b) / 2, b, c, max_radius, depth + 1);
-  if (bc >= ca) return piece_count(b, (b + c) / 2, a, max_radius, depth + 1) + piece_count((b + c) / 2, c, a, max_radius, depth + 1);
+  if (ab >= bc && ab >= ca)
+    return piece_count(a, (a + b) / 2, c, max_radius, depth + 1) +
+           piece_count((a + b) / 2, b, c, max_radius, depth + 1);
+  if (bc >= ca)
+    return piece_count(b, (b + c) / 2, a, max_radius, depth + 1) +
+           piece_count((b + c) / 2, c, a, max_radius, depth + 1);
   return piece_count(c, (c + a) / 2, b, max_radius, depth + 1) + piece_count((c + a) / 2, a, b, max_radius, depth + 1);
 }
 
@@ -59,7 +61,8 @@ Mesh refine_triangles(const Mesh& mesh, double max_radius, std::size_t max_trian
   // inscribed equilateral triangle), so area / that bounds the piece count from below:
   // refuse at once rather than after counting billions of pieces.
   double area = 0;
-  for (std::size_t t = 0; t < n; ++t) area += 0.5 * (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0)).norm();
+  for (std::size_t t = 0; t < n; ++t)
+    area += 0.5 * (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0)).norm();
   const double at_least = area / (1.299038105676658 * max_radius * max_radius);
   if (at_least > static_cast<double>(max_triangles))
     throw Error("refining " + std::to_string(n) + " triangles to radius " + std::to_string(max_radius) +
@@ -81,7 +84,8 @@ Mesh refine_triangles(const Mesh& mesh, double max_radius, std::size_t max_trian
     std::size_t at = 3 * offset[t];
     split(corner(t, 0), corner(t, 1), corner(t, 2), max_radius, out.vertices.data(), at);
     for (std::size_t p = offset[t]; p < offset[t + 1]; ++p)
-      out.triangles[p] = Eigen::Vector3i(static_cast<int>(3 * p), static_cast<int>(3 * p + 1), static_cast<int>(3 * p + 2));
+      out.triangles[p] =
+          Eigen::Vector3i(static_cast<int>(3 * p), static_cast<int>(3 * p + 1), static_cast<int>(3 * p + 2));
   });
   return out;
 }

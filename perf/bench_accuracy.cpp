@@ -22,14 +22,14 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "pipeline/assembly_pair.h"
-#include "engine/query_engine.h"
-#include "engine/device.h"
-#include "engine/reference_query.h"
-#include "report/plot.h"
-#include "perf/bench_common.h"
-#include "scheduler/engine_tuning.h"
 #include "core/quantile.h"
+#include "engine/device.h"
+#include "engine/query_engine.h"
+#include "engine/reference_query.h"
+#include "perf/bench_common.h"
+#include "pipeline/assembly_pair.h"
+#include "report/plot.h"
+#include "scheduler/engine_tuning.h"
 #include "scheduler/trajectory.h"
 
 using namespace snapfit;
@@ -81,10 +81,14 @@ int main(int argc, char** argv) try {
   bool quick = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (bench::is_option(a, "--scene")) scene_path = bench::option_value(argc, argv, i, "--scene");
-    else if (bench::is_option(a, "--out")) out_dir = bench::option_value(argc, argv, i, "--out");
-    else if (a == "--quick") quick = true;
-    else throw Error("unknown option " + a + " (see the comment at the top of perf/bench_accuracy.cpp)");
+    if (bench::is_option(a, "--scene"))
+      scene_path = bench::option_value(argc, argv, i, "--scene");
+    else if (bench::is_option(a, "--out"))
+      out_dir = bench::option_value(argc, argv, i, "--out");
+    else if (a == "--quick")
+      quick = true;
+    else
+      throw Error("unknown option " + a + " (see the comment at the top of perf/bench_accuracy.cpp)");
   }
   const std::string load_start = bench::read_loadavg();
   const Scene scene = load_scene(scene_path);
@@ -138,7 +142,8 @@ int main(int argc, char** argv) try {
 
   // The auto-tuner's point for the scene's budget (tricubic, oversampling 2, float).
   auto tuned_engine = make_query_engine(ctx, pair.spectra, scene_variant);
-  const TuningKey key = tuning_key_for(device.info, scene_variant, pair.spectra, scene.frame_budget_ms, 0.25, scene.loop_rate_hz);
+  const TuningKey key =
+      tuning_key_for(device.info, scene_variant, pair.spectra, scene.frame_budget_ms, 0.25, scene.loop_rate_hz);
   TuneOptions tune;
   if (quick) tune.repetitions = 100;
   const EngineTuning tuned = tune_engine(*tuned_engine, key, sample_trajectory(t, 100.0), tune, false, nullptr);
@@ -169,8 +174,10 @@ int main(int argc, char** argv) try {
         ErrorSums fe;
         for (std::size_t i = 0; i < poses.size(); ++i) {
           const QueryResult r = engine->query(poses[i]);
-          if (r.flags) ++f.flagged;
-          else fe.add(r, reference[i]);
+          if (r.flags)
+            ++f.flagged;
+          else
+            fe.add(r, reference[i]);
         }
         std::vector<double> times;
         for (int k = 0; k < repeats; ++k) {
@@ -190,15 +197,18 @@ int main(int argc, char** argv) try {
         o.modes = m;
         for (std::size_t i = 0; i < poses.size(); ++i) {
           const QueryResult r = reference_query(s, poses[i], o, &order);
-          if (r.flags) ++d.flagged;
-          else de.add(r, reference[i]);
+          if (r.flags)
+            ++d.flagged;
+          else
+            de.add(r, reference[i]);
           dtimes.push_back(1e3 * r.seconds);
         }
         d.ms = quantile(dtimes, 0.5);
         d.err_energy = de.rel(0), d.err_force = de.rel(1), d.err_torque = de.rel(2);
         if (!d.flagged) rows.push_back(d);
-        if (f.flagged) flagged_settings.push_back({{"oversampling", os}, {"interpolation", scheme_name}, {"modes", m},
-                                                   {"flagged_poses", f.flagged}});
+        if (f.flagged)
+          flagged_settings.push_back(
+              {{"oversampling", os}, {"interpolation", scheme_name}, {"modes", m}, {"flagged_poses", f.flagged}});
         if (f.flagged)
           std::printf("os %.1f %-9s m' %7zu  %zu of %zu poses outside this FFT box's alias-free range: no figure\n", os,
                       scheme_name.c_str(), m, f.flagged, poses.size());
@@ -216,8 +226,13 @@ int main(int argc, char** argv) try {
   for (const Row& r : rows) {
     csv << r.oversampling << ',' << r.interpolation << ',' << r.precision << ',' << r.modes << ',' << r.ms << ','
         << r.err_energy << ',' << r.err_force << ',' << r.err_torque << '\n';
-    jrows.push_back({{"oversampling", r.oversampling}, {"interpolation", r.interpolation}, {"precision", r.precision},
-                     {"modes", r.modes}, {"ms_p50", r.ms}, {"err_energy", r.err_energy}, {"err_force", r.err_force},
+    jrows.push_back({{"oversampling", r.oversampling},
+                     {"interpolation", r.interpolation},
+                     {"precision", r.precision},
+                     {"modes", r.modes},
+                     {"ms_p50", r.ms},
+                     {"err_energy", r.err_energy},
+                     {"err_force", r.err_force},
                      {"err_torque", r.err_torque}});
   }
   std::ofstream(fs::path(out_dir) / "accuracy.csv") << csv.str();
@@ -228,11 +243,19 @@ int main(int argc, char** argv) try {
   for (const auto& [name, err] : quantities) {
     if (std::string(name) == "torque" && !torque) continue;
     Chart c{std::string("Relative ") + name + " error against time per query (" + device.info.name + ")",
-            "ms per query (p50)", std::string("relative ") + name + " error", true, true, {}, {}, {}};
+            "ms per query (p50)",
+            std::string("relative ") + name + " error",
+            true,
+            true,
+            {},
+            {},
+            {}};
     for (double os : oversamplings)
       for (const char* scheme : {"trilinear", "tricubic"})
         for (const char* precision : {"float", "double"}) {
-          Series s{std::string(scheme) + " " + precision + " x" + oversampling_label(os), {}, {},
+          Series s{std::string(scheme) + " " + precision + " x" + oversampling_label(os),
+                   {},
+                   {},
                    Series::Style::line_points};
           for (const Row& r : rows)
             if (r.oversampling == os && r.interpolation == scheme && r.precision == precision && r.*err > 0)
@@ -245,8 +268,12 @@ int main(int argc, char** argv) try {
     for (const Row* r : pareto(rows, err)) {
       if (!(r->*err > 0)) continue;
       front.x.push_back(r->ms), front.y.push_back(r->*err);
-      jf.push_back({{"oversampling", r->oversampling}, {"interpolation", r->interpolation},
-                    {"precision", r->precision}, {"modes", r->modes}, {"ms_p50", r->ms}, {"error", r->*err}});
+      jf.push_back({{"oversampling", r->oversampling},
+                    {"interpolation", r->interpolation},
+                    {"precision", r->precision},
+                    {"modes", r->modes},
+                    {"ms_p50", r->ms},
+                    {"error", r->*err}});
     }
     c.series.push_back(front);
     fronts[name] = jf;
@@ -263,9 +290,12 @@ int main(int argc, char** argv) try {
                                  {"device", device.info.name},
                                  {"scene", scene_path},
                                  {"poses", poses.size()},
-                                 {"reference", {{"oversampling", oversamplings.back()}, {"interpolation", "tricubic"},
-                                                {"precision", "double"}, {"modes", reference.front().modes},
-                                                {"seconds_total", ref_seconds}}},
+                                 {"reference",
+                                  {{"oversampling", oversamplings.back()},
+                                   {"interpolation", "tricubic"},
+                                   {"precision", "double"},
+                                   {"modes", reference.front().modes},
+                                   {"seconds_total", ref_seconds}}},
                                  {"tuned_modes", tuned.result.chosen_modes},
                                  {"rows", jrows},
                                  {"outside_alias_free_box", flagged_settings},

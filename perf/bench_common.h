@@ -1,21 +1,19 @@
 #pragma once
 // Small helpers shared by the perf/ benchmarks: argument reading, load average, date.
-#include <unistd.h>
-
+#include <CL/opencl.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <ctime>
+#include <fstream>
 #include <functional>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <fstream>
 #include <sstream>
 #include <string>
-
-#include <CL/opencl.hpp>
+#include <unistd.h>
 
 #include "snapfit/error.h"
 
@@ -182,8 +180,12 @@ inline std::string fixed(double v, int prec = 1) {
   os << std::fixed << std::setprecision(prec) << v;
   return os.str();
 }
-inline std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s : std::string(w - s.size(), ' ') + s; }
-inline std::string padr(const std::string& s, std::size_t w) { return s.size() >= w ? s : s + std::string(w - s.size(), ' '); }
+inline std::string pad(const std::string& s, std::size_t w) {
+  return s.size() >= w ? s : std::string(w - s.size(), ' ') + s;
+}
+inline std::string padr(const std::string& s, std::size_t w) {
+  return s.size() >= w ? s : s + std::string(w - s.size(), ' ');
+}
 // A finite number as JSON, anything else as null (JSON has no NaN or Inf).
 inline nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 

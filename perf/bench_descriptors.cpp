@@ -41,29 +41,29 @@
 #include <iostream>
 #include <limits>
 #include <map>
-#include <sys/resource.h>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
+#include <sys/resource.h>
 #include <thread>
 #include <vector>
 
-#include "perf/bench_common.h"
+#include "core/grid.h"
 #include "engine/compute_context.h"
 #include "engine/descriptors.h"
 #include "engine/device.h"
-#include "snapfit/error.h"
-#include "core/grid.h"
-#include "pipeline/part_fields.h"
 #include "mesh/mesh.h"
+#include "perf/bench_common.h"
+#include "pipeline/part_fields.h"
+#include "snapfit/error.h"
 #if __has_include("report/plot.h")
 #include "report/plot.h"
 #define SNAPFIT_BENCH_PLOTS 1
 #endif
-#include "snapfit/scene.h"
-#include "mesh/procedural/procedural_parts.h"
 #include "core/progress.h"
+#include "mesh/procedural/procedural_parts.h"
+#include "snapfit/scene.h"
 
 namespace {
 
@@ -268,7 +268,7 @@ struct Row {
   double tolerance = 0, sigma = 0;
   std::string variant;  // "hierarchical" or "brute_force"
   int lanes = 1;        // grid points per density work item
-  double cpu_s = 0;  // process CPU seconds of the kept run (robust to other load)
+  double cpu_s = 0;     // process CPU seconds of the kept run (robust to other load)
   double seconds = 0, distance_s = 0, winding_s = 0, density_s = 0, refine_s = 0, bvh_s = 0;
   double max_bound = 0, mean_bound = 0, mean_abs_s = 0, median_bound = 0;
   double max_winding_bound = 0, mean_winding_bound = 0;
@@ -362,10 +362,10 @@ struct BruteComparison {
   std::size_t points = 0, n_triangles = 0;
   double hier_total = 0, brute_total = 0, hier_density = 0, brute_density = 0;
   double speedup_density = 0, speedup_total = 0;
-  double max_abs_diff = 0;         // max |s_h - s_b|
+  double max_abs_diff = 0;  // max |s_h - s_b|
   double mean_abs_diff = 0, mean_bound_sum = 0;
   double max_diff_over_bounds = 0;  // max |s_h - s_b| / (bound_h + bound_b)
-  std::size_t points_over = 0;     // points where |s_h - s_b| > bound_h + bound_b
+  std::size_t points_over = 0;      // points where |s_h - s_b| > bound_h + bound_b
   double max_bound_sum = 0, mean_abs_s = 0;
 };
 
@@ -392,8 +392,10 @@ BruteComparison compare(const Measured& h, const Measured& b) {
     c.mean_bound_sum += bounds / sh.size();
     c.max_bound_sum = std::max(c.max_bound_sum, bounds);
     if (d > bounds) ++c.points_over;
-    if (bounds > 0) c.max_diff_over_bounds = std::max(c.max_diff_over_bounds, d / bounds);
-    else if (d > 0) c.max_diff_over_bounds = std::numeric_limits<double>::infinity();
+    if (bounds > 0)
+      c.max_diff_over_bounds = std::max(c.max_diff_over_bounds, d / bounds);
+    else if (d > 0)
+      c.max_diff_over_bounds = std::numeric_limits<double>::infinity();
   }
   return c;
 }
@@ -435,13 +437,31 @@ void print_rows(const std::string& title, const std::vector<Row>& rows) {
   std::cout << "\n== " << title << "\n";
   std::vector<std::vector<std::string>> t;
   for (const Row& r : rows)
-    t.push_back({r.m_label, dims_string(r.grid), std::to_string(r.grid.count()), std::to_string(r.n_triangles),
-                 std::to_string(r.refined_triangles), fmt(r.tolerance), r.variant == "brute_force" ? "brute" : "hier",
-                 std::to_string(r.lanes), fixed(r.seconds), fixed(r.cpu_s, 1), fixed(r.distance_s), fixed(r.winding_s), fixed(r.density_s), fixed(r.refine_s),
-                 fixed(r.bvh_s), fmt(r.max_bound), fmt(r.mean_bound), fmt(r.median_bound),
-                 fmt(r.mean_abs_s), fmt(r.mean_bound / r.mean_abs_s), std::to_string(r.runs), fixed(r.load_before, 1)});
-  print_table({"m", "dims", "points", "n", "refined", "tol", "variant", "lanes", "total s", "cpu s", "dist s", "wind s", "dens s",
-               "refine s", "bvh s", "max bound", "mean bound", "p50 bound", "mean|s|", "bnd/|s|", "runs", "load"},
+    t.push_back({r.m_label,
+                 dims_string(r.grid),
+                 std::to_string(r.grid.count()),
+                 std::to_string(r.n_triangles),
+                 std::to_string(r.refined_triangles),
+                 fmt(r.tolerance),
+                 r.variant == "brute_force" ? "brute" : "hier",
+                 std::to_string(r.lanes),
+                 fixed(r.seconds),
+                 fixed(r.cpu_s, 1),
+                 fixed(r.distance_s),
+                 fixed(r.winding_s),
+                 fixed(r.density_s),
+                 fixed(r.refine_s),
+                 fixed(r.bvh_s),
+                 fmt(r.max_bound),
+                 fmt(r.mean_bound),
+                 fmt(r.median_bound),
+                 fmt(r.mean_abs_s),
+                 fmt(r.mean_bound / r.mean_abs_s),
+                 std::to_string(r.runs),
+                 fixed(r.load_before, 1)});
+  print_table({"m",          "dims",      "points",  "n",       "refined", "tol",      "variant", "lanes",
+               "total s",    "cpu s",     "dist s",  "wind s",  "dens s",  "refine s", "bvh s",   "max bound",
+               "mean bound", "p50 bound", "mean|s|", "bnd/|s|", "runs",    "load"},
               t);
 }
 
@@ -489,9 +509,9 @@ void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) 
     f << r.case_name << ',' << r.grid.count() << ',' << dims_string(r.grid) << ',' << r.n_triangles << ','
       << r.tolerance << ',' << r.sigma << ',' << r.variant << ',' << r.seconds << ',' << r.distance_s << ','
       << r.winding_s << ',' << r.density_s << ',' << r.refine_s << ',' << r.bvh_s << ',' << r.max_bound << ','
-      << r.mean_bound << ',' << r.mean_abs_s << ',' << r.m_label << ',' << r.grid.spacing << ',' << r.segments
-      << ',' << r.refined_triangles << ',' << r.max_winding_bound << ',' << r.mean_winding_bound << ',' << r.runs
-      << ',' << r.load_before << ',' << r.load_after << ',' << r.median_bound << ',' << r.cpu_s << ',' << r.lanes << '\n';
+      << r.mean_bound << ',' << r.mean_abs_s << ',' << r.m_label << ',' << r.grid.spacing << ',' << r.segments << ','
+      << r.refined_triangles << ',' << r.max_winding_bound << ',' << r.mean_winding_bound << ',' << r.runs << ','
+      << r.load_before << ',' << r.load_after << ',' << r.median_bound << ',' << r.cpu_s << ',' << r.lanes << '\n';
   if (!f) throw snapfit::Error(path.string() + ": cannot write");
 }
 
@@ -536,11 +556,11 @@ std::string write_plots(const std::filesystem::path& dir, const nlohmann::json& 
   std::string made;
   auto title_value = [&](const std::string& case_name, const char* key) -> std::string {
     for (const auto& r : rows)
-      if (r.value("case", "") == case_name) return r.at(key).is_string() ? r.at(key).get<std::string>() : r.at(key).dump();
+      if (r.value("case", "") == case_name)
+        return r.at(key).is_string() ? r.at(key).get<std::string>() : r.at(key).dump();
     return "?";
   };
-  for (const auto& [case_name, x_key, file, title, x_label] :
-       std::vector<std::array<std::string, 5>>{
+  for (const auto& [case_name, x_key, file, title, x_label] : std::vector<std::array<std::string, 5>>{
            {"m_sweep", "m", "time_vs_m.png",
             "descriptors: time vs grid points m (three_peg_base, n = " + title_value("m_sweep", "n_triangles") + ")",
             "grid points m"},
@@ -644,7 +664,8 @@ int run(const Args& args) {
   std::vector<Row> n_rows;
   if (want("n_sweep")) {
     const int side = args.quick ? 16 : 64;
-    const std::vector<double> targets = args.quick ? std::vector<double>{1e3, 5e3} : std::vector<double>{1e3, 1e4, 5e4, 2e5};
+    const std::vector<double> targets =
+        args.quick ? std::vector<double>{1e3, 5e3} : std::vector<double>{1e3, 1e4, 5e4, 2e5};
     for (double target : targets) {
       const int seg = parts.segments_for(target);
       const Mesh& mesh = parts.with_segments(seg);
@@ -655,9 +676,9 @@ int run(const Args& args) {
                                long_case(g.spec.count(), mesh.triangles.size()))
                            .row);
     }
-    print_rows("b. time against triangle count n (m = " + label(side) + ", tolerance " + fmt(default_tol) +
-                   ", sigma 0.5)",
-               n_rows);
+    print_rows(
+        "b. time against triangle count n (m = " + label(side) + ", tolerance " + fmt(default_tol) + ", sigma 0.5)",
+        n_rows);
     rows.insert(rows.end(), n_rows.begin(), n_rows.end());
   }
 
@@ -676,9 +697,10 @@ int run(const Args& args) {
       const Grid g = grid_for(mesh, s.side);
       std::cerr << "brute: " << label(s.side) << " (" << dims_string(g.spec) << "), n " << mesh.triangles.size()
                 << "\n";
-      const Measured h = measure(ctx, "brute_vs_hier", label(s.side), mesh, seg, g, default_tol, sigma, false, args.density_lanes, false);
-      const Measured b = measure(ctx, "brute_vs_hier", label(s.side), mesh, seg, g, default_tol, sigma, true, args.density_lanes,
-                                 !args.quick, true);
+      const Measured h = measure(ctx, "brute_vs_hier", label(s.side), mesh, seg, g, default_tol, sigma, false,
+                                 args.density_lanes, false);
+      const Measured b = measure(ctx, "brute_vs_hier", label(s.side), mesh, seg, g, default_tol, sigma, true,
+                                 args.density_lanes, !args.quick, true);
       comparisons.push_back(compare(h, b));
       b_rows.push_back(h.row);
       b_rows.push_back(b.row);
@@ -687,12 +709,14 @@ int run(const Args& args) {
     std::cout << "\n";
     std::vector<std::vector<std::string>> t;
     for (const auto& c : comparisons)
-      t.push_back({c.m_label, c.dims, std::to_string(c.n_triangles), fixed(c.hier_density, 3), fixed(c.brute_density, 3),
-                   fixed(c.speedup_density, 1) + "x", fixed(c.hier_total, 3), fixed(c.brute_total, 3),
-                   fixed(c.speedup_total, 1) + "x", fmt(c.max_abs_diff), fmt(c.mean_abs_diff), fmt(c.max_bound_sum), fmt(c.mean_bound_sum),
-                   fmt(c.max_diff_over_bounds), std::to_string(c.points_over), fmt(c.mean_abs_s)});
-    print_table({"m", "dims", "n", "hier dens s", "brute dens s", "speed-up", "hier total", "brute total",
-                 "speed-up", "max|s_h-s_b|", "mean|s_h-s_b|", "max(b_h+b_b)", "mean(b_h+b_b)", "max|diff|/(b_h+b_b)", "pts over", "mean|s|"},
+      t.push_back({c.m_label, c.dims, std::to_string(c.n_triangles), fixed(c.hier_density, 3),
+                   fixed(c.brute_density, 3), fixed(c.speedup_density, 1) + "x", fixed(c.hier_total, 3),
+                   fixed(c.brute_total, 3), fixed(c.speedup_total, 1) + "x", fmt(c.max_abs_diff), fmt(c.mean_abs_diff),
+                   fmt(c.max_bound_sum), fmt(c.mean_bound_sum), fmt(c.max_diff_over_bounds),
+                   std::to_string(c.points_over), fmt(c.mean_abs_s)});
+    print_table({"m", "dims", "n", "hier dens s", "brute dens s", "speed-up", "hier total", "brute total", "speed-up",
+                 "max|s_h-s_b|", "mean|s_h-s_b|", "max(b_h+b_b)", "mean(b_h+b_b)", "max|diff|/(b_h+b_b)", "pts over",
+                 "mean|s|"},
                 t);
     rows.insert(rows.end(), b_rows.begin(), b_rows.end());
   }
@@ -705,9 +729,10 @@ int run(const Args& args) {
     const Mesh& mesh = parts.with_segments(seg);
     const Grid g = grid_for(mesh, side);
     std::cerr << "headline: " << label(side) << " (" << dims_string(g.spec) << " = " << g.spec.count()
-              << " points, spacing " << g.spec.spacing << " mm), n " << mesh.triangles.size() << " (segments "
-              << seg << "), tolerance " << default_tol << ", sigma " << sigma << "\n";
-    const Measured m = measure(ctx, "headline", label(side), mesh, seg, g, default_tol, sigma, false, args.density_lanes, !args.quick, true);
+              << " points, spacing " << g.spec.spacing << " mm), n " << mesh.triangles.size() << " (segments " << seg
+              << "), tolerance " << default_tol << ", sigma " << sigma << "\n";
+    const Measured m = measure(ctx, "headline", label(side), mesh, seg, g, default_tol, sigma, false,
+                               args.density_lanes, !args.quick, true);
     const Row& r = m.row;
     print_rows("d. headline: m = " + label(side) + " points, n ~ " + fmt(n_target) + " triangles", {r});
     std::cout << "   grid " << dims_string(r.grid) << " = " << r.grid.count() << " points, spacing "
@@ -720,8 +745,9 @@ int run(const Args& args) {
               << "   process CPU " << fixed(r.cpu_s, 1) << " s (" << fixed(r.cpu_s / r.seconds, 2)
               << " cores busy on average; on an idle machine with all " << info.compute_units
               << " compute units, about " << fixed(r.cpu_s / std::max(1u, info.compute_units), 1) << " s)\n"
-              << "   density bound: max " << fmt(r.max_bound) << ", mean " << fmt(r.mean_bound) << ", median " << fmt(r.median_bound) << "; mean |s| "
-              << fmt(r.mean_abs_s) << "; mean bound / mean |s| " << fmt(r.mean_bound / r.mean_abs_s) << "\n"
+              << "   density bound: max " << fmt(r.max_bound) << ", mean " << fmt(r.mean_bound) << ", median "
+              << fmt(r.median_bound) << "; mean |s| " << fmt(r.mean_abs_s) << "; mean bound / mean |s| "
+              << fmt(r.mean_bound / r.mean_abs_s) << "\n"
               << "   winding bound: max " << fmt(r.max_winding_bound) << ", mean " << fmt(r.mean_winding_bound) << "\n";
     if (!args.quick && side == 128 && n_target == 2e5)
       std::cout << "   target (m = 128^3, n = 2e5 in <= 60 s): " << (r.seconds <= 60 ? "met" : "NOT met") << " ("
@@ -741,7 +767,8 @@ int run(const Args& args) {
     std::vector<Row> t_rows;
     for (double tol : {0.2, 0.1, 0.05}) {
       std::cerr << "tolerance: " << tol << ", " << dims_string(g.spec) << ", n " << mesh.triangles.size() << "\n";
-      t_rows.push_back(measure(ctx, "tolerance", label(side), mesh, seg, g, tol, sigma, false, args.density_lanes, false).row);
+      t_rows.push_back(
+          measure(ctx, "tolerance", label(side), mesh, seg, g, tol, sigma, false, args.density_lanes, false).row);
     }
     print_rows("e. tolerance sweep (m = " + label(side) + ", n = " + std::to_string(mesh.triangles.size()) + ")",
                t_rows);
@@ -798,8 +825,8 @@ int run(const Args& args) {
   jf << j.dump(2) << "\n";
   if (!jf) throw snapfit::Error((dir / "descriptors.json").string() + ": cannot write");
   std::cout << "\nwrote " << (dir / "descriptors.csv").string() << " and " << (dir / "descriptors.json").string()
-            << " (" << fixed(j["wall_seconds"].get<double>(), 1) << " s in all; load average "
-            << fixed(load_start) << " -> " << fixed(load_average()) << ")\n"
+            << " (" << fixed(j["wall_seconds"].get<double>(), 1) << " s in all; load average " << fixed(load_start)
+            << " -> " << fixed(load_average()) << ")\n"
             << write_plots(dir, j["rows"]) << "\n";
   return 0;
 }

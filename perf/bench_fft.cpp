@@ -88,17 +88,17 @@
 
 #include "engine/compute_context.h"
 #include "engine/device.h"
-#include "snapfit/error.h"
 #include "engine/fft3d.h"
 #include "engine/full_map.h"
 #include "engine/kernel_sources.h"
-#include "pipeline/part_fields.h"
 #include "engine/program_cache.h"
 #include "engine/spectra.h"
-#include "report/plot.h"
-#include "snapfit/scene.h"
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
+#include "pipeline/part_fields.h"
+#include "report/plot.h"
+#include "snapfit/error.h"
+#include "snapfit/scene.h"
 
 namespace {
 
@@ -148,7 +148,6 @@ Args parse_args(int argc, char** argv) {
 }
 
 // ---------------------------------------------------------------- small helpers
-
 
 std::string sci(double v, int prec = 2) {
   if (!std::isfinite(v)) return "-";
@@ -220,7 +219,9 @@ struct FftwPlans {
   }
   FftwPlans(const FftwPlans&) = delete;
   FftwPlans& operator=(const FftwPlans&) = delete;
-  void set_input(const std::vector<cf>& x) { std::memcpy(in, static_cast<const void*>(x.data()), sizeof(cf) * x.size()); }
+  void set_input(const std::vector<cf>& x) {
+    std::memcpy(in, static_cast<const void*>(x.data()), sizeof(cf) * x.size());
+  }
   std::vector<cf> output() const {
     std::vector<cf> o(count_of(dims));
     std::memcpy(static_cast<void*>(o.data()), out, sizeof(cf) * o.size());
@@ -294,7 +295,8 @@ struct VkfftPlan {
     lp.buffer = &buffer;
     lp.inputBuffer = &input;
     const VkFFTResult r = VkFFTAppend(&app, inverse ? 1 : -1, &lp);
-    if (r != VKFFT_SUCCESS) throw snapfit::Error("VkFFT: VkFFTAppend failed (VkFFTResult " + std::to_string(int(r)) + ")");
+    if (r != VKFFT_SUCCESS)
+      throw snapfit::Error("VkFFT: VkFFTAppend failed (VkFFTResult " + std::to_string(int(r)) + ")");
     cl_check(clFinish(queue), "VkFFT: clFinish");
   }
 };
@@ -341,10 +343,10 @@ void quiet_measure(Row& row, const std::string& what, F&& body) {
 struct TransformRow {
   std::string library, direction;  // direction: forward | inverse
   Dims dims{};
-  double plan_s = 0;               // plan for both directions (one plan object per library)
+  double plan_s = 0;  // plan for both directions (one plan object per library)
   std::vector<double> times_s;
   double p50_s = 0, min_s = 0, gflops_p50 = 0, gflops_min = 0;
-  double max_rel_diff = 0;         // against FFTW double
+  double max_rel_diff = 0;  // against FFTW double
   double load_before = 0, load_after = 0;
   double other_cores = 0;  // cores other processes kept busy while this row was timed
   int attempts = 1;
@@ -544,9 +546,9 @@ std::vector<MapRow> bench_maps(const snapfit::FftLibrary& lib, const snapfit::Co
   }
 
   // Product kernel + each library's inverse FFT.
-  cl::Kernel kernel(snapfit::build_program(ctx, "full_map",
-                                           snapfit::kernel_source("spectrum_sample") + snapfit::kernel_source("full_map"),
-                                           "-cl-std=CL1.2")
+  cl::Kernel kernel(snapfit::build_program(
+                        ctx, "full_map", snapfit::kernel_source("spectrum_sample") + snapfit::kernel_source("full_map"),
+                        "-cl-std=CL1.2")
                         .program,
                     "spectrum_product");
   cl::Buffer s1(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, const_cast<cf*>(s.part1.rho.data()));
@@ -671,8 +673,8 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
     for (const auto& r : tr)
       f << r.library << ',' << r.direction << ',' << r.dims[0] << ',' << r.dims[1] << ',' << r.dims[2] << ','
         << count_of(r.dims) << ',' << r.plan_s << ',' << r.times_s.size() << ',' << r.p50_s * 1e3 << ','
-        << r.min_s * 1e3 << ',' << r.gflops_p50 << ',' << r.gflops_min << ',' << r.max_rel_diff << ','
-        << r.load_before << ',' << r.load_after << ',' << r.other_cores << '\n';
+        << r.min_s * 1e3 << ',' << r.gflops_p50 << ',' << r.gflops_min << ',' << r.max_rel_diff << ',' << r.load_before
+        << ',' << r.load_after << ',' << r.other_cores << '\n';
     if (!f) throw snapfit::Error((dir / "fft.csv").string() + ": cannot write");
   }
   {
@@ -697,7 +699,8 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
                   {"dims", r.dims},
                   {"points", count_of(r.dims)},
                   {"plan_s", r.plan_s},
-                  {"times_ms", [&] {
+                  {"times_ms",
+                   [&] {
                      std::vector<double> ms;
                      for (double t : r.times_s) ms.push_back(t * 1e3);
                      return ms;
@@ -817,25 +820,28 @@ int run(const Args& args) {
   // ---- 1. transforms
   std::cout << "\n[1] 3D complex-to-complex transforms, single precision: " << repeats << " timed after " << warmup
             << " warm-up\n";
-  std::cout << "  " << padr("size", 12) << padr("library", 8) << padr("dir", 9) << pad("plan s", 8)
-            << pad("p50 ms", 10) << pad("min ms", 10) << pad("GFLOP/s", 9) << pad("rel diff", 11) << pad("others", 8) << "\n";
+  std::cout << "  " << padr("size", 12) << padr("library", 8) << padr("dir", 9) << pad("plan s", 8) << pad("p50 ms", 10)
+            << pad("min ms", 10) << pad("GFLOP/s", 9) << pad("rel diff", 11) << pad("others", 8) << "\n";
   std::vector<TransformRow> transforms;
   for (const Dims& d : sizes) {
     auto rows = bench_transforms(lib, ctx, d, warmup, repeats, 20261122u);
     for (const auto& r : rows) {
       std::cout << "  " << padr(dims_text(d), 12) << padr(r.library, 8) << padr(r.direction, 9)
                 << pad(fixed(r.plan_s, 2), 8) << pad(fixed(r.p50_s * 1e3, 2), 10) << pad(fixed(r.min_s * 1e3, 2), 10)
-                << pad(fixed(r.gflops_p50, 2), 9) << pad(sci(r.max_rel_diff), 11) << pad(fixed(r.other_cores, 2), 8) << "\n"
+                << pad(fixed(r.gflops_p50, 2), 9) << pad(sci(r.max_rel_diff), 11) << pad(fixed(r.other_cores, 2), 8)
+                << "\n"
                 << std::flush;
       transforms.push_back(r);
     }
   }
 
   // ---- 2. full maps
-  std::cout << "\n[2] full translational maps: one rotation = spectrum_product kernel + inverse 3D FFT; " << map_rotations
-            << " timed rotations per library (median); real path " << map_warm_real << " warm calls after a cold one\n";
+  std::cout << "\n[2] full translational maps: one rotation = spectrum_product kernel + inverse 3D FFT; "
+            << map_rotations << " timed rotations per library (median); real path " << map_warm_real
+            << " warm calls after a cold one\n";
   std::cout << "  " << padr("size", 12) << padr("path", 10) << pad("plan s", 8) << pad("rot/s", 9) << pad("ms", 9)
-            << pad("product", 9) << pad("readback", 9) << pad("fft", 9) << pad("rel diff", 11) << pad("others", 8) << "\n";
+            << pad("product", 9) << pad("readback", 9) << pad("fft", 9) << pad("rel diff", 11) << pad("others", 8)
+            << "\n";
   std::vector<MapRow> maps;
   for (const Dims& d : map_sizes) {
     auto rows = bench_maps(lib, ctx, d, map_rotations, map_warm_real, 4242u);
@@ -879,7 +885,8 @@ int run(const Args& args) {
     const MapRow* fastest_fft = nullptr;
     for (const auto& r : maps)
       if (r.dims == d && r.library != "full_map" &&
-          (!fastest_fft || r.fft_median_s + r.readback_median_s < fastest_fft->fft_median_s + fastest_fft->readback_median_s))
+          (!fastest_fft ||
+           r.fft_median_s + r.readback_median_s < fastest_fft->fft_median_s + fastest_fft->readback_median_s))
         fastest_fft = &r;
     if (best)
       verdict << " " << dims_text(d) << " " << best->library << " (" << fixed(best->rotations_per_s, 1)
@@ -903,12 +910,17 @@ int run(const Args& args) {
   meta["loadavg_start"] = load_start;
   meta["loadavg_end"] = load_end;
   meta["nproc"] = threads;
-  meta["device"] = {{"name", info.name},          {"vendor", info.vendor},
-                    {"platform", info.platform_name}, {"platform_version", info.platform_version},
-                    {"driver", info.driver_version}, {"type", info.type},
+  meta["device"] = {{"name", info.name},
+                    {"vendor", info.vendor},
+                    {"platform", info.platform_name},
+                    {"platform_version", info.platform_version},
+                    {"driver", info.driver_version},
+                    {"type", info.type},
                     {"compute_units", info.compute_units}};
-  meta["quiet_guard"] = {{"enabled", g_quiet.enabled},       {"threshold_cores", g_quiet.threshold},
-                         {"max_retries", g_quiet.max_retries}, {"retries", g_quiet.retries},
+  meta["quiet_guard"] = {{"enabled", g_quiet.enabled},
+                         {"threshold_cores", g_quiet.threshold},
+                         {"max_retries", g_quiet.max_retries},
+                         {"retries", g_quiet.retries},
                          {"waited_s", g_quiet.waited_s}};
   meta["fftw"] = {{"version", std::string(fftwf_version)}, {"threads", threads}, {"planner", "FFTW_MEASURE"}};
   meta["vkfft_version"] = VkFFTGetVersion();
@@ -919,9 +931,11 @@ int run(const Args& args) {
            " warm-up, " + std::to_string(repeats) +
            " timed; VkFFT's input is refreshed by a device copy before each transform, outside the timed interval"},
       {"gflops", "5 n log2(n) / time, n = points"},
-      {"max_rel_diff", "max |x - ref| / max |ref| over all points, ref = FFTW double (FFTW_ESTIMATE) of the same input"},
-      {"plan_s", "clfft: Fft3d constructor (create + bake, both directions); vkfft: initializeVkFFT; fftw: "
-                 "fftwf_plan_dft_3d forward + backward with FFTW_MEASURE"},
+      {"max_rel_diff",
+       "max |x - ref| / max |ref| over all points, ref = FFTW double (FFTW_ESTIMATE) of the same input"},
+      {"plan_s",
+       "clfft: Fft3d constructor (create + bake, both directions); vkfft: initializeVkFFT; fftw: "
+       "fftwf_plan_dft_3d forward + backward with FFTW_MEASURE"},
       {"maps",
        "median over seeded random rotations of product kernel + inverse FFT (FFTW also reads the product back); "
        "full_map = engine/full_map.h translational_energy_map, all modes, trilinear, warm median"}};
@@ -929,7 +943,8 @@ int run(const Args& args) {
   write_outputs(dir, args, transforms, maps, meta, verdict.str());
   std::cout << "\nload average at end: " << load_end << " (start: " << load_start << "), total " << fixed(total_s, 0)
             << " s; " << g_quiet.retries << " rows re-measured after waiting " << fixed(g_quiet.waited_s, 0)
-            << " s for other processes\nwrote " << (dir / "fft.csv").string() << ", maps.csv, fft.json, fft_time.png, fft_gflops.png, "
+            << " s for other processes\nwrote " << (dir / "fft.csv").string()
+            << ", maps.csv, fft.json, fft_time.png, fft_gflops.png, "
             << "maps.png\nverdict: " << verdict.str() << "\n";
   return 0;
 }

@@ -15,19 +15,19 @@
 // --quick: 3 s of loop (CI proves it runs; no timing is checked).
 #include <filesystem>
 #include <fstream>
-#include <sys/resource.h>
 #include <iostream>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <sys/resource.h>
 
-#include "pipeline/assembly_pair.h"
-#include "engine/query_engine.h"
+#include "core/quantile.h"
 #include "engine/device.h"
-#include "report/plot.h"
+#include "engine/query_engine.h"
 #include "perf/bench_common.h"
+#include "pipeline/assembly_pair.h"
+#include "report/plot.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/engine_tuning.h"
-#include "core/quantile.h"
 #include "scheduler/trajectory.h"
 
 using namespace snapfit;
@@ -39,14 +39,22 @@ int main(int argc, char** argv) try {
   bool retune = false, quick = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (bench::is_option(a, "--scene")) scene_path = bench::option_value(argc, argv, i, "--scene");
-    else if (bench::is_option(a, "--seconds")) seconds = std::stod(bench::option_value(argc, argv, i, "--seconds"));
-    else if (bench::is_option(a, "--out")) out_dir = bench::option_value(argc, argv, i, "--out");
-    else if (a == "--retune") retune = true;
-    else if (bench::is_option(a, "--device")) device_spec = bench::option_value(argc, argv, i, "--device");
-    else if (bench::is_option(a, "--margin")) margin = std::stod(bench::option_value(argc, argv, i, "--margin"));
-    else if (a == "--quick") quick = true;
-    else throw Error("unknown option " + a + " (see the comment at the top of perf/bench_haptic_loop.cpp)");
+    if (bench::is_option(a, "--scene"))
+      scene_path = bench::option_value(argc, argv, i, "--scene");
+    else if (bench::is_option(a, "--seconds"))
+      seconds = std::stod(bench::option_value(argc, argv, i, "--seconds"));
+    else if (bench::is_option(a, "--out"))
+      out_dir = bench::option_value(argc, argv, i, "--out");
+    else if (a == "--retune")
+      retune = true;
+    else if (bench::is_option(a, "--device"))
+      device_spec = bench::option_value(argc, argv, i, "--device");
+    else if (bench::is_option(a, "--margin"))
+      margin = std::stod(bench::option_value(argc, argv, i, "--margin"));
+    else if (a == "--quick")
+      quick = true;
+    else
+      throw Error("unknown option " + a + " (see the comment at the top of perf/bench_haptic_loop.cpp)");
   }
   if (quick) seconds = 3;
   if (!(seconds > 0)) throw Error("--seconds: must be > 0");
@@ -73,12 +81,13 @@ int main(int argc, char** argv) try {
   const AssemblyPair pair = build_assembly_pair(scene, ctx, fft);
   const QueryVariant variant = query_variant_for(scene, Interpolation::tricubic);
   auto engine = make_query_engine(ctx, pair.spectra, variant);
-  const TuningKey key = tuning_key_for(device.info, variant, pair.spectra, scene.frame_budget_ms, margin, scene.loop_rate_hz);
+  const TuningKey key =
+      tuning_key_for(device.info, variant, pair.spectra, scene.frame_budget_ms, margin, scene.loop_rate_hz);
   TuneOptions tune_options;
   tune_options.budget_ms = scene.frame_budget_ms;
   tune_options.margin = margin;
-  const EngineTuning tuned = tune_engine(*engine, key, sample_trajectory(scene.trajectory, 100.0), tune_options,
-                                         retune, [](const std::string& m) { std::cerr << m << "\n"; });
+  const EngineTuning tuned = tune_engine(*engine, key, sample_trajectory(scene.trajectory, 100.0), tune_options, retune,
+                                         [](const std::string& m) { std::cerr << m << "\n"; });
   std::cout << "tuned m' = " << tuned.result.chosen_modes << (tuned.from_file ? " (tuning file)" : " (measured)")
             << ", model p99 " << tuned.result.model.predict_ms(tuned.result.chosen_modes) << " ms\n"
             << "running the loop for " << seconds << " s at " << scene.loop_rate_hz << " Hz...\n";
@@ -93,8 +102,8 @@ int main(int argc, char** argv) try {
     return static_cast<long>(u.ru_majflt);
   };
   const long faults_before = major_faults();
-  const SessionResult run = run_scripted_assembly(scene, pair.parts.part2.mesh, pair.spectra.spacing, *engine,
-                                                  tuned.result, session);
+  const SessionResult run =
+      run_scripted_assembly(scene, pair.parts.part2.mesh, pair.spectra.spacing, *engine, tuned.result, session);
   const long loop_major_faults = major_faults() - faults_before;
   const LoopReport& loop = run.loop;
   const std::string load_end = bench::read_loadavg();
@@ -102,16 +111,16 @@ int main(int argc, char** argv) try {
   const double p50 = quantile(loop.frame_ms, 0.5), p99 = quantile(loop.frame_ms, 0.99),
                max = quantile(loop.frame_ms, 1.0);
   std::cout << "frames " << loop.frames << " in " << loop.elapsed_s << " s: " << loop.measured_rate_hz
-            << " Hz; frame ms p50 " << p50 << ", p99 " << p99 << ", max " << max << "; misses " << loop.misses
-            << " (" << 100 * loop.miss_rate() << " %, target <= 0.1 %), of which " << loop.late_wakeup_misses
+            << " Hz; frame ms p50 " << p50 << ", p99 " << p99 << ", max " << max << "; misses " << loop.misses << " ("
+            << 100 * loop.miss_rate() << " %, target <= 0.1 %), of which " << loop.late_wakeup_misses
             << " from waking late and " << loop.stall_misses << " stalls (not acted on); skipped ticks "
             << loop.skipped_ticks << "\n"
             << "wake-up lateness ms p50 " << quantile(loop.wake_late_ms, 0.5) << ", p99 "
             << quantile(loop.wake_late_ms, 0.99) << ", max " << quantile(loop.wake_late_ms, 1.0) << "\n"
             << "m' tuned " << tuned.result.chosen_modes << ", final " << loop.final_modes << ", "
             << loop.mode_changes.size() << " changes; seed 000 (published, K20c, translation only): 4096\n"
-            << "thread priority: " << run.priority.describe() << "; major page faults during the loop: "
-            << loop_major_faults << "\n"
+            << "thread priority: " << run.priority.describe()
+            << "; major page faults during the loop: " << loop_major_faults << "\n"
             << "load average: start " << load_start << ", end " << load_end << "\n";
 
   // Every missed frame: its work (wake-up to wrench sent) against the tuner's p99 model
@@ -125,15 +134,23 @@ int main(int argc, char** argv) try {
     const double wake = loop.wake_late_ms[i], work = f.frame_ms - wake;
     const double predicted = tuned.result.model.predict_ms(f.modes);
     const double ratio = work / predicted;
-    if (work <= 0.6 * scene.frame_budget_ms) ++late;
-    else if (ratio <= 1.5) ++tail;
-    else if (ratio <= 4) ++slow;
-    else ++stall;
-    missed.push_back({{"time_s", f.time_s}, {"frame_ms", f.frame_ms}, {"wake_late_ms", wake}, {"work_ms", work},
-                      {"modes", f.modes}, {"model_p99_ms", predicted}});
+    if (work <= 0.6 * scene.frame_budget_ms)
+      ++late;
+    else if (ratio <= 1.5)
+      ++tail;
+    else if (ratio <= 4)
+      ++slow;
+    else
+      ++stall;
+    missed.push_back({{"time_s", f.time_s},
+                      {"frame_ms", f.frame_ms},
+                      {"wake_late_ms", wake},
+                      {"work_ms", work},
+                      {"modes", f.modes},
+                      {"model_p99_ms", predicted}});
   }
-  std::cout << "missed frames by their work against the model p99 at their m': woke late " << late
-            << ", within 1.5x " << tail << ", 1.5-4x " << slow << ", beyond 4x (stalls) " << stall << "\n";
+  std::cout << "missed frames by their work against the model p99 at their m': woke late " << late << ", within 1.5x "
+            << tail << ", 1.5-4x " << slow << ", beyond 4x (stalls) " << stall << "\n";
 
   fs::create_directories(out_dir);
   nlohmann::json changes = nlohmann::json::array();
@@ -155,8 +172,10 @@ int main(int argc, char** argv) try {
       {"skipped_ticks", loop.skipped_ticks},
       {"late_wakeup_misses", loop.late_wakeup_misses},
       {"stall_misses", loop.stall_misses},
-      {"wake_late_ms", {{"p50", quantile(loop.wake_late_ms, 0.5)}, {"p99", quantile(loop.wake_late_ms, 0.99)},
-                        {"max", quantile(loop.wake_late_ms, 1.0)}}},
+      {"wake_late_ms",
+       {{"p50", quantile(loop.wake_late_ms, 0.5)},
+        {"p99", quantile(loop.wake_late_ms, 0.99)},
+        {"max", quantile(loop.wake_late_ms, 1.0)}}},
       {"frame_ms", {{"p50", p50}, {"p99", p99}, {"max", max}}},
       {"tuned_modes", tuned.result.chosen_modes},
       {"tuning_from_file", tuned.from_file},
@@ -164,14 +183,18 @@ int main(int argc, char** argv) try {
       {"mode_changes", changes},
       {"missed_frames", missed},
       {"major_page_faults", loop_major_faults},
-      {"missed_by_work", {{"woke_late", late}, {"within_1_5x_model", tail}, {"1_5x_to_4x", slow}, {"beyond_4x", stall}}},
+      {"missed_by_work",
+       {{"woke_late", late}, {"within_1_5x_model", tail}, {"1_5x_to_4x", slow}, {"beyond_4x", stall}}},
       {"seed000_published_modes", 4096},
-      {"priority", {{"threads_raised", run.priority.threads}, {"realtime", run.priority.realtime},
-                    {"failed", run.priority.failed}, {"described", run.priority.describe()}}},
+      {"priority",
+       {{"threads_raised", run.priority.threads},
+        {"realtime", run.priority.realtime},
+        {"failed", run.priority.failed},
+        {"described", run.priority.describe()}}},
       {"load_average", {{"start", load_start}, {"end", load_end}}}};
   std::ofstream(fs::path(out_dir) / "haptic_loop.json") << report.dump(2) << "\n";
-  Chart hist = histogram_chart("Haptic loop frame time, " + std::to_string(loop.frames) + " frames, m' = " +
-                                   std::to_string(tuned.result.chosen_modes),
+  Chart hist = histogram_chart("Haptic loop frame time, " + std::to_string(loop.frames) +
+                                   " frames, m' = " + std::to_string(tuned.result.chosen_modes),
                                "frame time (ms)", loop.frame_ms, 80, true);
   write_chart_png((fs::path(out_dir) / "frame_times.png").string(), hist);
   std::cout << "wrote " << out_dir << "/haptic_loop.json and frame_times.png\n";

@@ -8,8 +8,6 @@
 //
 //   ./build/perf/bench_mesh_import [--triangles 1000000] [--quick] [--out results/bench_mesh_import]
 // --quick: 20,000 triangles and no fuzz files (CI proves it runs; no number is checked).
-#include <sys/resource.h>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -17,12 +15,13 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <sys/resource.h>
 
-#include "snapfit/error.h"
 #include "io/isolated_import.h"
 #include "io/mesh_export.h"
 #include "io/mesh_load.h"
 #include "perf/bench_common.h"
+#include "snapfit/error.h"
 
 using namespace snapfit;
 namespace fs = std::filesystem;
@@ -98,10 +97,14 @@ int main(int argc, char** argv) try {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (bench::is_option(a, "--triangles"))
-      triangles = bench::integer_option("--triangles", bench::option_value(argc, argv, i, "--triangles"), 100, 20000000);
-    else if (bench::is_option(a, "--out")) out_dir = bench::option_value(argc, argv, i, "--out");
-    else if (a == "--quick") quick = true;
-    else throw Error("unknown option " + a + " (see the comment at the top of perf/bench_mesh_import.cpp)");
+      triangles =
+          bench::integer_option("--triangles", bench::option_value(argc, argv, i, "--triangles"), 100, 20000000);
+    else if (bench::is_option(a, "--out"))
+      out_dir = bench::option_value(argc, argv, i, "--out");
+    else if (a == "--quick")
+      quick = true;
+    else
+      throw Error("unknown option " + a + " (see the comment at the top of perf/bench_mesh_import.cpp)");
   }
   if (quick) triangles = 20000;
   const std::string load_start = bench::read_loadavg();
@@ -126,8 +129,8 @@ int main(int argc, char** argv) try {
     j["child_triangles"] = m.triangles.size();
     j["file"] = file.filename().string();
     j["file_mib"] = fs::file_size(file) / 1048576.0;
-    std::cout << bench::padr(file.filename().string(), 10) << " " << bench::fixed(j["file_mib"].get<double>()) << " MiB, "
-              << m.triangles.size() << " triangles: in-process peak address space +"
+    std::cout << bench::padr(file.filename().string(), 10) << " " << bench::fixed(j["file_mib"].get<double>())
+              << " MiB, " << m.triangles.size() << " triangles: in-process peak address space +"
               << bench::fixed(j["peak_address_space_mib"].get<double>()) << " MiB, peak RSS +"
               << bench::fixed(j["peak_rss_mib"].get<double>()) << " MiB, " << bench::fixed(j["cpu_s"].get<double>(), 2)
               << " s CPU, " << bench::fixed(j["wall_s"].get<double>(), 2) << " s; through the child "
@@ -139,7 +142,8 @@ int main(int argc, char** argv) try {
   nlohmann::json blowups = nlohmann::json::array();
   if (!quick) {
     const fs::path data = "tests/data/fuzz";  // run from the source folder, like the others
-    for (const auto& [name, ext] : {std::pair<std::string, std::string>{"x_memory_blowup.bin", ".x"}, {"dae_memory_blowup.bin", ".dae"}}) {
+    for (const auto& [name, ext] :
+         {std::pair<std::string, std::string>{"x_memory_blowup.bin", ".x"}, {"dae_memory_blowup.bin", ".dae"}}) {
       const fs::path file = fs::path(out_dir) / ("blowup" + ext);
       fs::copy_file(data / name, file, fs::copy_options::overwrite_existing);
       const auto t0 = std::chrono::steady_clock::now();

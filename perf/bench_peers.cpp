@@ -47,16 +47,15 @@
 // distance, snapfit energy per m'), peers.json (everything, with device, load averages,
 // command line, date) and PNG charts query_time.png (log-log), build_time.png,
 // agreement.png.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance.h>
-
-#include <algorithm>
-#include <array>
-#include <chrono>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -71,21 +70,21 @@
 #include <thread>
 #include <vector>
 
-#include "pipeline/assembly_pair.h"
-#include "engine/query_engine.h"
+#include "core/progress.h"
 #include "engine/compute_context.h"
 #include "engine/device.h"
-#include "snapfit/error.h"
 #include "engine/fft3d.h"
-#include "pipeline/part_fields.h"
-#include "snapfit/query.h"
+#include "engine/query_engine.h"
 #include "engine/spectra.h"
 #include "mesh/triangle_refine.h"
-#include "report/plot.h"
-#include "snapfit/scene.h"
 #include "perf/bench_common.h"
-#include "core/progress.h"
+#include "pipeline/assembly_pair.h"
+#include "pipeline/part_fields.h"
+#include "report/plot.h"
 #include "scheduler/trajectory.h"
+#include "snapfit/error.h"
+#include "snapfit/query.h"
+#include "snapfit/scene.h"
 
 namespace {
 
@@ -146,8 +145,6 @@ Args parse_args(int argc, char** argv) {
 
 // ---------------------------------------------------------------- small helpers
 
-
-
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::sort(v.begin(), v.end());
@@ -190,10 +187,10 @@ std::vector<Pose> make_poses(const snapfit::Scene& scene, std::size_t count, uns
 // ---------------------------------------------------------------- refinement
 
 struct Level {
-  std::string label;        // "1e3" ...
-  std::size_t target = 0;   // triangles of both parts together
+  std::string label;       // "1e3" ...
+  std::size_t target = 0;  // triangles of both parts together
   Mesh part1, part2;
-  double radius = 0;        // refinement radius (0: the scene's meshes)
+  double radius = 0;  // refinement radius (0: the scene's meshes)
   double refine_s = 0;
   std::size_t triangles() const { return part1.triangles.size() + part2.triangles.size(); }
 };
@@ -279,8 +276,8 @@ struct LevelResult {
   double fcl_build1_s = 0, fcl_build2_s = 0;
   Stat collide, distance;
   std::size_t distance_skipped = 0;
-  std::vector<int> fcl_collides;       // per pose
-  std::vector<double> fcl_distance;    // per pose (NaN: not run)
+  std::vector<int> fcl_collides;     // per pose
+  std::vector<double> fcl_distance;  // per pose (NaN: not run)
   double fields_s = 0, spectra_s = 0;
   bool fields_cached = false;
   std::array<std::size_t, 3> fft_dims{};
@@ -315,9 +312,9 @@ int run(const Args& args) {
                        {"1e3", 1000}, {"1e4", 10000}, {"1e5", 100000}, {"1e6", 1000000}};
   const std::size_t pose_count = args.poses > 0 ? std::size_t(args.poses) : (args.quick ? 60 : 400);
   const std::vector<std::size_t> timing_modes = {4096, 32768};
-  const std::vector<std::size_t> verdict_modes =
-      args.quick ? std::vector<std::size_t>{1024, 4096, 32768}
-                 : std::vector<std::size_t>{1024, 2048, 4096, 8192, 16384, 32768};
+  const std::vector<std::size_t> verdict_modes = args.quick
+                                                     ? std::vector<std::size_t>{1024, 4096, 32768}
+                                                     : std::vector<std::size_t>{1024, 2048, 4096, 8192, 16384, 32768};
   const std::vector<double> tau_voxels = {0.1, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0};
   const double tau_main = 0.5;
   const double distance_budget_s = args.quick ? 3.0 : 30.0;
@@ -494,8 +491,9 @@ int run(const Args& args) {
     R.load_after = snapfit::bench::load1();
     std::size_t colliding = 0;
     for (int c : R.fcl_collides) colliding += std::size_t(c);
-    std::cout << "  FCL collide   p50 " << pad(fixed(R.collide.p50, 1), 10) << " us  p99 " << pad(fixed(R.collide.p99, 1), 10)
-              << " us  (" << colliding << " of " << poses.size() << " poses collide)\n"
+    std::cout << "  FCL collide   p50 " << pad(fixed(R.collide.p50, 1), 10) << " us  p99 "
+              << pad(fixed(R.collide.p99, 1), 10) << " us  (" << colliding << " of " << poses.size()
+              << " poses collide)\n"
               << "  FCL distance  p50 " << pad(fixed(R.distance.p50, 1), 10) << " us  p99 "
               << pad(fixed(R.distance.p99, 1), 10) << " us  (" << R.distance.n << " poses"
               << (R.distance_skipped ? ", " + std::to_string(R.distance_skipped) + " left out by the time budget" : "")
@@ -535,7 +533,8 @@ int run(const Args& args) {
   // FCL's verdicts should not change with refinement (the surface is the same).
   std::size_t fcl_changes = 0;
   for (std::size_t l = 1; l < levels.size(); ++l)
-    for (std::size_t i = 0; i < poses.size(); ++i) fcl_changes += levels[l].fcl_collides[i] != levels[0].fcl_collides[i];
+    for (std::size_t i = 0; i < poses.size(); ++i)
+      fcl_changes += levels[l].fcl_collides[i] != levels[0].fcl_collides[i];
 
   // ---- table
   std::cout << "\nquery time per pose (us), p50 / p99; FCL BVH build and snapfit precompute (s)\n";
@@ -563,15 +562,16 @@ int run(const Args& args) {
     if (a.tau_voxels == tau_main)
       std::cout << "  " << padr(a.level, 5) << " m' " << pad(std::to_string(a.modes), 6) << "  "
                 << pad(fixed(100.0 * a.fraction(), 1), 6) << " %  [" << a.both_collide << " / " << a.both_free << " / "
-                << a.snap_only << " / " << a.fcl_only << "] of " << a.poses << "; snapfit-only with FCL distance <= h: "
-                << a.snap_only_within_h << "\n";
+                << a.snap_only << " / " << a.fcl_only << "] of " << a.poses
+                << "; snapfit-only with FCL distance <= h: " << a.snap_only_within_h << "\n";
   std::cout << "  best tau of the sweep per m' (first level):";
   for (std::size_t m : verdict_modes) {
     const AgreementRow* best = nullptr;
     for (const auto& a : agreement)
       if (a.level == levels.front().label && a.modes == m && (!best || a.agree > best->agree)) best = &a;
     if (best)
-      std::cout << "  m' " << m << ": " << best->tau_voxels << " h^3 -> " << fixed(100.0 * best->fraction(), 1) << " %;";
+      std::cout << "  m' " << m << ": " << best->tau_voxels << " h^3 -> " << fixed(100.0 * best->fraction(), 1)
+                << " %;";
   }
   std::cout << "\n  FCL verdict changes across refinement levels: " << fcl_changes << "\n";
 
@@ -591,9 +591,9 @@ int run(const Args& args) {
     for (const auto& R : levels) {
       f << R.label << ',' << R.tri1 + R.tri2 << ',' << R.tri1 << ',' << R.tri2 << ',' << R.radius << ',' << R.refine_s
         << ',' << R.fcl_build1_s + R.fcl_build2_s << ',' << R.fcl_build1_s << ',' << R.fcl_build2_s << ','
-        << R.collide.p50 << ',' << R.collide.p99 << ',' << R.collide.n << ',' << R.distance.p50 << ','
-        << R.distance.p99 << ',' << R.distance.n << ',' << R.distance_skipped << ',' << R.fields_s << ','
-        << R.fields_cached << ',' << R.spectra_s;
+        << R.collide.p50 << ',' << R.collide.p99 << ',' << R.collide.n << ',' << R.distance.p50 << ',' << R.distance.p99
+        << ',' << R.distance.n << ',' << R.distance_skipped << ',' << R.fields_s << ',' << R.fields_cached << ','
+        << R.spectra_s;
       for (const std::string v : {"eft_tricubic", "ef_tricubic"})
         for (std::size_t m : timing_modes)
           for (const auto& s : R.snap)
@@ -604,7 +604,8 @@ int run(const Args& args) {
   }
   {
     std::ofstream f(dir / "agreement.csv");
-    f << "level,triangles,modes,tau_voxels,tau,poses,agree,fraction,both_collide,both_free,snapfit_only,fcl_only,snapfit_only_fcl_distance_within_h\n";
+    f << "level,triangles,modes,tau_voxels,tau,poses,agree,fraction,both_collide,both_free,snapfit_only,fcl_only,"
+         "snapfit_only_fcl_distance_within_h\n";
     for (const auto& a : agreement)
       f << a.level << ',' << a.triangles << ',' << a.modes << ',' << a.tau_voxels << ',' << a.tau << ',' << a.poses
         << ',' << a.agree << ',' << a.fraction() << ',' << a.both_collide << ',' << a.both_free << ',' << a.snap_only
@@ -655,19 +656,25 @@ int run(const Args& args) {
   j["verdict"] = {{"rule", "collision when E > tau; E = overlap volume of the two indicators, low-passed to m' modes"},
                   {"tau_main_voxels", tau_main},
                   {"tau_main", tau_main * voxel},
-                  {"why", "half a grid cell: the sampled indicators cannot resolve an overlap smaller than the volume "
-                          "one grid point stands for"}};
+                  {"why",
+                   "half a grid cell: the sampled indicators cannot resolve an overlap smaller than the volume "
+                   "one grid point stands for"}};
   j["method"] = {
-      {"fcl", "BVHModel<OBBRSSd>; collide with 1 contact and no contact data; distance exact (rel_err = abs_err = 0); "
-              "wall clock of setTransform + computeAABB + the call, one call per pose"},
+      {"fcl",
+       "BVHModel<OBBRSSd>; collide with 1 contact and no contact data; distance exact (rel_err = abs_err = 0); "
+       "wall clock of setTransform + computeAABB + the call, one call per pose"},
       {"snapfit", "QueryEngine::query wall clock, one call per pose after " + std::to_string(warmup) +
                       " warm-up; fields + spectra as build_assembly_pair does on the indicator scene"}};
   nlohmann::json lj = nlohmann::json::array();
   for (const auto& R : levels) {
     nlohmann::json sj = nlohmann::json::array();
     for (const auto& s : R.snap)
-      sj.push_back({{"variant", s.variant}, {"modes", s.modes}, {"p50_us", num(s.stat.p50)}, {"p99_us", num(s.stat.p99)},
-                    {"max_us", num(s.stat.max)}, {"n", s.stat.n}});
+      sj.push_back({{"variant", s.variant},
+                    {"modes", s.modes},
+                    {"p50_us", num(s.stat.p50)},
+                    {"p99_us", num(s.stat.p99)},
+                    {"max_us", num(s.stat.max)},
+                    {"n", s.stat.n}});
     lj.push_back({{"level", R.label},
                   {"target", R.target},
                   {"triangles", R.tri1 + R.tri2},
@@ -676,10 +683,17 @@ int run(const Args& args) {
                   {"refine_radius", R.radius},
                   {"refine_s", R.refine_s},
                   {"fcl_build_s", {R.fcl_build1_s, R.fcl_build2_s}},
-                  {"fcl_collide", {{"p50_us", num(R.collide.p50)}, {"p99_us", num(R.collide.p99)}, {"max_us", num(R.collide.max)}, {"n", R.collide.n}}},
+                  {"fcl_collide",
+                   {{"p50_us", num(R.collide.p50)},
+                    {"p99_us", num(R.collide.p99)},
+                    {"max_us", num(R.collide.max)},
+                    {"n", R.collide.n}}},
                   {"fcl_distance",
-                   {{"p50_us", num(R.distance.p50)}, {"p99_us", num(R.distance.p99)}, {"max_us", num(R.distance.max)},
-                    {"n", R.distance.n}, {"skipped_by_budget", R.distance_skipped}}},
+                   {{"p50_us", num(R.distance.p50)},
+                    {"p99_us", num(R.distance.p99)},
+                    {"max_us", num(R.distance.max)},
+                    {"n", R.distance.n},
+                    {"skipped_by_budget", R.distance_skipped}}},
                   {"snapfit_fields_s", R.fields_s},
                   {"snapfit_fields_cached", R.fields_cached},
                   {"snapfit_spectra_s", R.spectra_s},
@@ -693,10 +707,19 @@ int run(const Args& args) {
   j["levels"] = lj;
   nlohmann::json aj = nlohmann::json::array();
   for (const auto& a : agreement)
-    aj.push_back({{"level", a.level}, {"triangles", a.triangles}, {"modes", a.modes}, {"tau_voxels", a.tau_voxels},
-                  {"tau", a.tau}, {"poses", a.poses}, {"agree", a.agree}, {"fraction", a.fraction()},
-                  {"both_collide", a.both_collide}, {"both_free", a.both_free}, {"snapfit_only", a.snap_only},
-                  {"fcl_only", a.fcl_only}, {"snapfit_only_fcl_distance_within_h", a.snap_only_within_h}});
+    aj.push_back({{"level", a.level},
+                  {"triangles", a.triangles},
+                  {"modes", a.modes},
+                  {"tau_voxels", a.tau_voxels},
+                  {"tau", a.tau},
+                  {"poses", a.poses},
+                  {"agree", a.agree},
+                  {"fraction", a.fraction()},
+                  {"both_collide", a.both_collide},
+                  {"both_free", a.both_free},
+                  {"snapfit_only", a.snap_only},
+                  {"fcl_only", a.fcl_only},
+                  {"snapfit_only_fcl_distance_within_h", a.snap_only_within_h}});
   j["agreement"] = aj;
   j["fcl_verdict_changes_across_levels"] = fcl_changes;
   {
@@ -758,7 +781,8 @@ int run(const Args& args) {
       snapfit::Series s;
       s.label = R.label + " (" + std::to_string(R.tri1 + R.tri2) + " triangles)";
       for (const auto& a : agreement)
-        if (a.level == R.label && a.tau_voxels == tau_main) s.x.push_back(double(a.modes)), s.y.push_back(100.0 * a.fraction());
+        if (a.level == R.label && a.tau_voxels == tau_main)
+          s.x.push_back(double(a.modes)), s.y.push_back(100.0 * a.fraction());
       c.series.push_back(s);
     }
     snapfit::write_chart_png((dir / "agreement.png").string(), c);

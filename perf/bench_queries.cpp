@@ -45,8 +45,6 @@
 // Output in DIR (default results/bench_queries): queries.csv, throughput.csv,
 // queries.json (everything, with device, driver, load averages, command line, date) and
 // PNG charts: latency_<variant>.png, latency_p99_all.png, throughput.png, roofline.png.
-#include <unistd.h>
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -64,20 +62,21 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <unistd.h>
 #include <vector>
 
-#include "pipeline/assembly_pair.h"
-#include "engine/query_engine.h"
-#include "perf/bench_common.h"
+#include "core/progress.h"
 #include "engine/compute_context.h"
 #include "engine/device.h"
-#include "snapfit/error.h"
 #include "engine/fft3d.h"
 #include "engine/full_map.h"
-#include "snapfit/query.h"
+#include "engine/query_engine.h"
+#include "perf/bench_common.h"
+#include "pipeline/assembly_pair.h"
 #include "report/plot.h"
+#include "snapfit/error.h"
+#include "snapfit/query.h"
 #include "snapfit/scene.h"
-#include "core/progress.h"
 
 namespace {
 
@@ -100,10 +99,10 @@ struct Args {
   std::string device;
   std::string scene = "scenes/default.json";
   std::string out = "results/bench_queries";
-  int repeats = 0;  // 0: 2000, or 300 with --quick
-  bool latency_only = false;              // sections 1 and 5 only
-  std::vector<std::size_t> modes;         // empty: the default m' list
-  std::vector<std::string> variants;      // empty: every variant
+  int repeats = 0;                    // 0: 2000, or 300 with --quick
+  bool latency_only = false;          // sections 1 and 5 only
+  std::vector<std::size_t> modes;     // empty: the default m' list
+  std::vector<std::string> variants;  // empty: every variant
   std::string command_line;
 };
 
@@ -218,8 +217,6 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return percentile(v, 0.5);
 }
-
-
 
 // ---------------------------------------------------------------- variants and cost model
 
@@ -625,7 +622,7 @@ struct LatencyRow {
   std::string key, label;
   QueryVariant variant;
   std::size_t modes = 0, modes_used = 0;
-  std::size_t terms = 0;  // terms the kernel evaluates (conjugate pairs folded: about m' / 2)
+  std::size_t terms = 0;    // terms the kernel evaluates (conjugate pairs folded: about m' / 2)
   double set_modes_us = 0;  // one QueryEngine::set_modes(m') call after set_modes(1)
   int repeats = 0, warmup = 0;
   double p50 = 0, p99 = 0, max = 0, mean = 0, min = 0, p10 = 0, p90 = 0;  // microseconds
@@ -973,7 +970,8 @@ int run(const Args& args) {
   const DeviceLimits limits =
       args.latency_only
           ? DeviceLimits{}
-          : guard.run("the device limits", [&] { return measure_limits(ctx, args.quick); }, limits_others, limits_attempts);
+          : guard.run(
+                "the device limits", [&] { return measure_limits(ctx, args.quick); }, limits_others, limits_attempts);
   std::cout << "  (other processes used " << fixed(limits_others, 2) << " cores meanwhile"
             << (limits_attempts > 1 ? ", attempt " + std::to_string(limits_attempts) : "") << ")\n";
   for (const auto& r : limits.bandwidth)

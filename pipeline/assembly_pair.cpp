@@ -28,8 +28,8 @@ AssemblyPair prepare_assembly_pair(const Scene& scene) {
 }
 
 void compute_assembly_fields(AssemblyPair& pair, const ComputeContext& ctx, const PairOptions& options, int which) {
-  if (which < 0 || which > 2) throw Error("compute_assembly_fields: part must be 1, 2 or 0 for both (got " +
-                                          std::to_string(which) + ")");
+  if (which < 0 || which > 2)
+    throw Error("compute_assembly_fields: part must be 1, 2 or 0 for both (got " + std::to_string(which) + ")");
   const auto note = note_of(options);
   for (int part = 1; part <= 2; ++part) {
     if (which != 0 && which != part) continue;

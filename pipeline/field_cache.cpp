@@ -4,10 +4,10 @@
 #include <filesystem>
 #include <sstream>
 
-#include "snapfit/error.h"
+#include "core/hash.h"
 #include "engine/kernel_sources.h"
 #include "io/cache_file.h"
-#include "core/hash.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
@@ -46,7 +46,8 @@ std::string descriptor_cache_key(const Mesh& mesh, const GridSpec& grid, const D
   if (params.kind == DescriptorKind::skeletal_density)
     key << "|sigma=" << params.sigma << "|refine=" << options.refine_fraction
         << "|brute_force=" << options.brute_force_density;
-  key << "|leaf=" << options.bvh_leaf_size << "|xi=" << (params.kind == DescriptorKind::skeletal_density || options.indicator_signed_distance)
+  key << "|leaf=" << options.bvh_leaf_size
+      << "|xi=" << (params.kind == DescriptorKind::skeletal_density || options.indicator_signed_distance)
       << "|tolerance=" << params.tolerance << "|min_distance=" << options.min_distance_fraction
       << "|kernels=" << hex64(sources) << "|winding_propagation=" << options.winding_sign_propagation;
   return key.str();
@@ -59,7 +60,8 @@ std::string descriptor_cache_path(const std::string& key) {
 std::optional<DescriptorFields> load_cached_descriptors(const std::string& key,
                                                         const std::function<void(const std::string&)>& note) {
   const std::string path = descriptor_cache_path(key);
-  const std::optional<std::vector<unsigned char>> payload = read_cache_payload(path, kKind, kFieldCacheVersion, key, "field cache", note);
+  const std::optional<std::vector<unsigned char>> payload =
+      read_cache_payload(path, kKind, kFieldCacheVersion, key, "field cache", note);
   if (!payload) return std::nullopt;
   DescriptorFields fields;
   const std::vector<unsigned char>& bytes = *payload;

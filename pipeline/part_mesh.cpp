@@ -1,8 +1,8 @@
 #include "pipeline/part_mesh.h"
 
-#include "snapfit/error.h"
 #include "io/mesh_load.h"
 #include "mesh/procedural/procedural_parts.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 

@@ -1,9 +1,8 @@
 #include "pipeline/prepare_parts.h"
 
-#include <tbb/parallel_invoke.h>
-
 #include <chrono>
 #include <exception>
+#include <tbb/parallel_invoke.h>
 
 #include "pipeline/part_mesh.h"
 

@@ -7,7 +7,7 @@
 namespace snapfit {
 
 struct PreparedPart {
-  Mesh mesh;           // in the part's own frame, scene units
+  Mesh mesh;  // in the part's own frame, scene units
   MeshReport report;
   double seconds = 0;  // wall time to load or generate and validate
 };

@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <sstream>
 
-#include "snapfit/error.h"
-#include "io/cache_file.h"
 #include "core/hash.h"
+#include "io/cache_file.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
@@ -84,9 +84,11 @@ std::string spectra_cache_key(const DescriptorFields& part1, const DescriptorFie
   return key.str();
 }
 
-std::optional<PairSpectra> load_cached_spectra(const std::string& key, const std::function<void(const std::string&)>& note) {
+std::optional<PairSpectra> load_cached_spectra(const std::string& key,
+                                               const std::function<void(const std::string&)>& note) {
   const std::string path = path_for(key);
-  const std::optional<std::vector<unsigned char>> payload = read_cache_payload(path, kKind, kSpectraCacheVersion, key, "spectra cache", note);
+  const std::optional<std::vector<unsigned char>> payload =
+      read_cache_payload(path, kKind, kSpectraCacheVersion, key, "spectra cache", note);
   if (!payload) return std::nullopt;
   Reader r{*payload};
   PairSpectra s;
@@ -109,7 +111,8 @@ std::optional<PairSpectra> load_cached_spectra(const std::string& key, const std
   return s;
 }
 
-void save_cached_spectra(const std::string& key, const PairSpectra& s, const std::function<void(const std::string&)>& note) {
+void save_cached_spectra(const std::string& key, const PairSpectra& s,
+                         const std::function<void(const std::string&)>& note) {
   Writer w;
   for (auto d : s.dims) w.put<std::uint64_t>(d);
   w.put(s.spacing);

@@ -14,7 +14,8 @@ std::string spectra_cache_key(const DescriptorFields& part1, const DescriptorFie
                               const SpectrumOptions& options);
 
 // Nothing when missing; a stale or corrupt entry is reported through `note` and ignored.
-std::optional<PairSpectra> load_cached_spectra(const std::string& key, const std::function<void(const std::string&)>& note);
+std::optional<PairSpectra> load_cached_spectra(const std::string& key,
+                                               const std::function<void(const std::string&)>& note);
 
 // A write failure is reported through `note`, never thrown.
 void save_cached_spectra(const std::string& key, const PairSpectra& spectra,

@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/quantile.h"
 #include "io/atomic_write.h"
 #include "report/plot.h"
-#include "core/quantile.h"
 
 namespace snapfit {
 namespace {
@@ -22,8 +22,8 @@ std::string loop_csv(const LoopReport& loop) {
     const Eigen::Vector3d& p = f.part.translation;
     const Eigen::Quaterniond& q = f.part.rotation;
     csv << f.time_s << ',' << f.frame_ms << ',' << f.missed << ',' << f.modes << ',' << f.flags << ',' << d.x() << ','
-        << d.y() << ',' << d.z() << ',' << p.x() << ',' << p.y() << ',' << p.z() << ',' << q.w() << ',' << q.x()
-        << ',' << q.y() << ',' << q.z() << ',' << f.energy;
+        << d.y() << ',' << d.z() << ',' << p.x() << ',' << p.y() << ',' << p.z() << ',' << q.w() << ',' << q.x() << ','
+        << q.y() << ',' << q.z() << ',' << f.energy;
     for (const Eigen::Vector3d* v : {&f.geometric.force, &f.geometric.torque, &f.sent.force, &f.sent.torque})
       csv << ',' << v->x() << ',' << v->y() << ',' << v->z();
     csv << '\n';
@@ -45,8 +45,8 @@ std::string tuning_table(const TuningResult& t) {
                   t.model.predict_ms(p.modes), p.modes == t.chosen_modes ? "  <- chosen" : "");
     s << row;
   }
-  std::snprintf(row, sizeof row, "  target p99 <= %.3f ms (budget %.3f ms, margin %.0f%%): m' = %zu%s\n",
-                t.target_ms(), t.budget_ms, 100 * t.margin, t.chosen_modes,
+  std::snprintf(row, sizeof row, "  target p99 <= %.3f ms (budget %.3f ms, margin %.0f%%): m' = %zu%s\n", t.target_ms(),
+                t.budget_ms, 100 * t.margin, t.chosen_modes,
                 t.fits ? "" : " (the budget is NOT met even at the smallest level)");
   s << row;
   return s.str();
@@ -60,8 +60,14 @@ Chart tuning_chart(const TuningResult& t, const std::string& device_name) {
     p99.x.push_back(p.modes), p99.y.push_back(p.p99_ms);
     model.x.push_back(p.modes), model.y.push_back(std::max(1e-3, t.model.predict_ms(p.modes)));
   }
-  Chart c{"Per-query time against m' on " + device_name, "m' (modes)", "ms per query", true, true, {p50, p99, model},
-          {}, {}};
+  Chart c{"Per-query time against m' on " + device_name,
+          "m' (modes)",
+          "ms per query",
+          true,
+          true,
+          {p50, p99, model},
+          {},
+          {}};
   c.hlines.push_back(HLine{t.budget_ms, "budget"});
   c.hlines.push_back(HLine{t.target_ms(), "target (margin)"});
   for (const TimingPoint& p : t.points)
@@ -76,9 +82,9 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Scene
   const LoopReport& loop = run.loop;
   write_text_file((out / "loop.csv").string(), loop_csv(loop));
 
-  Chart hist = histogram_chart("Frame time, " + std::to_string(loop.frames) + " frames at " +
-                                   std::to_string(int(loop.rate_hz)) + " Hz",
-                               "frame time (ms)", loop.frame_ms, 60, true);
+  Chart hist = histogram_chart(
+      "Frame time, " + std::to_string(loop.frames) + " frames at " + std::to_string(int(loop.rate_hz)) + " Hz",
+      "frame time (ms)", loop.frame_ms, 60, true);
   hist.hlines.clear();
   write_chart_png((out / "frame_times.png").string(), hist);
 
@@ -96,9 +102,14 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Scene
     position.x.push_back(f.time_s), position.y.push_back(e.position);
     angle.x.push_back(f.time_s), angle.y.push_back(e.angle_deg);
   }
-  write_chart_png((out / "energy.png").string(),
-                  Chart{"Geometric energy at the part's pose (" + scene.name + ")", "time (s)", "energy", false, false,
-                        {energy}, {}, {}});
+  write_chart_png((out / "energy.png").string(), Chart{"Geometric energy at the part's pose (" + scene.name + ")",
+                                                       "time (s)",
+                                                       "energy",
+                                                       false,
+                                                       false,
+                                                       {energy},
+                                                       {},
+                                                       {}});
   Chart ft{"Force and torque in the haptic loop", "time (s)", "magnitude", false, false, {force, sent}, {}, {}};
   if (scene.outputs.torque) ft.series.push_back(torque);
   write_chart_png((out / "force_torque.png").string(), ft);
@@ -120,25 +131,37 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Scene
           {"skipped_ticks", loop.skipped_ticks},
           {"late_wakeup_misses", loop.late_wakeup_misses},
           {"stall_misses", loop.stall_misses},
-              {"wake_late_ms", {{"p50", quantile(loop.wake_late_ms, 0.5)}, {"p99", quantile(loop.wake_late_ms, 0.99)},
-                            {"max", quantile(loop.wake_late_ms, 1.0)}}},
+          {"wake_late_ms",
+           {{"p50", quantile(loop.wake_late_ms, 0.5)},
+            {"p99", quantile(loop.wake_late_ms, 0.99)},
+            {"max", quantile(loop.wake_late_ms, 1.0)}}},
           {"miss_rate", loop.miss_rate()},
           {"flagged_frames", loop.flagged_frames},
-          {"frame_ms", {{"p50", quantile(loop.frame_ms, 0.5)}, {"p99", quantile(loop.frame_ms, 0.99)},
-                        {"max", quantile(loop.frame_ms, 1.0)}}},
+          {"frame_ms",
+           {{"p50", quantile(loop.frame_ms, 0.5)},
+            {"p99", quantile(loop.frame_ms, 0.99)},
+            {"max", quantile(loop.frame_ms, 1.0)}}},
           {"modes", {{"tuned", tuning.chosen_modes}, {"final", loop.final_modes}, {"changes", changes}}},
           {"geometry_gain", run.geometry_gain},
           {"force_scale", run.force_scale},
-          {"coupling", {{"stiffness_n_per_m", run.coupling.stiffness}, {"rot_stiffness_nm_per_rad", run.coupling.rot_stiffness},
-                        {"damping", run.coupling.damping}, {"rot_damping", run.coupling.rot_damping},
-                        {"mass_kg", run.coupling.mass_kg}, {"inertia_kg_m2", run.coupling.inertia_kg_m2}}},
-          {"final_pose", {{"position", {fp.translation.x(), fp.translation.y(), fp.translation.z()}},
-                          {"quaternion_wxyz", {fp.rotation.w(), fp.rotation.x(), fp.rotation.y(), fp.rotation.z()}}}},
+          {"coupling",
+           {{"stiffness_n_per_m", run.coupling.stiffness},
+            {"rot_stiffness_nm_per_rad", run.coupling.rot_stiffness},
+            {"damping", run.coupling.damping},
+            {"rot_damping", run.coupling.rot_damping},
+            {"mass_kg", run.coupling.mass_kg},
+            {"inertia_kg_m2", run.coupling.inertia_kg_m2}}},
+          {"final_pose",
+           {{"position", {fp.translation.x(), fp.translation.y(), fp.translation.z()}},
+            {"quaternion_wxyz", {fp.rotation.w(), fp.rotation.x(), fp.rotation.y(), fp.rotation.z()}}}},
           {"final_error", {{"position", run.final_error.position}, {"angle_deg", run.final_error.angle_deg}}},
           {"tolerance", {{"position", run.position_tolerance}, {"angle_deg", run.angle_tolerance_deg}}},
           {"assembled", run.assembled},
-          {"priority", {{"threads_raised", run.priority.threads}, {"realtime", run.priority.realtime}, {"failed", run.priority.failed},
-                        {"reason", run.priority.reason}}}};
+          {"priority",
+           {{"threads_raised", run.priority.threads},
+            {"realtime", run.priority.realtime},
+            {"failed", run.priority.failed},
+            {"reason", run.priority.reason}}}};
 }
 
 }  // namespace snapfit

@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 
 #include "report/plot.h"
-#include "snapfit/scene.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/auto_tune.h"
+#include "snapfit/scene.h"
 
 namespace snapfit {
 

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "snapfit/error.h"
 #include "report/bitmap_font.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
@@ -28,7 +28,7 @@ constexpr Rgb kRing = {20, 20, 20};
 constexpr Rgb kLegendBorder = {175, 175, 175};
 
 // Tableau 10, the usual qualitative palette.
-constexpr Rgb kPalette[10] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},  {148, 103, 189},
+constexpr Rgb kPalette[10] = {{31, 119, 180}, {255, 127, 14},  {44, 160, 44},   {214, 39, 40},  {148, 103, 189},
                               {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
 
 constexpr double kHuge = 4.0e307;  // axis ranges are kept within +-kHuge so spans stay finite
@@ -47,7 +47,8 @@ void check_limits(const Chart& chart, double lo, double hi, bool log, const char
   const std::string who = chart_name(chart) + ": " + axis + " axis limit ";
   for (double v : {lo, hi})
     if (!std::isnan(v) && (!std::isfinite(v) || (log && v <= 0)))
-      throw Error(who + num(v) + (log ? " is not a positive finite number (the axis is logarithmic)" : " is not finite"));
+      throw Error(who + num(v) +
+                  (log ? " is not a positive finite number (the axis is logarithmic)" : " is not finite"));
   if (!std::isnan(lo) && !std::isnan(hi) && !(lo < hi))
     throw Error(who + "range [" + num(lo) + ", " + num(hi) + "] is empty: the minimum must be below the maximum");
 }
@@ -91,8 +92,7 @@ struct Extent {
 
 // The shown range [lo, hi] in axis units: the extent with a 5% margin (none on a side
 // pinned at a bar baseline), then fixed limits.
-std::pair<double, double> axis_range(Extent e, bool pin_lo, bool pin_hi, bool log, double fixed_min,
-                                     double fixed_max) {
+std::pair<double, double> axis_range(Extent e, bool pin_lo, bool pin_hi, bool log, double fixed_min, double fixed_max) {
   double lo = 0, hi = 1;
   if (e.any()) {
     lo = std::clamp(e.lo, -kHuge, kHuge);
@@ -183,8 +183,7 @@ void stamp(SliceImage& im, const Box& clip, int x, int y, const Rgb& c, int thic
 }
 
 // Liang-Barsky: shortens the segment to the rectangle; false when nothing is left.
-bool clip_segment(double& x0, double& y0, double& x1, double& y1, double xmin, double ymin, double xmax,
-                  double ymax) {
+bool clip_segment(double& x0, double& y0, double& x1, double& y1, double xmin, double ymin, double xmax, double ymax) {
   const double dx = x1 - x0, dy = y1 - y0;
   double t0 = 0, t1 = 1;
   const double p[4] = {-dx, dx, -dy, dy};
@@ -211,8 +210,7 @@ bool clip_segment(double& x0, double& y0, double& x1, double& y1, double xmin, d
 
 // A segment between pixel coordinates, clipped first (Liang-Barsky) and then drawn
 // with Bresenham's steps, each stamped thick x thick.
-void draw_line(SliceImage& im, const Box& clip, double x0, double y0, double x1, double y1, const Rgb& c,
-               int thick) {
+void draw_line(SliceImage& im, const Box& clip, double x0, double y0, double x1, double y1, const Rgb& c, int thick) {
   for (double v : {x0, y0, x1, y1})
     if (!std::isfinite(v)) return;
   if (!clip_segment(x0, y0, x1, y1, clip.x0 - 0.5, clip.y0 - 0.5, clip.x1 + 0.5, clip.y1 + 0.5)) return;
@@ -445,7 +443,9 @@ ChartLayout chart_layout(const Chart& chart) {
   L.y_lo = from_axis(ya, chart.log_y);
   L.y_hi = from_axis(yb, chart.log_y);
 
-  auto ticks = [](double lo, double hi, bool log, int n) { return log ? log_ticks(lo, hi, n) : linear_ticks(lo, hi, n); };
+  auto ticks = [](double lo, double hi, bool log, int n) {
+    return log ? log_ticks(lo, hi, n) : linear_ticks(lo, hi, n);
+  };
 
   // The largest text scale up to the requested one that leaves a usable plot area.
   int s = chart.text_scale > 0 ? chart.text_scale : (chart.width >= 1600 && chart.height >= 1000 ? 2 : 1);
@@ -593,8 +593,8 @@ SliceImage render_chart(const Chart& chart) {
   if (!chart.title.empty()) {
     const int ts = text_width(chart.title, s + 1) <= im.width - 2 * pad ? s + 1 : s;  // smaller when too long
     const int w = text_width(chart.title, ts);
-    draw_text(im, std::clamp(plot_mid_x - w / 2, 0, std::max(0, im.width - w)), pad + text_height(s + 1) - text_height(ts),
-              chart.title, kText, ts);
+    draw_text(im, std::clamp(plot_mid_x - w / 2, 0, std::max(0, im.width - w)),
+              pad + text_height(s + 1) - text_height(ts), chart.title, kText, ts);
   }
 
   // Labels of reference lines (at either end, above or below) and of markers (around
@@ -614,8 +614,14 @@ SliceImage render_chart(const Chart& chart) {
     const int w = text_width(m.label, s), r = 7 * s + 4 * s, d = r * 7 / 10;
     const int cx = col(px), cy = col(py), mid = cy - 7 * s / 2;
     const auto [x, y] = quietest_spot(im,
-                                      {{cx + d, cy - d - th}, {cx + r, mid}, {cx + d, cy + d}, {cx - d - w, cy - d - th},
-                                       {cx - r - w, mid}, {cx - d - w, cy + d}, {cx - w / 2, cy - r - th}, {cx - w / 2, cy + r}},
+                                      {{cx + d, cy - d - th},
+                                       {cx + r, mid},
+                                       {cx + d, cy + d},
+                                       {cx - d - w, cy - d - th},
+                                       {cx - r - w, mid},
+                                       {cx - d - w, cy + d},
+                                       {cx - w / 2, cy - r - th},
+                                       {cx - w / 2, cy + r}},
                                       w, th, plot);
     draw_halo_text(im, x, y, m.label, kText, s);
   }
@@ -671,8 +677,8 @@ void write_chart_png(const std::string& path, const Chart& chart) {
   write_png(path, render_chart(chart), text);
 }
 
-Chart histogram_chart(const std::string& title, const std::string& x_label, const std::vector<double>& values,
-                      int bins, bool log_y) {
+Chart histogram_chart(const std::string& title, const std::string& x_label, const std::vector<double>& values, int bins,
+                      bool log_y) {
   if (bins < 1 || bins > 100000)
     throw Error("histogram" + (title.empty() ? std::string() : " '" + title + "'") + ": bins must be 1..100000, not " +
                 std::to_string(bins));

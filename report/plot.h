@@ -24,8 +24,8 @@ struct Series {
   // bars: one bar per point, centred on x, as wide as the closest spacing of the x
   // values allows, from y = 0 (from the bottom of the plot area on a log y axis).
   enum class Style { line, points, line_points, bars };
-  std::string label;          // legend text; series with no label are left out of the legend
-  std::vector<double> x, y;   // the same length
+  std::string label;         // legend text; series with no label are left out of the legend
+  std::vector<double> x, y;  // the same length
   Style style = Style::line_points;
   std::array<unsigned char, 3> color = {0, 0, 0};  // {0, 0, 0}: next colour of the palette
 };
@@ -69,8 +69,8 @@ void write_chart_png(const std::string& path, const Chart& chart);
 // maximum, as one `bars` series labelled "<n> values" with y label "count". A log y
 // axis leaves empty bins out. No finite values give an empty series ("no data").
 // Throws snapfit::Error for bins outside 1..100000.
-Chart histogram_chart(const std::string& title, const std::string& x_label, const std::vector<double>& values,
-                      int bins, bool log_y = false);
+Chart histogram_chart(const std::string& title, const std::string& x_label, const std::vector<double>& values, int bins,
+                      bool log_y = false);
 
 // --- The pieces render_chart is built from, for callers that overlay or test.
 
@@ -97,7 +97,7 @@ std::string tick_label(double value, double step);
 
 // Where render_chart puts things.
 struct ChartLayout {
-  int left = 0, top = 0, right = 0, bottom = 0;  // plot area, inclusive pixel bounds
+  int left = 0, top = 0, right = 0, bottom = 0;   // plot area, inclusive pixel bounds
   double x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;  // the data range shown
   bool log_x = false, log_y = false;
   AxisTicks x_ticks, y_ticks;

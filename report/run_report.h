@@ -16,14 +16,14 @@
 namespace snapfit {
 
 struct RunRecord {
-  const AssemblyPair* pair = nullptr;      // parts, fields, spectra
-  DeviceInfo device;                       // where fields and spectra were computed
-  DeviceInfo loop_device;                  // where the loop ran (or would run)
+  const AssemblyPair* pair = nullptr;  // parts, fields, spectra
+  DeviceInfo device;                   // where fields and spectra were computed
+  DeviceInfo loop_device;              // where the loop ran (or would run)
   DeviceCheckResult check;
   TuningResult tuning;
-  std::string tuning_key;                  // "" when m' was fixed by the user
-  std::optional<SessionResult> session;    // the scripted assembly, when the scene has a trajectory
-  double seconds = 0;                      // the whole job so far
+  std::string tuning_key;                // "" when m' was fixed by the user
+  std::optional<SessionResult> session;  // the scripted assembly, when the scene has a trajectory
+  double seconds = 0;                    // the whole job so far
 };
 
 // Writes every file into `out` (created); returns their names, summary.json first.

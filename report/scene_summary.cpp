@@ -6,10 +6,11 @@
 namespace snapfit {
 namespace {
 
-void print_part(std::ostream& out, const char* role, const PartSpec& spec, const PreparedPart& part, const std::string& units) {
+void print_part(std::ostream& out, const char* role, const PartSpec& spec, const PreparedPart& part,
+                const std::string& units) {
   const MeshReport& r = part.report;
-  out << role << " '" << spec.name << "': "
-      << (spec.mesh_path ? *spec.mesh_path : "procedural " + spec.procedural->type) << "\n"
+  out << role << " '" << spec.name
+      << "': " << (spec.mesh_path ? *spec.mesh_path : "procedural " + spec.procedural->type) << "\n"
       << "    " << r.triangle_count << " triangles, box [" << r.bbox_min.transpose() << "] .. ["
       << r.bbox_max.transpose() << "] " << units << ", volume " << r.enclosed_volume << " " << units << "^3, "
       << (r.watertight() ? "watertight" : "NOT watertight") << ", " << r.degenerate_triangles
@@ -30,8 +31,8 @@ void print_scene_summary(std::ostream& out, const Scene& scene, const PreparedPa
   print_part(out, "part 1 (fixed)", scene.part1, parts.part1, scene.units);
   print_part(out, "part 2 (moving)", scene.part2, parts.part2, scene.units);
   out << "motion " << (scene.motion == Motion::six_dof ? "6-DOF" : "translation only") << ", frame budget "
-      << scene.frame_budget_ms << " ms at " << scene.loop_rate_hz << " Hz, "
-      << scene.trajectory.keyframes.size() << " trajectory keyframes";
+      << scene.frame_budget_ms << " ms at " << scene.loop_rate_hz << " Hz, " << scene.trajectory.keyframes.size()
+      << " trajectory keyframes";
   if (!scene.trajectory.keyframes.empty()) out << " over " << scene.trajectory.keyframes.back().time_s << " s";
   out << "\nplan:\n";
   for (const std::string& line : plan.lines) out << "  - " << line << "\n";

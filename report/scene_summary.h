@@ -4,8 +4,8 @@
 
 #include "pipeline/compute_plan.h"
 #include "pipeline/part_fields.h"
-#include "snapfit/scene.h"
 #include "pipeline/prepare_parts.h"
+#include "snapfit/scene.h"
 
 namespace snapfit {
 

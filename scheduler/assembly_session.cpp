@@ -2,14 +2,13 @@
 
 #include <algorithm>
 
-#include "snapfit/error.h"
 #include "scheduler/scripted_device.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 
-SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, double spacing,
-                                    QueryEngine& engine, const TuningResult& tuning,
-                                    const SessionOptions& options) {
+SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
+                                    const TuningResult& tuning, const SessionOptions& options) {
   if (scene.trajectory.keyframes.empty())
     throw Error(scene.source_path + ": no trajectory: a scripted assembly needs one (or use a real device)");
   SessionResult out;
@@ -29,7 +28,8 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, 
   BodyState part;
   part.pose = device.read(0).pose;  // the part starts in the user's hand
   const WrenchEvaluator evaluator = wrench_evaluator(engine);
-  const bool raise = (options.priority.nice_value != 0 || options.priority.realtime_priority > 0) && !options.simulated_time;
+  const bool raise =
+      (options.priority.nice_value != 0 || options.priority.realtime_priority > 0) && !options.simulated_time;
   if (raise) out.priority = raise_process_priority(options.priority);
   {
     // Warm-up at the loop's m' and the first pose, as a haptics program does before it

@@ -5,13 +5,13 @@
 // `snapfit run` and perf/bench_haptic_loop use it.
 #include <optional>
 
-#include "snapfit/query.h"
 #include "mesh/mesh.h"
-#include "snapfit/scene.h"
 #include "scheduler/auto_tune.h"
-#include "snapfit/haptic_loop.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/thread_priority.h"
+#include "snapfit/haptic_loop.h"
+#include "snapfit/query.h"
+#include "snapfit/scene.h"
 
 namespace snapfit {
 
@@ -19,7 +19,7 @@ struct SessionOptions {
   std::optional<double> duration_s;  // default: the trajectory's length + haptics.settle_s
   bool loop_back = false;            // replay the trajectory back and forth (long runs)
   bool keep_log = true;
-  bool simulated_time = false;       // snapfit/haptic_loop.h simulated_loop_clock (deterministic)
+  bool simulated_time = false;  // snapfit/haptic_loop.h simulated_loop_clock (deterministic)
   // The run's threads during the loop (scheduler/thread_priority.h), restored after it:
   // SCHED_FIFO 10 where allowed, else nice -10. {0, 0} leaves them.
   PriorityRequest priority{-10, 10};
@@ -31,19 +31,18 @@ struct SessionResult {
   CouplingParams coupling;
   DeviceLimits limits;
   double geometry_gain = 0;
-  double force_scale = 0;          // largest engine force at the gain's probe poses
-  Pose target;                     // the assembled pose (else the last keyframe)
+  double force_scale = 0;  // largest engine force at the gain's probe poses
+  Pose target;             // the assembled pose (else the last keyframe)
   PoseError final_error;
-  double position_tolerance = 0;   // scene units
+  double position_tolerance = 0;  // scene units
   double angle_tolerance_deg = 0;
-  bool assembled = false;          // final_error within the tolerances
-  PriorityChange priority;         // what raising the threads' priority did
+  bool assembled = false;   // final_error within the tolerances
+  PriorityChange priority;  // what raising the threads' priority did
 };
 
 // Runs the loop on its own thread on the steady clock and waits for it. Throws
 // snapfit::Error when the scene has no trajectory or its haptics cannot be set up.
-SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, double spacing,
-                                    QueryEngine& engine, const TuningResult& tuning,
-                                    const SessionOptions& options = {});
+SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
+                                    const TuningResult& tuning, const SessionOptions& options = {});
 
 }  // namespace snapfit

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <ctime>
 
-#include "snapfit/error.h"
 #include "core/quantile.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 
@@ -47,7 +47,8 @@ std::vector<std::size_t> mode_ladder(std::size_t min_modes, std::size_t max_mode
 
 TuningResult pick_modes(std::vector<TimingPoint> points, double budget_ms, double margin) {
   if (points.empty()) throw Error("auto-tuning: no timings to choose from");
-  if (!(budget_ms > 0) || !(margin >= 0 && margin < 1)) throw Error("auto-tuning: budget must be > 0 and margin in [0, 1)");
+  if (!(budget_ms > 0) || !(margin >= 0 && margin < 1))
+    throw Error("auto-tuning: budget must be > 0 and margin in [0, 1)");
   std::sort(points.begin(), points.end(), [](const TimingPoint& a, const TimingPoint& b) { return a.modes < b.modes; });
   TuningResult r;
   r.points = points;

@@ -21,11 +21,11 @@ CostModel fit_cost_model(const std::vector<TimingPoint>& points);
 
 struct TuneOptions {
   double budget_ms = 1.0;
-  double margin = 0.25;             // keep p99 at most (1 - margin) of the budget
+  double margin = 0.25;  // keep p99 at most (1 - margin) of the budget
   std::size_t min_modes = 512;
   double ladder_factor = 1.41421356;  // sqrt(2) between levels
-  std::size_t repetitions = 400;    // timed queries per level
-  std::size_t warmup = 20;          // untimed queries per level first
+  std::size_t repetitions = 400;      // timed queries per level
+  std::size_t warmup = 20;            // untimed queries per level first
   // The sweep stops after the first level whose p99 exceeds this multiple of the target.
   double stop_factor = 1.5;
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;

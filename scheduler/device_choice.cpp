@@ -31,8 +31,7 @@ std::size_t lowest_latency(const std::vector<TuningResult>& tunings) {
     const TuningResult& t = tunings[i];
     // Lower is better: fitting first, then the p99 at the common level (or -m').
     const double ms = common ? at_modes(t, common)->p99_ms : -double(t.chosen_modes);
-    const bool better = (t.fits && !tunings[best].fits) ||
-                        (t.fits == tunings[best].fits && ms < best_ms);
+    const bool better = (t.fits && !tunings[best].fits) || (t.fits == tunings[best].fits && ms < best_ms);
     if (i == 0 || better) best = i, best_ms = ms;
   }
   return best;
@@ -40,7 +39,8 @@ std::size_t lowest_latency(const std::vector<TuningResult>& tunings) {
 
 std::size_t loop_device(const std::vector<TuningResult>& tunings, const std::vector<bool>& in_caller_thread) {
   if (tunings.empty()) throw Error("device choice: no tuned devices to choose from");
-  if (in_caller_thread.size() != tunings.size()) throw Error("device choice: one caller-thread flag per tuning expected");
+  if (in_caller_thread.size() != tunings.size())
+    throw Error("device choice: one caller-thread flag per tuning expected");
   bool any_fits = false;
   std::size_t largest = 0;
   for (const TuningResult& t : tunings) any_fits = any_fits || t.fits;

@@ -28,8 +28,8 @@ TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, 
   key.driver = device.driver_version;
   key.variant = variant_name(variant);
   std::ostringstream features;
-  features << "fft " << spectra.dims[0] << "x" << spectra.dims[1] << "x" << spectra.dims[2]
-           << " torque_spectra " << spectra.torque << " spacing " << spectra.spacing;
+  features << "fft " << spectra.dims[0] << "x" << spectra.dims[1] << "x" << spectra.dims[2] << " torque_spectra "
+           << spectra.torque << " spacing " << spectra.spacing;
   key.scene_features = features.str();
   key.budget_ms = budget_ms;
   key.margin = margin;
@@ -44,7 +44,8 @@ std::vector<Pose> tuning_poses(const Scene& scene) {
 
 QueryTimer engine_query_timer(QueryEngine& engine, std::vector<Pose> poses, double pace_hz) {
   if (poses.empty()) throw Error("auto-tuning: no poses to time queries at");
-  return [&engine, poses = std::move(poses), pace_hz, next = std::size_t(0)](std::size_t modes, std::size_t count) mutable {
+  return [&engine, poses = std::move(poses), pace_hz, next = std::size_t(0)](std::size_t modes,
+                                                                             std::size_t count) mutable {
     engine.set_modes(modes);
     std::vector<double> times;
     times.reserve(count);
@@ -59,8 +60,8 @@ QueryTimer engine_query_timer(QueryEngine& engine, std::vector<Pose> poses, doub
   };
 }
 
-EngineTuning tune_engine(QueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses,
-                         TuneOptions options, bool retune, const std::function<void(const std::string&)>& note) {
+EngineTuning tune_engine(QueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses, TuneOptions options,
+                         bool retune, const std::function<void(const std::string&)>& note) {
   EngineTuning out;
   out.path = tuning_file_path(key);
   if (!retune)

@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "engine/device.h"
-#include "snapfit/query.h"
 #include "engine/spectra.h"
 #include "scheduler/auto_tune.h"
 #include "scheduler/tuning_file.h"
+#include "snapfit/query.h"
 #include "snapfit/scene.h"
 
 namespace snapfit {
@@ -40,7 +40,7 @@ struct EngineTuning {
 // with `engine` at `poses` and saves it. A save failure is reported through `note` and
 // the fresh result is still returned.
 // The queries are paced at key.pace_hz (engine_query_timer; 0: back-to-back).
-EngineTuning tune_engine(QueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses,
-                         TuneOptions options, bool retune, const std::function<void(const std::string&)>& note);
+EngineTuning tune_engine(QueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses, TuneOptions options,
+                         bool retune, const std::function<void(const std::string&)>& note);
 
 }  // namespace snapfit

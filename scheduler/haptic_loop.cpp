@@ -1,5 +1,4 @@
 #include "snapfit/haptic_loop.h"
-#include "scheduler/virtual_coupling.h"
 
 #include <algorithm>
 #include <chrono>
@@ -11,8 +10,9 @@
 #include <optional>
 #include <thread>
 
-#include "snapfit/error.h"
 #include "core/quantile.h"
+#include "scheduler/virtual_coupling.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 
@@ -81,8 +81,8 @@ class ModeGovernor {
     }
     // Step-up is judged once per miss window, not every frame: the p99 of the recent
     // frames is a sort of up_after_frames values, too much for the per-frame path.
-    if (level_ + 1 < p_.levels.size() && since_change_ >= p_.up_after_frames &&
-        recent_.size() >= p_.up_after_frames && since_change_ % std::max<std::size_t>(1, p_.miss_window) == 0) {
+    if (level_ + 1 < p_.levels.size() && since_change_ >= p_.up_after_frames && recent_.size() >= p_.up_after_frames &&
+        since_change_ % std::max<std::size_t>(1, p_.miss_window) == 0) {
       const double p99 = quantile(std::vector<double>(recent_.begin(), recent_.end()), 0.99);
       const std::size_t next = p_.levels[level_ + 1];
       const double ratio = p_.predicted_ms ? p_.predicted_ms(next) / std::max(1e-9, p_.predicted_ms(modes()))
@@ -176,8 +176,8 @@ class PassivityController {
     if (d.damping == 0 && d.rot_damping == 0) return 0;
     const double u = config_.coupling.metres_per_unit;
     const double period = 1.0 / config_.rate_hz;
-    const double removed = period * (d.damping * (u * part.velocity).squaredNorm() +
-                                     d.rot_damping * part.angular_velocity.squaredNorm());
+    const double removed =
+        period * (d.damping * (u * part.velocity).squaredNorm() + d.rot_damping * part.angular_velocity.squaredNorm());
     budget_ = std::min(0.0, budget_ + removed);
     return removed;
   }
@@ -192,7 +192,7 @@ class PassivityController {
   double potential_ = 0;
   std::size_t modes_ = 0;
   Wrench wrench_;
-  double budget_ = 0;  // <= 0: energy created by the steps and not yet removed, J
+  double budget_ = 0;                         // <= 0: energy created by the steps and not yet removed, J
   double stiffness_ = 0, rot_stiffness_ = 0;  // N / m, N m / rad
 };
 
@@ -282,8 +282,8 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     report.frame_ms.push_back(frame_ms);
     report.wake_late_ms.push_back(1e3 * (woke - tick_time));
     if (config.keep_log)
-      report.log.push_back(FrameRecord{tick_time, frame_ms, handle.pose, queried, q.energy, geometric, sent,
-                                       q.modes, q.flags, missed});
+      report.log.push_back(
+          FrameRecord{tick_time, frame_ms, handle.pose, queried, q.energy, geometric, sent, q.modes, q.flags, missed});
     ++report.frames;
     if (missed) ++report.misses;
 
@@ -324,10 +324,10 @@ HapticLoopThread::HapticLoopThread(HapticDevice& device, WrenchEvaluator engine,
                                    LoopClock clock)
     : state_(std::make_unique<State>()) {
   config.stop = &stop_;
-  state_->result = std::async(std::launch::async, [&device, engine = std::move(engine), config, part,
-                                                   clock = std::move(clock)] {
-    return run_haptic_loop(device, engine, config, clock, part);
-  });
+  state_->result =
+      std::async(std::launch::async, [&device, engine = std::move(engine), config, part, clock = std::move(clock)] {
+        return run_haptic_loop(device, engine, config, clock, part);
+      });
 }
 
 HapticLoopThread::~HapticLoopThread() {

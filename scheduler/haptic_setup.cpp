@@ -58,8 +58,8 @@ LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double sp
   LoopConfig config;
   config.rate_hz = scene.loop_rate_hz;
   const Trajectory& t = scene.trajectory;
-  config.duration_s = t.keyframes.empty() ? 0.0
-                                          : t.keyframes.back().time_s - t.keyframes.front().time_s + scene.haptics.settle_s;
+  config.duration_s =
+      t.keyframes.empty() ? 0.0 : t.keyframes.back().time_s - t.keyframes.front().time_s + scene.haptics.settle_s;
   config.budget_ms = scene.frame_budget_ms;
   config.coupling = coupling_for(scene, part2_mesh);
   engine.set_modes(tuning.chosen_modes);

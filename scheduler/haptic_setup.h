@@ -4,13 +4,13 @@
 // whether a run ended assembled.
 #include <vector>
 
-#include "snapfit/pose.h"
 #include "mesh/mesh.h"
-#include "snapfit/scene.h"
+#include "scheduler/virtual_coupling.h"
 #include "snapfit/haptic_device.h"
 #include "snapfit/haptic_loop.h"
+#include "snapfit/pose.h"
+#include "snapfit/scene.h"
 #include "snapfit/tuning.h"
-#include "scheduler/virtual_coupling.h"
 
 namespace snapfit {
 
@@ -43,7 +43,7 @@ LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double sp
                            const TuningResult& tuning, double& force_scale);
 
 struct PoseError {
-  double position = 0;   // scene units
+  double position = 0;  // scene units
   double angle_deg = 0;
   bool within(double position_tolerance, double angle_tolerance_deg) const {
     return position <= position_tolerance && angle_deg <= angle_tolerance_deg;

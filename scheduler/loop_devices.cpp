@@ -13,7 +13,8 @@ TunedDevice tune_device(const ComputeContext& ctx, const Scene& scene, const Pai
                         const QueryVariant& variant, const std::vector<Pose>& poses, const LoopDeviceOptions& options) {
   if (options.on_start) options.on_start(ctx.device.info);
   TunedDevice out{ctx, make_query_engine(ctx, spectra, variant), {}, {}};
-  out.key = tuning_key_for(ctx.device.info, variant, spectra, scene.frame_budget_ms, options.margin, scene.loop_rate_hz);
+  out.key =
+      tuning_key_for(ctx.device.info, variant, spectra, scene.frame_budget_ms, options.margin, scene.loop_rate_hz);
   out.tuning = tune_engine(*out.engine, out.key, poses, options.tune, options.retune, options.note);
   if (options.on_tuned) options.on_tuned(out);
   return out;
@@ -32,7 +33,8 @@ LoopDevices tune_loop_devices(const ComputeContext& ctx, const Scene& scene, con
       try {
         const ComputeContext other_ctx = make_compute_context(other);
         if (!run_device_check(other_ctx, false).passed) {
-          if (options.note) options.note("device " + other.info.name + " failed its self-check; left out of the loop choice");
+          if (options.note)
+            options.note("device " + other.info.name + " failed its self-check; left out of the loop choice");
           continue;
         }
         out.devices.push_back(tune_device(other_ctx, scene, spectra, variant, poses, options));

@@ -26,13 +26,13 @@ struct TunedDevice {
 };
 
 struct LoopDeviceOptions {
-  double margin = 0.25;          // TuneOptions::margin
-  bool retune = false;           // measure even when the tuning file matches
-  bool other_devices = true;     // also tune the other devices
-  TuneOptions tune;              // repetitions, progress
-  std::function<void(const std::string&)> note;           // devices left out, tuning files not saved
-  std::function<void(const DeviceInfo&)> on_start;        // before each device is tuned
-  std::function<void(const TunedDevice&)> on_tuned;       // after
+  double margin = 0.25;                              // TuneOptions::margin
+  bool retune = false;                               // measure even when the tuning file matches
+  bool other_devices = true;                         // also tune the other devices
+  TuneOptions tune;                                  // repetitions, progress
+  std::function<void(const std::string&)> note;      // devices left out, tuning files not saved
+  std::function<void(const DeviceInfo&)> on_start;   // before each device is tuned
+  std::function<void(const TunedDevice&)> on_tuned;  // after
 };
 
 struct LoopDevices {

@@ -1,11 +1,10 @@
 #include "scheduler/scripted_device.h"
 
-#include "scheduler/virtual_coupling.h"
-
 #include <cmath>
 
-#include "snapfit/error.h"
 #include "scheduler/trajectory.h"
+#include "scheduler/virtual_coupling.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 

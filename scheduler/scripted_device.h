@@ -4,8 +4,8 @@
 // trajectory. The wrenches it is sent are kept for the report.
 #include <vector>
 
-#include "snapfit/scene.h"
 #include "snapfit/haptic_device.h"
+#include "snapfit/scene.h"
 
 namespace snapfit {
 

@@ -13,7 +13,8 @@ namespace snapfit {
 
 std::string PriorityChange::describe() const {
   std::string s;
-  if (realtime > 0) s = "SCHED_FIFO " + std::to_string(realtime_priority) + " for " + std::to_string(realtime) + " threads";
+  if (realtime > 0)
+    s = "SCHED_FIFO " + std::to_string(realtime_priority) + " for " + std::to_string(realtime) + " threads";
   if (threads > realtime) {
     if (!s.empty()) s += ", ";
     s += "nice " + std::to_string(nice_value) + " for " + std::to_string(threads - realtime) + " threads";

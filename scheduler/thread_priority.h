@@ -9,7 +9,7 @@
 namespace snapfit {
 
 struct PriorityRequest {
-  int nice_value = -10;       // setpriority(2), -20 highest .. 19; 0 leaves the nice value
+  int nice_value = -10;  // setpriority(2), -20 highest .. 19; 0 leaves the nice value
   // SCHED_FIFO priority (1-99) tried first, above every normally scheduled task (the
   // kernel's real-time throttling still leaves 5% of each second to them); 0: nice only.
   int realtime_priority = 0;

@@ -13,8 +13,8 @@ Pose trajectory_pose(const Trajectory& trajectory, double time_s) {
   if (!std::isfinite(time_s)) throw Error("trajectory time must be finite");
   if (time_s <= keys.front().time_s) return keys.front().pose;
   if (time_s >= keys.back().time_s) return keys.back().pose;
-  const auto next = std::upper_bound(keys.begin(), keys.end(), time_s,
-                                     [](double t, const Keyframe& k) { return t < k.time_s; });
+  const auto next =
+      std::upper_bound(keys.begin(), keys.end(), time_s, [](double t, const Keyframe& k) { return t < k.time_s; });
   const Keyframe& b = *next;
   const Keyframe& a = *(next - 1);
   const double s = (time_s - a.time_s) / (b.time_s - a.time_s);

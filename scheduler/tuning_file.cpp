@@ -3,9 +3,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "snapfit/error.h"
-#include "io/cache_file.h"
 #include "core/hash.h"
+#include "io/cache_file.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
@@ -30,8 +30,8 @@ std::string tuning_file_path(const TuningKey& key) {
 std::string tuning_to_json(const TuningResult& r) {
   nlohmann::json points = nlohmann::json::array();
   for (const TimingPoint& p : r.points)
-    points.push_back({{"modes", p.modes}, {"p50_ms", p.p50_ms}, {"p99_ms", p.p99_ms}, {"max_ms", p.max_ms},
-                      {"samples", p.samples}});
+    points.push_back(
+        {{"modes", p.modes}, {"p50_ms", p.p50_ms}, {"p99_ms", p.p99_ms}, {"max_ms", p.max_ms}, {"samples", p.samples}});
   const nlohmann::json j = {{"points", points},
                             {"model", {{"fixed_ms", r.model.fixed_ms}, {"per_mode_ms", r.model.per_mode_ms}}},
                             {"chosen_modes", r.chosen_modes},
@@ -68,7 +68,8 @@ std::optional<TuningResult> load_tuning(const TuningKey& key, const std::functio
   const std::string path = tuning_file_path(key);
   const CacheRead read = read_cache_file(path, kKind, kVersion, key.text());
   if (read.status != CacheStatus::hit) {
-    if (note && read.status != CacheStatus::missing) note("tuning file " + path + " not used: " + read.reason + "; re-tuning");
+    if (note && read.status != CacheStatus::missing)
+      note("tuning file " + path + " not used: " + read.reason + "; re-tuning");
     return std::nullopt;
   }
   try {

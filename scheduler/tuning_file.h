@@ -20,8 +20,8 @@ struct TuningKey {
   std::string scene_features;  // e.g. "fft 128x96x96 max_modes 1179648"
   double budget_ms = 1.0;
   double margin = 0.25;
-  double pace_hz = 0;          // queries timed at this rate (the loop's), 0: back-to-back
-  std::string text() const;    // the full key, stored in the file
+  double pace_hz = 0;        // queries timed at this rate (the loop's), 0: back-to-back
+  std::string text() const;  // the full key, stored in the file
 };
 
 std::string tuning_file_path(const TuningKey& key);

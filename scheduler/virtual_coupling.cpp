@@ -14,7 +14,8 @@ double critical_damping(double stiffness, double mass, double damping_ratio) {
 CouplingParams make_coupling(double metres_per_unit, double mass_kg, double inertia_kg_m2, double stiffness,
                              double rot_stiffness, double damping_ratio) {
   const auto check = [](double v, const char* what) {
-    if (!(std::isfinite(v) && v > 0)) throw Error(std::string("virtual coupling: ") + what + " must be > 0 (got " + std::to_string(v) + ")");
+    if (!(std::isfinite(v) && v > 0))
+      throw Error(std::string("virtual coupling: ") + what + " must be > 0 (got " + std::to_string(v) + ")");
   };
   check(metres_per_unit, "metres per unit");
   check(mass_kg, "mass");
@@ -38,7 +39,7 @@ Eigen::Vector3d rotation_between(const Eigen::Quaterniond& from, const Eigen::Qu
   Eigen::Quaterniond d = to.normalized() * from.normalized().conjugate();
   if (d.w() < 0) d.coeffs() = -d.coeffs();  // the shorter of the two ways round
   const double s = d.vec().norm();
-  if (s < 1e-12) return 2.0 * d.vec();       // small angle: theta ~ 2 sin(theta/2) axis
+  if (s < 1e-12) return 2.0 * d.vec();  // small angle: theta ~ 2 sin(theta/2) axis
   return (2.0 * std::atan2(s, d.w()) / s) * d.vec();
 }
 
@@ -64,8 +65,9 @@ double coupling_energy(const BodyState& part, const BodyState& device, const Cou
   const double u = c.metres_per_unit;
   const double d2 = (u * (device.pose.translation - part.pose.translation)).squaredNorm();
   const double theta2 = rotation_between(part.pose.rotation, device.pose.rotation).squaredNorm();
-  return 0.5 * c.mass_kg * (u * part.velocity).squaredNorm() + 0.5 * c.inertia_kg_m2 * part.angular_velocity.squaredNorm() +
-         0.5 * c.stiffness * d2 + 0.5 * c.rot_stiffness * theta2;
+  return 0.5 * c.mass_kg * (u * part.velocity).squaredNorm() +
+         0.5 * c.inertia_kg_m2 * part.angular_velocity.squaredNorm() + 0.5 * c.stiffness * d2 +
+         0.5 * c.rot_stiffness * theta2;
 }
 
 void step_body(BodyState& part, const BodyState& device, const Wrench& external, const CouplingParams& c, double dt,
@@ -77,8 +79,9 @@ void step_body(BodyState& part, const BodyState& device, const Wrench& external,
   //   v' (m + dt (b + beta) + dt^2 (k + K)) = m v + dt [k (x_d - x) + b v_d + F(x)]      (SI units)
   const Eigen::Vector3d v = u * part.velocity;
   const Eigen::Vector3d d = u * (device.pose.translation - part.pose.translation);
-  const Eigen::Vector3d v_new = (c.mass_kg * v + dt * (c.stiffness * d + c.damping * u * device.velocity + external.force)) /
-                                (c.mass_kg + dt * (c.damping + extra.damping) + dt * dt * (c.stiffness + extra.stiffness));
+  const Eigen::Vector3d v_new =
+      (c.mass_kg * v + dt * (c.stiffness * d + c.damping * u * device.velocity + external.force)) /
+      (c.mass_kg + dt * (c.damping + extra.damping) + dt * dt * (c.stiffness + extra.stiffness));
   part.velocity = v_new / u;
   part.pose.translation += dt * part.velocity;
 

@@ -2,11 +2,10 @@
 // (descriptor_reference.h). Written from the definitions, independently of kernels/*.cl.
 #include "tests/descriptor_reference.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tbb/parallel_for.h>
 
 namespace snapfit::test {
 
@@ -49,8 +48,8 @@ double reference_point_triangle_distance(const Vector3d& p, const Vector3d& a, c
 double reference_distance(const Mesh& mesh, const Vector3d& p) {
   double best = std::numeric_limits<double>::infinity();
   for (const auto& t : mesh.triangles)
-    best = std::min(best, reference_point_triangle_distance(p, mesh.vertices[t[0]], mesh.vertices[t[1]],
-                                                            mesh.vertices[t[2]]));
+    best = std::min(
+        best, reference_point_triangle_distance(p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]));
   return best;
 }
 
@@ -62,8 +61,8 @@ double reference_solid_angle(const Vector3d& p, const Vector3d& a, const Vector3
   // A, B, C the arc lengths of the spherical triangle, s their half sum, E the excess.
   const double A = arc(v, w), B = arc(w, u), C = arc(u, v);
   const double s = 0.5 * (A + B + C);
-  const double t = std::tan(0.5 * s) * std::tan(0.25 * (B + C - A)) * std::tan(0.25 * (C + A - B)) *
-                   std::tan(0.25 * (A + B - C));
+  const double t =
+      std::tan(0.5 * s) * std::tan(0.25 * (B + C - A)) * std::tan(0.25 * (C + A - B)) * std::tan(0.25 * (A + B - C));
   const double excess = 4.0 * std::atan(std::sqrt(std::max(t, 0.0)));
   return det > 0 ? excess : -excess;
 }
@@ -135,8 +134,8 @@ struct DensityIntegrator {
     const double D = (cen - p).norm();
     const double eta_min = std::max(D - r, std::abs(h));  // every point of the plane is >= |h| away
     const double x_min = eta_min / xi - 1, x_max = (D + r) / xi - 1;
-    const double omega_bound = eta_min > 0 ? std::abs(h) * area / (eta_min * eta_min * eta_min)
-                                           : std::numeric_limits<double>::infinity();
+    const double omega_bound =
+        eta_min > 0 ? std::abs(h) * area / (eta_min * eta_min * eta_min) : std::numeric_limits<double>::infinity();
     if (x_min > x_cut) {  // g below g(12 sigma) on the whole piece
       err += g(x_min) * omega_bound;
       return;
@@ -226,7 +225,7 @@ bool reference_ray_crossings(const Mesh& mesh, const Vector3d& p, const Vector3d
     const double n_len = n.norm();
     if (n_len == 0.0) continue;  // degenerate: no area to cross (its edges belong to neighbours)
     const double size = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    const double dn = d.dot(n) / n_len;       // cosine between the ray and the normal
+    const double dn = d.dot(n) / n_len;        // cosine between the ray and the normal
     const double hp = (a - p).dot(n) / n_len;  // plane height: the ray meets the plane at t = hp / dn
     if (std::abs(dn) <= guard) {
       if (std::abs(hp) <= guard * size) return false;  // ray (nearly) in the plane

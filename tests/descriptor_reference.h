@@ -22,8 +22,8 @@ namespace snapfit::test {
 
 // Exact distance from p to triangle (a, b, c) (degenerate triangles: distance to the
 // edges), and from p to the whole mesh (minimum over triangles; +inf for no triangles).
-double reference_point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                         const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+double reference_point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                         const Eigen::Vector3d& c);
 double reference_distance(const Mesh& mesh, const Eigen::Vector3d& p);
 
 // Signed solid angle of triangle (a, b, c) seen from p, in [-2pi, 2pi]: positive when

@@ -2,10 +2,9 @@
 // Shared by the stability tests (tests/test_stability_*.cpp): the default peg-and-hole
 // scene made small and coarse so that the real engine (descriptors, spectra, queries)
 // runs in about a second, with descriptor parameters overridable for the stiff cases.
+#include <Eigen/Geometry>
 #include <cmath>
 #include <string>
-
-#include <Eigen/Geometry>
 
 #include "pipeline/assembly_pair.h"
 #include "snapfit/scene.h"
@@ -14,13 +13,13 @@
 namespace snapfit::test {
 
 struct SmallPairParams {
-  double spacing = 1.5;   // mm (the shipped scene uses 0.6)
-  double padding = 3;     // mm
+  double spacing = 1.5;  // mm (the shipped scene uses 0.6)
+  double padding = 3;    // mm
   double sigma = 0.5;
   double lambda_in = 3, lambda_out = 1;
-  double segments = 24;   // polygon sides of peg and hole
+  double segments = 24;  // polygon sides of peg and hole
   double oversampling = 2;
-  double scale = 1;       // every length of the scene times this (units unchanged)
+  double scale = 1;  // every length of the scene times this (units unchanged)
 };
 
 // scenes/default.json (peg in a blind hole at zero clearance) with the given grid and

@@ -1,15 +1,14 @@
 // Auto-tuning of m' (scheduler/auto_tune.h) from injected timings with a known cost,
 // and the tuning file (scheduler/tuning_file.h): round trip, key changes, corruption.
-#include <doctest/doctest.h>
-
 #include <algorithm>
 #include <cmath>
+#include <doctest/doctest.h>
 #include <filesystem>
 
-#include "snapfit/error.h"
 #include "scheduler/auto_tune.h"
 #include "scheduler/device_choice.h"
 #include "scheduler/tuning_file.h"
+#include "snapfit/error.h"
 #include "tests/test_support.h"
 
 using namespace snapfit;
@@ -137,14 +136,30 @@ TEST_CASE("tuning file: round trip, reuse, and re-tune on a key change") {
   for (int field = 0; field < 8; ++field) {
     TuningKey other = key;
     switch (field) {
-      case 0: other.platform += "x"; break;
-      case 1: other.device += "x"; break;
-      case 2: other.driver = "3.2"; break;
-      case 3: other.variant = "6dof energy force torque trilinear"; break;
-      case 4: other.scene_features = "fft 96x64x64 torque_spectra 1 spacing 0.6"; break;
-      case 5: other.budget_ms = 0.5; break;
-      case 6: other.margin = 0.1; break;
-      case 7: other.pace_hz = 1000; break;
+      case 0:
+        other.platform += "x";
+        break;
+      case 1:
+        other.device += "x";
+        break;
+      case 2:
+        other.driver = "3.2";
+        break;
+      case 3:
+        other.variant = "6dof energy force torque trilinear";
+        break;
+      case 4:
+        other.scene_features = "fft 96x64x64 torque_spectra 1 spacing 0.6";
+        break;
+      case 5:
+        other.budget_ms = 0.5;
+        break;
+      case 6:
+        other.margin = 0.1;
+        break;
+      case 7:
+        other.pace_hz = 1000;
+        break;
     }
     CAPTURE(field);
     CHECK(other.text() != key.text());

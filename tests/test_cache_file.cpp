@@ -1,10 +1,9 @@
 // Versioned, checksummed, atomically written cache files (io/cache_file.h).
 #include <doctest/doctest.h>
-
 #include <filesystem>
 
-#include "snapfit/error.h"
 #include "io/cache_file.h"
+#include "snapfit/error.h"
 #include "tests/test_support.h"
 
 using namespace snapfit;

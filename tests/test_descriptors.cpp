@@ -3,13 +3,10 @@
 // of tests/descriptor_reference.h: winding number, signed distance, skeletal density
 // and its error bound, limits, symmetry, sign, launch-configuration invariance,
 // points on the surface, and the affinity fields.
-#include <doctest/doctest.h>
-
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <doctest/doctest.h>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -18,25 +15,26 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <tbb/parallel_for.h>
 #include <tuple>
 #include <vector>
 
 #include "engine/compute_context.h"
 #include "engine/descriptors.h"
 #include "engine/device.h"
-#include "snapfit/error.h"
 #include "io/mesh_load.h"
 #include "mesh/procedural/procedural_parts.h"
+#include "snapfit/error.h"
 #include "tests/descriptor_reference.h"
 #include "tests/test_engine_support.h"
 #include "tests/test_support.h"
 
 using namespace snapfit;
+using Eigen::Vector3d;
 using snapfit::test::reference_distance;
 using snapfit::test::reference_skeletal_density;
 using snapfit::test::reference_solid_angle;
 using snapfit::test::reference_winding;
-using Eigen::Vector3d;
 
 namespace {
 
@@ -86,11 +84,11 @@ void orient_outward(Mesh& m, const Vector3d& inner) {
 Mesh icosphere(double r, int levels) {
   const double t = (1 + std::sqrt(5.0)) / 2;
   Mesh m;
-  m.vertices = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+  m.vertices = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
                  {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   for (auto& v : m.vertices) v = v.normalized();
   for (int l = 0; l < levels; ++l) {
     std::map<std::pair<int, int>, int> mid;
@@ -288,16 +286,16 @@ WindingStats check_closed_mesh(const std::string& name, const Mesh& mesh, const 
     st.max_bound = std::max(st.max_bound, static_cast<double>(f.winding_bound[i]));
     if (!(err <= f.winding_bound[i] + 1e-3) && bad_w++ < 5)
       CHECK_MESSAGE(err <= f.winding_bound[i] + 1e-3, name << ": winding number at " << show(pts[i]) << " is "
-                                                           << f.winding[i] << ", exact " << exact_w
-                                                           << ", bound " << f.winding_bound[i]);
+                                                           << f.winding[i] << ", exact " << exact_w << ", bound "
+                                                           << f.winding_bound[i]);
   }
   CHECK(bad_w == 0);
   CHECK(bad_sd == 0);
   CHECK(st.checked > 100);
   MESSAGE(name << ": " << mesh.triangles.size() << " triangles, " << st.checked
                << " points >= 1 spacing from the surface: max |w - exact| " << st.max_error << ", max bound "
-               << st.max_bound << "; max signed-distance error (all " << pts.size() << " points) "
-               << st.max_sd_error << " (" << st.max_sd_error / size << " of the size)");
+               << st.max_bound << "; max signed-distance error (all " << pts.size() << " points) " << st.max_sd_error
+               << " (" << st.max_sd_error / size << " of the size)");
   return st;
 }
 
@@ -430,8 +428,8 @@ TEST_CASE("descriptors: winding number and signed distance of icospheres against
     }
     const GridSpec grid = grid_around(m, 20, 0.15);
     const std::string name = "icosphere level " + std::to_string(levels);
-    const WindingStats st =
-        check_closed_mesh(name, m, grid, [&](const Vector3d& p) { return convex_signed_distance(m, p); }, 1e-4 * 2 * R);
+    const WindingStats st = check_closed_mesh(
+        name, m, grid, [&](const Vector3d& p) { return convex_signed_distance(m, p); }, 1e-4 * 2 * R);
     const DescriptorFields& f = st.fields;
     int bad = 0;
     for (std::size_t i = 0; i < grid.count(); ++i) {
@@ -449,8 +447,9 @@ TEST_CASE("descriptors: winding number and signed distance of boxes against the 
   for (int n : {1, 3}) {
     const Mesh m = box_mesh(half, centre, n);
     const GridSpec grid = grid_around(m, 20, 0.2);
-    check_closed_mesh("box " + std::to_string(12 * n * n) + " triangles", m, grid,
-                      [&](const Vector3d& p) { return box_signed_distance(p, half, centre); }, 1e-4 * 2.0);
+    check_closed_mesh(
+        "box " + std::to_string(12 * n * n) + " triangles", m, grid,
+        [&](const Vector3d& p) { return box_signed_distance(p, half, centre); }, 1e-4 * 2.0);
   }
 }
 
@@ -458,8 +457,9 @@ TEST_CASE("descriptors: winding number and signed distance of pegs against the e
   for (int segments : {8, 32, 128}) {
     const Mesh m = peg_mesh(1.0, 2.5, segments);
     const GridSpec grid = grid_around(m, 20, 0.15);
-    check_closed_mesh("peg " + std::to_string(segments) + " segments", m, grid,
-                      [&](const Vector3d& p) { return convex_signed_distance(m, p); }, 1e-4 * 2.5);
+    check_closed_mesh(
+        "peg " + std::to_string(segments) + " segments", m, grid,
+        [&](const Vector3d& p) { return convex_signed_distance(m, p); }, 1e-4 * 2.5);
   }
 }
 
@@ -489,7 +489,8 @@ TEST_CASE("descriptors: inside/outside of assimp test models against ray parity 
     std::vector<double> abs_sum(pts.size());
     const std::vector<double> w_ref =
         parallel_map(pts.size(), [&](std::size_t i) { return reference_winding(m, pts[i], &abs_sum[i]); });
-    const std::vector<double> d_ref = parallel_map(pts.size(), [&](std::size_t i) { return reference_distance(m, pts[i]); });
+    const std::vector<double> d_ref =
+        parallel_map(pts.size(), [&](std::size_t i) { return reference_distance(m, pts[i]); });
     const std::array<Vector3d, 5> dirs = {Vector3d(0.2361, 0.5123, 0.8257), Vector3d(-0.7071, 0.3013, -0.6397),
                                           Vector3d(0.9013, -0.4129, 0.1309), Vector3d(-0.1732, -0.8711, 0.4597),
                                           Vector3d(0.4401, 0.1207, -0.8898)};
@@ -539,16 +540,17 @@ TEST_CASE("descriptors: inside/outside of assimp test models against ray parity 
       const bool inside = f.winding[i] >= 0.5f;
       agree += inside == (vote[i] == 1.0);
       if (inside != (vote[i] == 1.0))
-        MESSAGE(file << ": ray parity says " << std::string(vote[i] == 1.0 ? "inside" : "outside") << " at " << show(pts[i])
-                     << " (distance " << d_ref[i] << "), engine w " << f.winding[i] << ", reference w " << w_ref[i]);
+        MESSAGE(file << ": ray parity says " << std::string(vote[i] == 1.0 ? "inside" : "outside") << " at "
+                     << show(pts[i]) << " (distance " << d_ref[i] << "), engine w " << f.winding[i] << ", reference w "
+                     << w_ref[i]);
     }
     for (std::size_t i = 0; i < pts.size(); ++i) {
       if (d_ref[i] < 1e-3 * size || (w_ref[i] > 0.45 && w_ref[i] < 0.55)) continue;
       ++clear_w;
       agree_w += (f.winding[i] >= 0.5f) == (w_ref[i] >= 0.5);
     }
-    MESSAGE(file << ": " << m.triangles.size() << " triangles, " << pts.size() << " points; |w - w_ref| max "
-                 << max_err << " (max bound " << max_bound << ", max err/bound " << max_ratio << ") over " << compared
+    MESSAGE(file << ": " << m.triangles.size() << " triangles, " << pts.size() << " points; |w - w_ref| max " << max_err
+                 << " (max bound " << max_bound << ", max err/bound " << max_ratio << ") over " << compared
                  << "; ray parity unanimous with w_ref outside (0.2, 0.8) at " << voted << " points, engine agrees at "
                  << agree << "; sign of w - 1/2 agrees with w_ref at " << agree_w << " of " << clear_w);
     CHECK(voted > 1000);
@@ -666,9 +668,9 @@ TEST_CASE("descriptors: skeletal density against the brute-force reference, with
           CHECK(b >= 0);
           if (!(err <= tol) && bad++ < 5)
             CHECK_MESSAGE(err <= tol, c.name << " sigma " << sigma << " tolerance " << tolerance << ": s at "
-                                             << show(pts[k]) << " (|xi| " << xi[k] << ", w_ref " << w_ref[k]
-                                             << ") is " << s << ", reference " << ref[k] << " (+-" << ref_err[k]
-                                             << "), error " << err << ", bound " << b);
+                                             << show(pts[k]) << " (|xi| " << xi[k] << ", w_ref " << w_ref[k] << ") is "
+                                             << s << ", reference " << ref[k] << " (+-" << ref_err[k] << "), error "
+                                             << err << ", bound " << b);
         }
         CHECK(bad == 0);
         worst_ratio = std::max(worst_ratio, max_ratio);
@@ -682,8 +684,8 @@ TEST_CASE("descriptors: skeletal density against the brute-force reference, with
                        << tolerance << ", " << ids.size() << " points (spacing h " << grid.spacing
                        << "): max |s - s_ref| " << max_err << " (max relative " << max_rel << "), max error/bound "
                        << max_ratio << ", points over bound+float slack " << over_bound
-                       << ", max reference error estimate " << max_ref_err << "; largest bound " << max_bound
-                       << " at " << show(pts[wb]) << " (|xi| " << xi[wb] << ", s_ref " << ref[wb] << ", s "
+                       << ", max reference error estimate " << max_ref_err << "; largest bound " << max_bound << " at "
+                       << show(pts[wb]) << " (|xi| " << xi[wb] << ", s_ref " << ref[wb] << ", s "
                        << f.skeletal_density[ids[wb]] << ")" << classes.str() << " [engine " << f.seconds << " s]");
         CHECK(over_bound == 0);
         CHECK(total_bound < previous_total_bound);
@@ -713,7 +715,8 @@ TEST_CASE("descriptors: for large sigma the skeletal density tends to 4 pi g(0) 
     std::vector<double> abs_omega(pts.size());
     const std::vector<double> w =
         parallel_map(pts.size(), [&](std::size_t i) { return reference_winding(c.mesh, pts[i], &abs_omega[i]); });
-    const std::vector<double> d = parallel_map(pts.size(), [&](std::size_t i) { return reference_distance(c.mesh, pts[i]); });
+    const std::vector<double> d =
+        parallel_map(pts.size(), [&](std::size_t i) { return reference_distance(c.mesh, pts[i]); });
     int near_limit = 0, bad = 0, bad_rel = 0;
     double max_rel = 0;
     for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -738,7 +741,8 @@ TEST_CASE("descriptors: for large sigma the skeletal density tends to 4 pi g(0) 
     CHECK(bad == 0);
     CHECK(bad_rel == 0);
     CHECK(near_limit > 50);
-    MESSAGE(c.name << ": sigma 50, " << near_limit << " points with x_max^2/(2 sigma^2) <= 5e-3: max |s - 4 pi g(0) w| / "
+    MESSAGE(c.name << ": sigma 50, " << near_limit
+                   << " points with x_max^2/(2 sigma^2) <= 5e-3: max |s - 4 pi g(0) w| / "
                    << "(4 pi g(0)) " << max_rel);
   }
 }
@@ -829,8 +833,9 @@ TEST_CASE("descriptors: skeletal density is positive inside and negative outside
       ++uncertified;
       farthest_uncertified = std::max(farthest_uncertified, dist);
       if (dist >= 0.5 && bad++ < 3)
-        CHECK_MESSAGE(std::abs(s) > b, c.name << ": " << std::string(in ? "inside" : "outside") << " point " << show(pts[i])
-                                              << " (signed distance " << sd[i] << ") has s " << s << ", bound " << b);
+        CHECK_MESSAGE(std::abs(s) > b, c.name << ": " << std::string(in ? "inside" : "outside") << " point "
+                                              << show(pts[i]) << " (signed distance " << sd[i] << ") has s " << s
+                                              << ", bound " << b);
     }
     CHECK(wrong_sign == 0);
     CHECK(bad == 0);

@@ -1,7 +1,6 @@
 // Device enumeration and selection (engine/device.h), and the device self-check kernel.
-#include <doctest/doctest.h>
-
 #include <cstdlib>
+#include <doctest/doctest.h>
 
 #include "engine/compute_context.h"
 #include "engine/device.h"

@@ -1,15 +1,14 @@
 // clFFT 3D transforms (engine/fft3d.h) against a direct DFT in double precision: the
 // independent reference ANCHORS.md asks for (clFFT has had wrong results on PoCL).
-#include <doctest/doctest.h>
-
 #include <cmath>
 #include <complex>
+#include <doctest/doctest.h>
 #include <random>
 #include <vector>
 
 #include "engine/device.h"
-#include "snapfit/error.h"
 #include "engine/fft3d.h"
+#include "snapfit/error.h"
 
 using namespace snapfit;
 using cd = std::complex<double>;
@@ -27,8 +26,9 @@ std::vector<cd> direct_dft(const std::vector<cf>& f, std::array<std::size_t, 3> 
     for (std::size_t i = 0; i < count; ++i) {
       const std::size_t i0 = i % n[0], i1 = (i / n[0]) % n[1], i2 = i / (n[0] * n[1]);
       // Reduce each product mod N first so the phase stays exact for large k.i.
-      const double phase = 2.0 * M_PI *
-                           (double((k0 * i0) % n[0]) / n[0] + double((k1 * i1) % n[1]) / n[1] + double((k2 * i2) % n[2]) / n[2]);
+      const double phase =
+          2.0 * M_PI *
+          (double((k0 * i0) % n[0]) / n[0] + double((k1 * i1) % n[1]) / n[1] + double((k2 * i2) % n[2]) / n[2]);
       sum += cd(f[i]) * std::polar(1.0, sign * phase);
     }
     out[k] = sum;
@@ -45,7 +45,8 @@ std::vector<cf> random_field(std::size_t count, unsigned seed) {
 }
 
 std::vector<cf> run(const Fft3d& fft, const ComputeContext& ctx, FftDirection dir, const std::vector<cf>& in) {
-  cl::Buffer a(ctx.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(cf) * in.size(), const_cast<cf*>(in.data()));
+  cl::Buffer a(ctx.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(cf) * in.size(),
+               const_cast<cf*>(in.data()));
   cl::Buffer b(ctx.context, CL_MEM_READ_WRITE, sizeof(cf) * in.size());
   fft.transform(dir, a, b);
   std::vector<cf> out(in.size());
@@ -68,7 +69,8 @@ TEST_CASE("fft: next_fft_size rounds up to sizes with factors 2, 3, 5, 7 only") 
 TEST_CASE("fft: forward and inverse 3D transforms match a direct DFT in double") {
   const FftLibrary library;
   const ComputeContext ctx = make_compute_context(select_device(""));
-  for (const std::array<std::size_t, 3> dims : {std::array<std::size_t, 3>{8, 8, 8}, {6, 10, 14}, {12, 5, 9}, {16, 1, 7}}) {
+  for (const std::array<std::size_t, 3> dims :
+       {std::array<std::size_t, 3>{8, 8, 8}, {6, 10, 14}, {12, 5, 9}, {16, 1, 7}}) {
     const Fft3d fft(library, ctx, dims);
     const std::size_t count = fft.count();
     const std::vector<cf> f = random_field(count, 17u + static_cast<unsigned>(count));
@@ -86,7 +88,8 @@ TEST_CASE("fft: forward and inverse 3D transforms match a direct DFT in double")
     // Unnormalized round trip: inverse(forward(f)) = N f.
     const std::vector<cf> back = run(fft, ctx, FftDirection::inverse, run(fft, ctx, FftDirection::forward, f));
     double max_err = 0;
-    for (std::size_t i = 0; i < count; ++i) max_err = std::max(max_err, std::abs(cd(back[i]) / double(count) - cd(f[i])));
+    for (std::size_t i = 0; i < count; ++i)
+      max_err = std::max(max_err, std::abs(cd(back[i]) / double(count) - cd(f[i])));
     CHECK(max_err < 1e-5);
   }
 }

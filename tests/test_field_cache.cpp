@@ -3,10 +3,9 @@
 // corrupt and truncated entries, an unwritable cache folder, and use_cache = false.
 // The cache root comes from $SNAPFIT_CACHE_DIR (io/cache_file.h cache_root()), pointed
 // at a temporary folder per test and restored afterwards.
-#include <doctest/doctest.h>
-
 #include <cstdlib>
 #include <cstring>
+#include <doctest/doctest.h>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -15,10 +14,10 @@
 
 #include "engine/compute_context.h"
 #include "engine/device.h"
-#include "pipeline/part_fields.h"
 #include "io/cache_file.h"
-#include "pipeline/field_cache.h"
 #include "mesh/procedural/procedural_parts.h"
+#include "pipeline/field_cache.h"
+#include "pipeline/part_fields.h"
 #include "tests/test_engine_support.h"
 #include "tests/test_support.h"
 
@@ -223,11 +222,10 @@ TEST_CASE("field cache: a corrupt or truncated entry is noted and recomputed, th
     test::write_bytes(path, bad);
   }
   SUBCASE("truncated in the payload") {
-    test::write_bytes(path, std::vector<char>(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(good.size() - 100)));
+    test::write_bytes(path,
+                      std::vector<char>(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(good.size() - 100)));
   }
-  SUBCASE("truncated in the header") {
-    test::write_bytes(path, std::vector<char>(good.begin(), good.begin() + 20));
-  }
+  SUBCASE("truncated in the header") { test::write_bytes(path, std::vector<char>(good.begin(), good.begin() + 20)); }
   SUBCASE("empty file") { test::write_bytes(path, {}); }
 
   const PartFieldsResult recomputed = fields_of(mesh, grid, params, notes);

@@ -1,8 +1,7 @@
 // Full translational maps (engine/full_map.h) against per-pose queries at the same
 // grid translations, rotation and interpolation, on analytic Gaussian fields.
-#include <doctest/doctest.h>
-
 #include <cmath>
+#include <doctest/doctest.h>
 
 #include "engine/device.h"
 #include "engine/full_map.h"

@@ -1,14 +1,13 @@
 // Sample grids (core/grid.h): coverage of the padded box, centring, spacing and
 // resolution modes, index/point layout, errors, and the scene-wide common spacing.
-#include <doctest/doctest.h>
-
 #include <cmath>
+#include <doctest/doctest.h>
 #include <limits>
 #include <optional>
 #include <vector>
 
-#include "snapfit/error.h"
 #include "core/grid.h"
+#include "snapfit/error.h"
 
 using namespace snapfit;
 using Eigen::AlignedBox3d;
@@ -45,7 +44,7 @@ void check_covers(const GridSpec& grid, const AlignedBox3d& box, double padding)
     CHECK(below >= -eps);
     CHECK(below < h);  // overhang less than one spacing on each side...
     CHECK(above < h);
-    CHECK(below + above < h);  // ...and less than one spacing in all
+    CHECK(below + above < h);               // ...and less than one spacing in all
     CHECK(std::abs(below - above) <= eps);  // centred
   }
 }
@@ -144,7 +143,8 @@ TEST_CASE("grid: index and point layout, i fastest") {
 TEST_CASE("grid: errors") {
   const AlignedBox3d unit(Vector3d(0, 0, 0), Vector3d(1, 1, 1));
   CHECK_THROWS_AS(make_grid(AlignedBox3d(), with_spacing(0.1, 0.0)), Error);  // empty
-  CHECK_THROWS_AS(make_grid(AlignedBox3d(Vector3d(0, 0, 0), Vector3d(std::nan(""), 1, 1)), with_spacing(0.1, 0.0)), Error);
+  CHECK_THROWS_AS(make_grid(AlignedBox3d(Vector3d(0, 0, 0), Vector3d(std::nan(""), 1, 1)), with_spacing(0.1, 0.0)),
+                  Error);
   CHECK_THROWS_AS(make_grid(AlignedBox3d(Vector3d(0, 0, 0), Vector3d(std::numeric_limits<double>::infinity(), 1, 1)),
                             with_spacing(0.1, 0.0)),
                   Error);

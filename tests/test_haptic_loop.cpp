@@ -1,16 +1,15 @@
 // The haptic loop (snapfit/haptic_loop.h) on a manual clock with injected frame
 // costs: rate, miss counting without catch-up, stepping m' down and up; then on the
 // real clock with a cheap evaluator; then a scripted device pulling the part home.
-#include <doctest/doctest.h>
-
-#include <cmath>
 #include <algorithm>
+#include <cmath>
+#include <doctest/doctest.h>
 #include <map>
 
+#include "scheduler/scripted_device.h"
+#include "scheduler/virtual_coupling.h"
 #include "snapfit/error.h"
 #include "snapfit/haptic_loop.h"
-#include "scheduler/virtual_coupling.h"
-#include "scheduler/scripted_device.h"
 
 using namespace snapfit;
 using Eigen::Vector3d;
@@ -220,7 +219,9 @@ TEST_CASE("haptic loop: NaN device readings are replaced by the last good one an
       return s;
     }
     Wrench last;
-    void send(const Wrench& w, double) override { last = w, ++sent, all_finite = all_finite && w.force.allFinite() && w.torque.allFinite(); }
+    void send(const Wrench& w, double) override {
+      last = w, ++sent, all_finite = all_finite && w.force.allFinite() && w.torque.allFinite();
+    }
     bool all_finite = true;
   } device;
   device.state.pose.translation = Vector3d(3, 0, 0);

@@ -1,22 +1,21 @@
 // Work in a child process under limits (io/isolated_import.h), and load_mesh's import
 // child (io/mesh_load.cpp): every way the child can fail is a result the
 // parent survives, and a large mesh comes back bit for bit.
-#include <doctest/doctest.h>
-#include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <doctest/doctest.h>
+#include <signal.h>
 #include <stdexcept>
 #include <string>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
-#include "snapfit/error.h"
 #include "io/isolated_import.h"
 #include "io/mesh_export.h"
 #include "io/mesh_load.h"
+#include "snapfit/error.h"
 #include "tests/test_meshes.h"
 #include "tests/test_support.h"
 
@@ -73,7 +72,12 @@ TEST_CASE("isolated import: a child past its memory limit is reported, the paren
       },
       kSmall);
   CHECK(r.status == Status::out_of_memory);
-  r = run_in_child([]() -> std::string { ::raise(SIGKILL); return ""; }, kSmall);
+  r = run_in_child(
+      []() -> std::string {
+        ::raise(SIGKILL);
+        return "";
+      },
+      kSmall);
   CHECK(r.status == Status::out_of_memory);
   CHECK(no_children_left());
   // The parent's own memory is not limited.
@@ -82,7 +86,12 @@ TEST_CASE("isolated import: a child past its memory limit is reported, the paren
 }
 
 TEST_CASE("isolated import: a crashing child is reported with its signal") {
-  ChildResult r = run_in_child([]() -> std::string { ::raise(SIGSEGV); return ""; }, kSmall);
+  ChildResult r = run_in_child(
+      []() -> std::string {
+        ::raise(SIGSEGV);
+        return "";
+      },
+      kSmall);
   CHECK(r.status == Status::crashed);
   CHECK(r.signal == SIGSEGV);
   r = run_in_child([]() -> std::string { std::abort(); }, kSmall);
@@ -128,8 +137,10 @@ TEST_CASE("isolated import: a large mesh comes back from the import child bit fo
   REQUIRE(child.triangles.size() == 200000);
   REQUIRE(child.vertices.size() == in_process.vertices.size());
   REQUIRE(child.triangles.size() == in_process.triangles.size());
-  CHECK(std::memcmp(child.vertices.data(), in_process.vertices.data(), child.vertices.size() * sizeof(Eigen::Vector3d)) == 0);
-  CHECK(std::memcmp(child.triangles.data(), in_process.triangles.data(), child.triangles.size() * sizeof(Eigen::Vector3i)) == 0);
+  CHECK(std::memcmp(child.vertices.data(), in_process.vertices.data(),
+                    child.vertices.size() * sizeof(Eigen::Vector3d)) == 0);
+  CHECK(std::memcmp(child.triangles.data(), in_process.triangles.data(),
+                    child.triangles.size() * sizeof(Eigen::Vector3i)) == 0);
   CHECK(no_children_left());
 }
 
@@ -144,12 +155,17 @@ TEST_CASE("isolated import: SNAPFIT_IMPORT_MEMORY_MIB sets the import child's me
   {
     // The fuzzed .x file on which Assimp allocates 4.2 GB: the error names the limit.
     const std::string blowup = dir.file("blowup.x");
-    test::write_bytes(blowup, test::read_bytes(std::string(SNAPFIT_SOURCE_DIR) + "/tests/data/fuzz/x_memory_blowup.bin"));
+    test::write_bytes(blowup,
+                      test::read_bytes(std::string(SNAPFIT_SOURCE_DIR) + "/tests/data/fuzz/x_memory_blowup.bin"));
     test::EnvScope env("SNAPFIT_IMPORT_MEMORY_MIB", "100");
-    CHECK_THROWS_WITH_AS(load_mesh(blowup), doctest::Contains((blowup + ": cannot read mesh: the importer exceeded its memory limit of 100 MiB").c_str()), Error);
+    CHECK_THROWS_WITH_AS(
+        load_mesh(blowup),
+        doctest::Contains((blowup + ": cannot read mesh: the importer exceeded its memory limit of 100 MiB").c_str()),
+        Error);
   }
   for (const char* bad : {"", "lots", "-5", "1.5", "99999999999"}) {
     test::EnvScope env("SNAPFIT_IMPORT_MEMORY_MIB", bad);
-    CHECK_THROWS_WITH_AS(load_mesh(file), doctest::Contains("SNAPFIT_IMPORT_MEMORY_MIB must be a whole number of MiB"), Error);
+    CHECK_THROWS_WITH_AS(load_mesh(file), doctest::Contains("SNAPFIT_IMPORT_MEMORY_MIB must be a whole number of MiB"),
+                         Error);
   }
 }

@@ -1,11 +1,9 @@
 // Mesh import, export and validation (io/mesh_load.h, io/mesh_export.h, mesh/mesh_report.h).
-#include <doctest/doctest.h>
-#include <unistd.h>
-
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <doctest/doctest.h>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -13,13 +11,14 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
-#include "snapfit/error.h"
-#include "mesh/mesh.h"
 #include "io/mesh_export.h"
 #include "io/mesh_load.h"
+#include "mesh/mesh.h"
 #include "mesh/mesh_report.h"
+#include "snapfit/error.h"
 
 namespace fs = std::filesystem;
 using snapfit::Mesh;
@@ -32,8 +31,7 @@ struct TempDir {
   fs::path path;
   TempDir() {
     std::random_device rd;
-    path = fs::temp_directory_path() /
-           ("snapfit_mesh_io_" + std::to_string(::getpid()) + "_" + std::to_string(rd()));
+    path = fs::temp_directory_path() / ("snapfit_mesh_io_" + std::to_string(::getpid()) + "_" + std::to_string(rd()));
     fs::create_directories(path);
   }
   ~TempDir() {
@@ -47,9 +45,7 @@ struct TempDir {
   }
 };
 
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 // Unit cube [0,1]^3, vertex i at (i&1, (i>>1)&1, (i>>2)&1), outward CCW winding.
 Mesh unit_cube() {
@@ -90,9 +86,7 @@ std::string error_message(F&& f) {
   return "";
 }
 
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 void check_vec(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double tol) {
   INFO("got (" << a.transpose() << "), expected (" << b.transpose() << ")");
@@ -108,7 +102,7 @@ TEST_CASE("mesh io: unit cube written as binary STL loads back exactly") {
   const std::string path = dir.file("cube.stl");
   snapfit::write_stl(unit_cube(), path);
   CHECK(fs::file_size(path) == 84u + 12u * 50u);  // header + count + 50 bytes per triangle
-  CHECK(dir.entry_count() == 1);                   // the temporary was renamed away
+  CHECK(dir.entry_count() == 1);                  // the temporary was renamed away
 
   const Mesh m = snapfit::load_mesh(path);
   CHECK(m.triangles.size() == 12);
@@ -168,8 +162,7 @@ TEST_CASE("mesh io: OBJ written by write_obj round-trips") {
   REQUIRE(m.triangles.size() == cube.triangles.size());
   // Assimp keeps face order and corner order; it stores float32, hence the tolerance.
   for (std::size_t t = 0; t < m.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k)
-      check_vec(m.vertices[m.triangles[t][k]], cube.vertices[cube.triangles[t][k]], 1e-5);
+    for (int k = 0; k < 3; ++k) check_vec(m.vertices[m.triangles[t][k]], cube.vertices[cube.triangles[t][k]], 1e-5);
   const MeshReport r = snapfit::validate_mesh(m);
   CHECK(r.vertex_count == 8);
   CHECK(r.watertight());
@@ -190,21 +183,25 @@ TEST_CASE("mesh io: node transforms are accumulated, mirrored nodes keep outward
   //   mirrored           x -> -x - 5               -> [-6,-5]x[0,1]x[0,1], volume 1
   const Mesh c = unit_cube();
   std::string pos, idx;
-  for (const auto& v : c.vertices) pos += std::to_string(v.x()) + " " + std::to_string(v.y()) + " " + std::to_string(v.z()) + " ";
-  for (const auto& t : c.triangles) idx += std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + " ";
+  for (const auto& v : c.vertices)
+    pos += std::to_string(v.x()) + " " + std::to_string(v.y()) + " " + std::to_string(v.z()) + " ";
+  for (const auto& t : c.triangles)
+    idx += std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + " ";
   const std::string dae = R"(<?xml version="1.0" encoding="utf-8"?>
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
   <asset><unit name="meter" meter="1"/><up_axis>Y_UP</up_axis></asset>
   <library_geometries>
     <geometry id="cube" name="cube"><mesh>
       <source id="cube-pos">
-        <float_array id="cube-pos-array" count="24">)" + pos + R"(</float_array>
+        <float_array id="cube-pos-array" count="24">)" +
+                          pos + R"(</float_array>
         <technique_common><accessor source="#cube-pos-array" count="8" stride="3">
           <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
         </accessor></technique_common>
       </source>
       <vertices id="cube-vtx"><input semantic="POSITION" source="#cube-pos"/></vertices>
-      <triangles count="12"><input semantic="VERTEX" source="#cube-vtx" offset="0"/><p>)" + idx + R"(</p></triangles>
+      <triangles count="12"><input semantic="VERTEX" source="#cube-vtx" offset="0"/><p>)" +
+                          idx + R"(</p></triangles>
     </mesh></geometry>
   </library_geometries>
   <library_visual_scenes>

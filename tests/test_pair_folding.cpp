@@ -3,17 +3,16 @@
 // terms at w and -w are complex conjugates, so the engine evaluates each retained pair
 // once with twice the weight. Checked against the same engine summing every mode, for
 // m' that keep whole pairs and m' that cut one, and the sample parity that decides it.
-#include <doctest/doctest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <doctest/doctest.h>
 #include <vector>
 
 #include "engine/mode_order.h"
-#include "snapfit/query.h"
 #include "engine/query_engine.h"
 #include "engine/spectra.h"
+#include "snapfit/query.h"
 #include "tests/stability_support.h"
 
 namespace snapfit {
@@ -167,7 +166,7 @@ TEST_CASE("pair folding: translation-only folded, unfolded and 6-DOF at R = I ag
       CHECK((ra.force - rc.force).norm() <= 2e-5 * f_scale);
     }
   }
-  CHECK(folded_at >= 5);   // every m' from 64 to half of the modes folds
+  CHECK(folded_at >= 5);    // every m' from 64 to half of the modes folds
   CHECK(unfolded_at >= 2);  // total - 1 and total reach the Nyquist planes
 }
 

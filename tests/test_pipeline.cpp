@@ -3,7 +3,6 @@
 // force and torque at the same pose and m'. The CLI runs as a user runs it, with the
 // test's cache folder, so it reuses the fields and spectra the library computed.
 #include <doctest/doctest.h>
-
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -29,8 +28,10 @@ std::vector<std::vector<double>> read_csv(const fs::path& file, std::vector<std:
     std::string cell;
     std::vector<double> row;
     while (std::getline(cells, cell, ',')) {
-      if (first) header.push_back(cell);
-      else row.push_back(std::stod(cell));
+      if (first)
+        header.push_back(cell);
+      else
+        row.push_back(std::stod(cell));
     }
     if (!first) rows.push_back(row);
   }
@@ -74,8 +75,8 @@ TEST_CASE("pipeline: snapfit run, snapfit query and the library give the same wr
     PairOptions options;
     options.note = [](const std::string&) {};
     const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, options);
-    auto engine = make_query_engine(test::test_context(), pair.spectra, query_variant_for(scene, Interpolation::tricubic),
-                                    test::test_program_cache());
+    auto engine = make_query_engine(test::test_context(), pair.spectra,
+                                    query_variant_for(scene, Interpolation::tricubic), test::test_program_cache());
     engine->set_modes(kModes);
 
     // snapfit run: the loop's log holds the pose each frame's wrench was computed at.
@@ -123,9 +124,9 @@ TEST_CASE("pipeline: snapfit run, snapfit query and the library give the same wr
     std::string arguments;
     std::vector<Pose> parsed(poses.size());
     for (std::size_t i = 0; i < poses.size(); ++i) arguments += " --pose " + pose_argument(poses[i], parsed[i]);
-    const test::Command query = test::run_command(std::string(SNAPFIT_CLI_PATH) + " query " + file.string() +
-                                                      " --modes " + std::to_string(kModes) + arguments,
-                                                  false);
+    const test::Command query = test::run_command(
+        std::string(SNAPFIT_CLI_PATH) + " query " + file.string() + " --modes " + std::to_string(kModes) + arguments,
+        false);
     INFO(query.output);
     REQUIRE(query.status == 0);
     std::stringstream lines(query.output);

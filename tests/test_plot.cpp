@@ -1,18 +1,17 @@
 // Charts to PNG (report/plot.h) and the bitmap font (report/bitmap_font.h).
-#include <doctest/doctest.h>
-#include <png.h>
-
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <doctest/doctest.h>
 #include <functional>
 #include <limits>
+#include <png.h>
 #include <string>
 #include <vector>
 
-#include "snapfit/error.h"
 #include "report/bitmap_font.h"
 #include "report/plot.h"
+#include "snapfit/error.h"
 #include "tests/test_support.h"
 
 using namespace snapfit;
@@ -54,8 +53,8 @@ Chart fixed_chart(Series s) {
   return c;
 }
 
-Series make_series(std::vector<double> x, std::vector<double> y, Series::Style style, std::array<unsigned char, 3> color,
-                   std::string label = "") {
+Series make_series(std::vector<double> x, std::vector<double> y, Series::Style style,
+                   std::array<unsigned char, 3> color, std::string label = "") {
   Series s;
   s.x = std::move(x);
   s.y = std::move(y);
@@ -178,8 +177,8 @@ TEST_CASE("plot: a reference line is dashed along its row") {
 TEST_CASE("plot: lines are clipped to the plot area") {
   const std::array<unsigned char, 3> green = {0, 170, 0};
   const double nan = std::nan("");
-  Chart c = fixed_chart(make_series({5, 1e6, 5, -1e300, nan, 5, 5}, {5, 1e6, -1e9, 5, 5, 5, 1e12},
-                                    Series::Style::line_points, green));
+  Chart c = fixed_chart(
+      make_series({5, 1e6, 5, -1e300, nan, 5, 5}, {5, 1e6, -1e9, 5, 5, 5, 1e12}, Series::Style::line_points, green));
   const ChartLayout L = chart_layout(c);
   const SliceImage im = render_chart(c);
   const Rgb want = {0, 170, 0};
@@ -301,7 +300,8 @@ TEST_CASE("plot: empty charts draw axes and a no-data note") {
   // Grey note text somewhere around the middle.
   int grey = 0;
   for (int y = (L.top + L.bottom) / 2 - 10; y <= (L.top + L.bottom) / 2 + 10; ++y)
-    for (int x = (L.left + L.right) / 2 - 40; x <= (L.left + L.right) / 2 + 40; ++x) grey += pixel(im, x, y) == Rgb{150, 150, 150};
+    for (int x = (L.left + L.right) / 2 - 40; x <= (L.left + L.right) / 2 + 40; ++x)
+      grey += pixel(im, x, y) == Rgb{150, 150, 150};
   CHECK(grey > 20);
   CHECK_NOTHROW(render_chart(Chart{}));
 }

@@ -1,20 +1,19 @@
 // Colour-mapped slices and PNG export (io/png_export.h), read back with libpng.
-#include <doctest/doctest.h>
-#include <png.h>
-
 #include <array>
 #include <cmath>
 #include <csetjmp>
 #include <cstdio>
+#include <doctest/doctest.h>
 #include <filesystem>
 #include <functional>
 #include <limits>
 #include <map>
+#include <png.h>
 #include <string>
 #include <vector>
 
-#include "snapfit/error.h"
 #include "io/png_export.h"
+#include "snapfit/error.h"
 #include "tests/test_support.h"
 
 using namespace snapfit;
@@ -114,9 +113,9 @@ TEST_CASE("png slice: diverging colours of value = x, limit from the slice") {
   CHECK(im.value_min == -2.0);
   CHECK(im.value_max == 2.0);
   for (int y = 0; y < 4; ++y) {
-    CHECK(pixel(im, 0, y) == kBlue);   // x = -2 = -limit
-    CHECK(pixel(im, 2, y) == kWhite);  // x = 0
-    CHECK(pixel(im, 4, y) == kRed);    // x = +2 = +limit
+    CHECK(pixel(im, 0, y) == kBlue);               // x = -2 = -limit
+    CHECK(pixel(im, 2, y) == kWhite);              // x = 0
+    CHECK(pixel(im, 4, y) == kRed);                // x = +2 = +limit
     CHECK(pixel(im, 1, y) == Rgb{128, 128, 255});  // halfway to blue (127.5 rounds up)
     CHECK(pixel(im, 3, y) == Rgb{255, 128, 128});
   }
@@ -315,8 +314,7 @@ TEST_CASE("png slice_index_for: nearest index inside, errors outside") {
   CHECK(slice_index_for(g, 'z', 10.0) == 20);
   CHECK(slice_index_for(g, 'z', 0.1 + 0.2) == 1);
   CHECK(error_of([&] { slice_index_for(g, 'z', 12.5); }) == "z=12.5 is outside the grid, which spans z in [0, 10]");
-  CHECK(error_of([&] { slice_index_for(g, 'x', -1.01); }) ==
-        "x=-1.01 is outside the grid, which spans x in [-1, 1]");
+  CHECK(error_of([&] { slice_index_for(g, 'x', -1.01); }) == "x=-1.01 is outside the grid, which spans x in [-1, 1]");
   CHECK(error_of([&] { slice_index_for(g, 'y', std::nan("")); }).find("outside the grid") != std::string::npos);
   CHECK(error_of([&] { slice_index_for(g, 'q', 0.0); }).find("axis must be") != std::string::npos);
 }

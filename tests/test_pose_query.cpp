@@ -11,17 +11,15 @@
 // Measured figures (interpolation error against exact spectra per scheme and
 // oversampling, truncation error against m', derivative agreement) are printed with
 // MESSAGE on every run; the asserted tolerances are those figures with a margin.
-#include <doctest/doctest.h>
-
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <doctest/doctest.h>
 #include <limits>
 #include <map>
 #include <memory>
@@ -30,15 +28,15 @@
 #include <string>
 #include <vector>
 
+#include "core/grid.h"
 #include "engine/compute_context.h"
 #include "engine/device.h"
-#include "snapfit/error.h"
 #include "engine/fft3d.h"
-#include "core/grid.h"
-#include "snapfit/pose.h"
-#include "snapfit/query.h"
 #include "engine/query_engine.h"
 #include "engine/spectra.h"
+#include "snapfit/error.h"
+#include "snapfit/pose.h"
+#include "snapfit/query.h"
 #include "tests/test_support.h"
 
 using namespace snapfit;
@@ -92,7 +90,8 @@ Derivatives exact_derivatives(const Gaussian& g1, const Gaussian& g2, const Matr
   out.energy = -exact_score(g1, g2, r, t).real();
   for (int a = 0; a < 3; ++a) {
     const Vector3d e = Vector3d::Unit(a);
-    out.force[a] = (exact_score(g1, g2, r, t + step * e).real() - exact_score(g1, g2, r, t - step * e).real()) / (2 * step);
+    out.force[a] =
+        (exact_score(g1, g2, r, t + step * e).real() - exact_score(g1, g2, r, t - step * e).real()) / (2 * step);
     const Matrix3d plus = Eigen::AngleAxisd(step, e).toRotationMatrix() * r;
     const Matrix3d minus = Eigen::AngleAxisd(-step, e).toRotationMatrix() * r;
     out.torque[a] = (exact_score(g1, g2, plus, t).real() - exact_score(g1, g2, minus, t).real()) / (2 * step);
@@ -158,7 +157,9 @@ struct GaussianPair {
 
   Matrix3d rotation(const Pose& pose) const { return pose.rotation.toRotationMatrix(); }
   cd score(const Pose& pose) const { return exact_score(g1, g2, rotation(pose), pose.translation); }
-  Derivatives derivatives(const Pose& pose) const { return exact_derivatives(g1, g2, rotation(pose), pose.translation); }
+  Derivatives derivatives(const Pose& pose) const {
+    return exact_derivatives(g1, g2, rotation(pose), pose.translation);
+  }
   // Part 2's Gaussian centred on part 1's after the rotation, then moved by `offset`.
   Pose pose(const Eigen::AngleAxisd& rotation, const Vector3d& offset) const {
     Pose p;
@@ -255,8 +256,10 @@ const PairSpectra& spectra(double oversampling) {
     SpectrumOptions options;
     options.oversampling = oversampling;
     const GaussianPair& s = pair();
-    it = cache.emplace(oversampling,
-                       compute_pair_spectra(library, context(), s.grid1, s.rho1, s.grid2, s.rho2, true, options)).first;
+    it = cache
+             .emplace(oversampling,
+                      compute_pair_spectra(library, context(), s.grid1, s.rho1, s.grid2, s.rho2, true, options))
+             .first;
   }
   return it->second;
 }
@@ -344,17 +347,21 @@ TEST_CASE("pose query: all modes: interpolation error against exact spectra per 
       score_error[interp][os] = err;
       force_error[interp][os] = ferr;
       table << "  " << (interp == Interpolation::tricubic ? "tricubic " : "trilinear") << "  " << fmt("%4.1f", os)
-            << "          " << sp.dims[0] << "^3" << (sp.dims[0] < 100 ? "    " : "   ") << fmt("%-9.0f", double(engine->max_modes()))
-            << "  " << fmt("%.2e", err) << "    " << fmt("%.2e", ferr) << "    " << worst_pose << "           "
-            << fmt("%.1f", 1e3 * seconds / poses.size()) << "\n";
+            << "          " << sp.dims[0] << "^3" << (sp.dims[0] < 100 ? "    " : "   ")
+            << fmt("%-9.0f", double(engine->max_modes())) << "  " << fmt("%.2e", err) << "    " << fmt("%.2e", ferr)
+            << "    " << worst_pose << "           " << fmt("%.1f", 1e3 * seconds / poses.size()) << "\n";
     }
   }
   // Observed order p of the error in the node spacing (1 / oversampling):
   // err(os_a) / err(os_b) = (os_b / os_a)^p.
-  auto order = [&](Interpolation i, double a, double b) { return std::log(score_error[i][a] / score_error[i][b]) / std::log(b / a); };
-  table << "  observed order in 1/oversampling (1.5->2, 2->3): trilinear " << fmt("%.2f", order(Interpolation::trilinear, 1.5, 2.0))
-        << ", " << fmt("%.2f", order(Interpolation::trilinear, 2.0, 3.0)) << "; tricubic "
-        << fmt("%.2f", order(Interpolation::tricubic, 1.5, 2.0)) << ", " << fmt("%.2f", order(Interpolation::tricubic, 2.0, 3.0));
+  auto order = [&](Interpolation i, double a, double b) {
+    return std::log(score_error[i][a] / score_error[i][b]) / std::log(b / a);
+  };
+  table << "  observed order in 1/oversampling (1.5->2, 2->3): trilinear "
+        << fmt("%.2f", order(Interpolation::trilinear, 1.5, 2.0)) << ", "
+        << fmt("%.2f", order(Interpolation::trilinear, 2.0, 3.0)) << "; tricubic "
+        << fmt("%.2f", order(Interpolation::tricubic, 1.5, 2.0)) << ", "
+        << fmt("%.2f", order(Interpolation::tricubic, 2.0, 3.0));
   MESSAGE(table.str());
 
   for (const double os : {1.5, 2.0, 3.0}) {
@@ -369,14 +376,14 @@ TEST_CASE("pose query: all modes: interpolation error against exact spectra per 
     CHECK(order(Interpolation::tricubic, a, b) > 3.0);
   }
   // Tolerances: the measured errors (PoCL CPU, float spectra) with a margin of ~3x.
-  CHECK(score_error[Interpolation::trilinear][1.5] < 3e-2);  // measured 9.0e-3
+  CHECK(score_error[Interpolation::trilinear][1.5] < 3e-2);    // measured 9.0e-3
   CHECK(score_error[Interpolation::trilinear][2.0] < 1.5e-2);  // 5.1e-3
-  CHECK(score_error[Interpolation::trilinear][3.0] < 7e-3);  // 2.3e-3
-  CHECK(score_error[Interpolation::tricubic][1.5] < 6e-4);  // 1.9e-4
-  CHECK(score_error[Interpolation::tricubic][2.0] < 2e-4);  // 6.0e-5
-  CHECK(score_error[Interpolation::tricubic][3.0] < 4e-5);  // 1.2e-5
+  CHECK(score_error[Interpolation::trilinear][3.0] < 7e-3);    // 2.3e-3
+  CHECK(score_error[Interpolation::tricubic][1.5] < 6e-4);     // 1.9e-4
+  CHECK(score_error[Interpolation::tricubic][2.0] < 2e-4);     // 6.0e-5
+  CHECK(score_error[Interpolation::tricubic][3.0] < 4e-5);     // 1.2e-5
   CHECK(force_error[Interpolation::trilinear][2.0] < 1.5e-2);  // 4.2e-3
-  CHECK(force_error[Interpolation::tricubic][2.0] < 2e-4);  // 7.0e-5
+  CHECK(force_error[Interpolation::tricubic][2.0] < 2e-4);     // 7.0e-5
 }
 
 TEST_CASE("pose query: error against the closed form falls as m' grows") {
@@ -388,7 +395,8 @@ TEST_CASE("pose query: error against the closed form falls as m' grows") {
   const std::vector<std::size_t> counts = {100, 300, 1000, 3000, 10000, 30000, 100000, all};
   std::vector<double> errors;
   std::ostringstream table;
-  table << "truncation: tricubic, oversampling 2, max over " << poses.size() << " poses of |f - f_exact| / |f_aligned|\n"
+  table << "truncation: tricubic, oversampling 2, max over " << poses.size()
+        << " poses of |f - f_exact| / |f_aligned|\n"
         << "  m'        error\n";
   for (const std::size_t m : counts) {
     engine->set_modes(m);
@@ -409,9 +417,9 @@ TEST_CASE("pose query: error against the closed form falls as m' grows") {
     // Non-increasing, allowing wiggles of 10% or at the level of the interpolation floor.
     CHECK(errors[n] <= 1.1 * errors[n - 1] + 2 * floor);
   }
-  CHECK(errors.front() > 0.5);           // 100 modes is a coarse low-pass (measured 0.89)
-  CHECK(errors[4] < 3e-2);               // 1e4 modes: 7.3e-3
-  CHECK(errors[5] < 1.5 * floor);        // 3e4 modes: at the interpolation floor (6.1e-5 vs 6.0e-5)
+  CHECK(errors.front() > 0.5);     // 100 modes is a coarse low-pass (measured 0.89)
+  CHECK(errors[4] < 3e-2);         // 1e4 modes: 7.3e-3
+  CHECK(errors[5] < 1.5 * floor);  // 3e4 modes: at the interpolation floor (6.1e-5 vs 6.0e-5)
 }
 
 // ============================================================================ 3. derivatives
@@ -433,7 +441,8 @@ EngineDifferences engine_differences(QueryEngine& engine, const Pose& pose, doub
       moved.translation[a] += sign * dt;
       batch.push_back(moved);
       Pose turned = pose;
-      turned.rotation = (Eigen::Quaterniond(Eigen::AngleAxisd(sign * dtheta, Vector3d::Unit(a))) * pose.rotation).normalized();
+      turned.rotation =
+          (Eigen::Quaterniond(Eigen::AngleAxisd(sign * dtheta, Vector3d::Unit(a))) * pose.rotation).normalized();
       batch.push_back(turned);
     }
   const std::vector<QueryResult> r = engine.query_batch(batch);
@@ -470,14 +479,15 @@ TEST_CASE("pose query: force and torque match central differences of the engine'
     torque_scale = std::max(torque_scale, d.torque.norm());
   }
   REQUIRE(torque_scale > 0.1 * force_scale);  // the off-centre Gaussian gives real torque
-  constexpr std::size_t kModes = 100000;     // converged at oversampling 2 (see the m' test)
+  constexpr std::size_t kModes = 100000;      // converged at oversampling 2 (see the m' test)
 
   // Errors relative to max |F_exact| and max |T_exact| over the poses.
   enum { f_fd, t_fd_generic, t_fd_symmetric, f_exact, t_exact, fd_f_exact, fd_t_exact_generic, columns };
   std::map<Interpolation, std::map<double, std::array<double, columns>>> worst;
   std::ostringstream table;
   table << "derivatives, oversampling 2, m' = " << kModes << ", " << generic.size() << " generic + " << symmetric.size()
-        << " lattice-symmetric poses; errors / max|F_exact|, / max|T_exact|; FD = central differences of the engine's energy\n"
+        << " lattice-symmetric poses; errors / max|F_exact|, / max|T_exact|; FD = central differences of the engine's "
+           "energy\n"
         << "  scheme     step(h,rad) |F-FD|     |T-FD|gen  |T-FD|sym  |F-exact|  |T-exact|  |FD_F-ex|  |FD_T-ex|gen\n";
   for (const Interpolation interp : {Interpolation::trilinear, Interpolation::tricubic}) {
     auto engine = make_engine(2.0, variant(interp, true, true));
@@ -508,7 +518,8 @@ TEST_CASE("pose query: force and torque match central differences of the engine'
         }
       }
       worst[interp][step] = w;
-      table << "  " << (interp == Interpolation::tricubic ? "tricubic " : "trilinear") << "  " << fmt("%-8.0e", step) << "    ";
+      table << "  " << (interp == Interpolation::tricubic ? "tricubic " : "trilinear") << "  " << fmt("%-8.0e", step)
+            << "    ";
       for (double v : w) table << fmt("%.2e", v) << "   ";
       table << "\n";
     }
@@ -573,7 +584,8 @@ TEST_CASE("pose query: translation-only and force-only variants agree with the 6
   const double scale = s.score_scale();
   double force_scale = 0;
   std::vector<Pose> poses;
-  for (const Vector3d& off : {Vector3d(0, 0, 0), Vector3d(0.5, -0.25, 0.3), Vector3d(-0.6, 0.1, 0.45), Vector3d(0.2, 0.7, -0.3)}) {
+  for (const Vector3d& off :
+       {Vector3d(0, 0, 0), Vector3d(0.5, -0.25, 0.3), Vector3d(-0.6, 0.1, 0.45), Vector3d(0.2, 0.7, -0.3)}) {
     poses.push_back(s.pose(Eigen::AngleAxisd::Identity(), off));
     force_scale = std::max(force_scale, s.derivatives(poses.back()).force.norm());
   }
@@ -590,8 +602,10 @@ TEST_CASE("pose query: translation-only and force-only variants agree with the 6
       REQUIRE(a.flags == query_ok);
       REQUIRE(b.flags == query_ok);
       REQUIRE(c.flags == query_ok);
-      d_translation = std::max({d_translation, std::abs(c.score - a.score) / scale, (c.force - a.force).norm() / force_scale});
-      d_force_only = std::max({d_force_only, std::abs(b.score - a.score) / scale, (b.force - a.force).norm() / force_scale});
+      d_translation =
+          std::max({d_translation, std::abs(c.score - a.score) / scale, (c.force - a.force).norm() / force_scale});
+      d_force_only =
+          std::max({d_force_only, std::abs(b.score - a.score) / scale, (b.force - a.force).norm() / force_scale});
       force_only_bit_exact = force_only_bit_exact && b.energy == a.energy && b.force == a.force;
       const Derivatives d = s.derivatives(p);
       d_exact = std::max({d_exact, std::abs(c.score - s.score(p)) / scale, (c.force - d.force).norm() / force_scale});
@@ -599,9 +613,9 @@ TEST_CASE("pose query: translation-only and force-only variants agree with the 6
       CHECK(c.torque == Vector3d::Zero());
     }
     MESSAGE(std::string(name(interp)) << ": at R = I, translation-only vs 6-DOF: " << fmt("%.2e", d_translation)
-                         << "; force-only vs force+torque: " << fmt("%.2e", d_force_only)
-                         << std::string(force_only_bit_exact ? " (bit-exact)" : "") << "; translation-only vs closed form: "
-                         << fmt("%.2e", d_exact));
+                                      << "; force-only vs force+torque: " << fmt("%.2e", d_force_only)
+                                      << std::string(force_only_bit_exact ? " (bit-exact)" : "")
+                                      << "; translation-only vs closed form: " << fmt("%.2e", d_exact));
     // At R = I the rotated frequencies are the grid nodes: both schemes reproduce the
     // node values (Catmull-Rom interpolates), so only float rounding differs.
     CHECK(d_translation < 1e-5);
@@ -624,8 +638,8 @@ TEST_CASE("pose query: translation-only sums exactly the m' lowest-|w| modes at 
   for (const Vector3d& off : offsets)
     force_scale = std::max(force_scale, s.derivatives(s.pose(Eigen::AngleAxisd::Identity(), off)).force.norm());
   double worst = 0;
-  for (const std::size_t m : {std::size_t(1), std::size_t(2), std::size_t(7), std::size_t(33), std::size_t(100), std::size_t(1234),
-                              std::size_t(4097), std::size_t(20000), all - 1, all}) {
+  for (const std::size_t m : {std::size_t(1), std::size_t(2), std::size_t(7), std::size_t(33), std::size_t(100),
+                              std::size_t(1234), std::size_t(4097), std::size_t(20000), all - 1, all}) {
     CAPTURE(m);
     six->set_modes(m);
     translation->set_modes(m);
@@ -656,7 +670,8 @@ TEST_CASE("pose query: phase tables built in the kernel match a double-precision
   auto signed_k = [](std::size_t k, std::size_t n) { return k <= n / 2 ? double(k) : double(k) - double(n); };
   double worst = 0, scale = 0;
   int used = 0;
-  for (const Vector3d& off : {Vector3d(0.3, -0.2, 0.1), Vector3d(2.7, -3.1, 1.9), Vector3d(-4.4, 3.3, -2.6), Vector3d(5.1, 4.9, -5.3)}) {
+  for (const Vector3d& off :
+       {Vector3d(0.3, -0.2, 0.1), Vector3d(2.7, -3.1, 1.9), Vector3d(-4.4, 3.3, -2.6), Vector3d(5.1, 4.9, -5.3)}) {
     const Pose p = s.pose(Eigen::AngleAxisd::Identity(), off);
     const QueryResult r = engine->query(p);
     if (r.flags != query_ok) continue;
@@ -669,7 +684,8 @@ TEST_CASE("pose query: phase tables built in the kernel match a double-precision
         for (std::size_t x = 0; x < d[0]; ++x) {
           const std::size_t k = x + d[0] * (y + d[1] * z);
           const std::size_t neg = (d[0] - x) % d[0] + d[0] * ((d[1] - y) % d[1] + d[1] * ((d[2] - z) % d[2]));
-          const Vector3d w(signed_k(x, d[0]) / sp.length.x(), signed_k(y, d[1]) / sp.length.y(), signed_k(z, d[2]) / sp.length.z());
+          const Vector3d w(signed_k(x, d[0]) / sp.length.x(), signed_k(y, d[1]) / sp.length.y(),
+                           signed_k(z, d[2]) / sp.length.z());
           const cd weight = cd(sp.part1.rho[k]) * cd(sp.part2.rho[neg]) * dw;
           const cd term = weight * std::exp(cd(0, 2 * kPi * w.dot(tau)));
           f += term;
@@ -679,8 +695,9 @@ TEST_CASE("pose query: phase tables built in the kernel match a double-precision
     worst = std::max({worst, std::abs(r.score - f) / scale, (r.force - force).norm() / (2 * kPi * scale / sp.spacing)});
   }
   REQUIRE(used >= 3);
-  MESSAGE("kernel phase tables vs a double-precision host sum over all " << engine->max_modes() << " modes, "
-          << used << " translations up to the aliasing limit: max error " << fmt("%.2e", worst) << " of |f| aligned");
+  MESSAGE("kernel phase tables vs a double-precision host sum over all "
+          << engine->max_modes() << " modes, " << used << " translations up to the aliasing limit: max error "
+          << fmt("%.2e", worst) << " of |f| aligned");
   CHECK(worst < 1e-5);
 }
 
@@ -710,8 +727,9 @@ TEST_CASE("pose query: a half-float cube stays within its stated error of the fl
         dF = std::max(dF, (y.force - x.force).norm());
         dT = std::max(dT, (y.torque - x.torque).norm());
       }
-      MESSAGE(scheme << ", m' " << m << ": half cube vs float cube, relative to the largest value over the poses: score "
-                     << fmt("%.2e", df / fs) << ", force " << fmt("%.2e", dF / ff) << ", torque " << fmt("%.2e", dT / ft));
+      MESSAGE(
+          scheme << ", m' " << m << ": half cube vs float cube, relative to the largest value over the poses: score "
+                 << fmt("%.2e", df / fs) << ", force " << fmt("%.2e", dF / ff) << ", torque " << fmt("%.2e", dT / ft));
       // Measured about 1e-5 (score 3e-6): below trilinear's interpolation error (5e-3)
       // and tricubic's (6e-5) at oversampling 2.
       CHECK(df / fs < 5e-5);
@@ -738,15 +756,15 @@ TEST_CASE("pose query: query_batch equals a loop of query") {
       const QueryResult one = engine->query(poses[n]);
       CHECK(batch[n].flags == one.flags);
       CHECK(batch[n].modes == one.modes);
-      bit_exact = bit_exact && batch[n].score == one.score && batch[n].force == one.force && batch[n].torque == one.torque &&
-                  batch[n].energy == one.energy;
+      bit_exact = bit_exact && batch[n].score == one.score && batch[n].force == one.force &&
+                  batch[n].torque == one.torque && batch[n].energy == one.energy;
       const double s = std::max(std::abs(one.score), 1e-30);
       worst = std::max({worst, std::abs(batch[n].score - one.score) / s,
                         (batch[n].force - one.force).norm() / std::max(one.force.norm(), 1e-30),
                         (batch[n].torque - one.torque).norm() / std::max(one.torque.norm(), 1e-30)});
     }
-    MESSAGE(std::string(name(interp)) << ": batch vs loop: " << std::string(bit_exact ? "bit-exact" : "not bit-exact") << ", max relative diff "
-                         << fmt("%.2e", worst));
+    MESSAGE(std::string(name(interp)) << ": batch vs loop: " << std::string(bit_exact ? "bit-exact" : "not bit-exact")
+                                      << ", max relative diff " << fmt("%.2e", worst));
     CHECK(worst <= 1e-6);
     CHECK(engine->query_batch({}).empty());
   }
@@ -760,8 +778,14 @@ TEST_CASE("pose query: set_modes clamps and results report m'") {
   const std::size_t all = sp.dims[0] * sp.dims[1] * sp.dims[2];
   CHECK(engine->max_modes() == all);
   const Pose pose = standard_poses()[3];
-  for (const auto& [asked, expected] : std::vector<std::pair<std::size_t, std::size_t>>{
-           {0, 1}, {1, 1}, {1234, 1234}, {all - 1, all - 1}, {all, all}, {all + 1, all}, {std::numeric_limits<std::size_t>::max(), all}}) {
+  for (const auto& [asked, expected] :
+       std::vector<std::pair<std::size_t, std::size_t>>{{0, 1},
+                                                        {1, 1},
+                                                        {1234, 1234},
+                                                        {all - 1, all - 1},
+                                                        {all, all},
+                                                        {all + 1, all},
+                                                        {std::numeric_limits<std::size_t>::max(), all}}) {
     CAPTURE(asked);
     engine->set_modes(asked);
     CHECK(engine->modes() == expected);
@@ -867,8 +891,10 @@ TEST_CASE("pose query: torque without torque spectra and mismatched spacings thr
   const PairSpectra plain = compute_pair_spectra(library, context(), g1, r1, g2, r2, false, options);
   CHECK_FALSE(plain.torque);
   for (const auto& m : plain.part2.moments) CHECK(m.empty());
-  CHECK_THROWS_AS(make_query_engine(context(), plain, variant(Interpolation::trilinear, true, true), cache_config()), Error);
-  CHECK_THROWS_AS(make_query_engine(context(), plain, variant(Interpolation::tricubic, true, true), cache_config()), Error);
+  CHECK_THROWS_AS(make_query_engine(context(), plain, variant(Interpolation::trilinear, true, true), cache_config()),
+                  Error);
+  CHECK_THROWS_AS(make_query_engine(context(), plain, variant(Interpolation::tricubic, true, true), cache_config()),
+                  Error);
   // The same spectra serve a variant without torque.
   auto ok = make_query_engine(context(), plain, variant(Interpolation::trilinear, true, false), cache_config());
   CHECK(ok->query(Pose{}).flags == query_ok);
@@ -883,4 +909,3 @@ TEST_CASE("pose query: torque without torque spectra and mismatched spacings thr
     MESSAGE("mismatched spacings: " << std::string(e.what()));
   }
 }
-

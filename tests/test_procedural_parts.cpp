@@ -1,21 +1,20 @@
 // Procedural parts (mesh/procedural/): mesh validity (indexed, watertight, outward
 // normals, no degenerate triangles) and geometry against closed forms.
-#include <doctest/doctest.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <doctest/doctest.h>
 #include <map>
 #include <set>
 #include <string>
 #include <utility>
 
-#include "snapfit/error.h"
 #include "mesh/procedural/procedural_parts.h"
+#include "snapfit/error.h"
 
+using Eigen::Vector3d;
 using snapfit::Mesh;
 using snapfit::ProceduralPartSpec;
-using Eigen::Vector3d;
 
 namespace {
 
@@ -24,8 +23,7 @@ constexpr double kPi = 3.14159265358979323846;
 // Signed volume by the divergence theorem: sum over triangles of v0 . (v1 x v2) / 6.
 double signed_volume(const Mesh& m) {
   double v = 0;
-  for (const auto& t : m.triangles)
-    v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
+  for (const auto& t : m.triangles) v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
   return v;
 }
 
@@ -116,8 +114,8 @@ ProceduralPartSpec peg_spec(double r, double length, double chamfer, int segment
   return {"peg", {{"radius", r}, {"length", length}, {"chamfer", chamfer}, {"segments", segments}}, {}};
 }
 
-ProceduralPartSpec hole_spec(double peg_r, double clearance, double depth, double width, double height,
-                             double chamfer, int segments) {
+ProceduralPartSpec hole_spec(double peg_r, double clearance, double depth, double width, double height, double chamfer,
+                             int segments) {
   return {"hole_block",
           {{"peg_radius", peg_r},
            {"clearance", clearance},
@@ -391,8 +389,8 @@ TEST_CASE("procedural three-peg pair: base + cover fill the box, base volume con
     CHECK(flat_not_up == 0);
 
     error[n] = std::abs(vb - continuous);
-    INFO("three_peg_base segments " << n << ": volume " << vb << ", continuous " << continuous << ", error "
-                                    << error[n] << " (relative " << error[n] / continuous << ")");
+    INFO("three_peg_base segments " << n << ": volume " << vb << ", continuous " << continuous << ", error " << error[n]
+                                    << " (relative " << error[n] / continuous << ")");
     // Polygonal (inscribed N-gon) and chord errors are O((2pi/N)^2) of the pegs' volume.
     CHECK(error[n] <= std::pow(2 * kPi / n, 2) * pegs);
   }
@@ -428,10 +426,9 @@ TEST_CASE("procedural parts: valid specs pass the check, defaults apply") {
   CHECK(peg.vertices.size() == 2 * 64 + 2);  // default segments 64, no chamfer
   CHECK_NOTHROW(snapfit::check_procedural_spec(
       {"hole_block", {{"peg_radius", 1}, {"hole_depth", 2}, {"width", 3}, {"height", 2}}, {}}));
-  CHECK_NOTHROW(snapfit::check_procedural_spec(
-      {"three_peg_cover",
-       {{"cell", 1}, {"base_thickness", 1}, {"cover_thickness", 1}},
-       {{"peg_radii", {0.1, 0.2, 0.3}}, {"peg_heights", {1, 1, 1}}}}));
+  CHECK_NOTHROW(snapfit::check_procedural_spec({"three_peg_cover",
+                                                {{"cell", 1}, {"base_thickness", 1}, {"cover_thickness", 1}},
+                                                {{"peg_radii", {0.1, 0.2, 0.3}}, {"peg_heights", {1, 1, 1}}}}));
 }
 
 TEST_CASE("procedural parts: invalid specs throw snapfit::Error naming the field") {

@@ -1,14 +1,13 @@
 // Program build and on-disk binary cache (engine/program_cache.h): hits, misses,
 // corruption, driver refusal, key changes and build failures.
 #include <doctest/doctest.h>
-
 #include <filesystem>
 
 #include "engine/device_check.h"
-#include "snapfit/error.h"
 #include "engine/kernel_sources.h"
 #include "engine/program_cache.h"
 #include "io/cache_file.h"
+#include "snapfit/error.h"
 #include "tests/test_support.h"
 
 using namespace snapfit;

@@ -1,16 +1,15 @@
 // Progress reports (core/progress.h), in plain (non-terminal) and forced terminal style.
-#include <doctest/doctest.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <doctest/doctest.h>
 #include <functional>
 #include <limits>
-#include <cstdlib>
 #include <set>
 #include <sstream>
 #include <string>
+#include <tbb/parallel_for.h>
 #include <vector>
 
 #include "core/progress.h"
@@ -81,9 +80,9 @@ TEST_CASE("progress: plain style prints a bounded number of lines, the last says
     for (std::uint64_t i = 0; i < total; ++i) p.advance();
     CHECK(p.done() == total);
     p.finish();
-    p.finish();  // once only
+    p.finish();   // once only
     p.advance();  // after finish: counted, not printed
-  }  // the destructor prints nothing more
+  }               // the destructor prints nothing more
   const std::vector<std::string> lines = lines_of(out.str());
   REQUIRE(lines.size() >= 2);
   CHECK(lines.size() <= 12);  // 9 marks of 10% + final (+ 10 s lines on a slow machine)

@@ -1,10 +1,9 @@
 // One progress bar per named pass (core/progress.h pass_progress_bars), in plain
 // (non-terminal) style into a string stream.
-#include <doctest/doctest.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
+#include <doctest/doctest.h>
 #include <functional>
 #include <sstream>
 #include <string>
@@ -90,10 +89,10 @@ TEST_CASE("progress passes: different totals, single-chunk passes, and a pass cu
   std::ostringstream out;
   {
     const auto report = pass_progress_bars(out);
-    run_pass(report, "a", 7, 7);        // one report reaching the total
-    run_pass(report, "b", 1000, 3);     // many small steps
-    report("c", 40, 100);               // stops at 40%...
-    run_pass(report, "d", 50, 10);      // ...when the next pass starts
+    run_pass(report, "a", 7, 7);     // one report reaching the total
+    run_pass(report, "b", 1000, 3);  // many small steps
+    report("c", 40, 100);            // stops at 40%...
+    run_pass(report, "d", 50, 10);   // ...when the next pass starts
   }
   const std::vector<std::string> lines = lines_of(out.str());
   CAPTURE(out.str());

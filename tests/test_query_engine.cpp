@@ -2,10 +2,9 @@
 // makes no heap allocation. Counted with a replaced global operator new around 1,000
 // queries on the shipped peg-and-hole parts, 6-DOF (tricubic, with torque) and
 // translation-only, single poses and batches no larger than an earlier one.
-#include <doctest/doctest.h>
-
 #include <atomic>
 #include <cstdlib>
+#include <doctest/doctest.h>
 #include <new>
 #include <vector>
 
@@ -80,8 +79,8 @@ TEST_CASE("query engine: no heap allocation per query after set_modes, 6-DOF and
       scene.outputs.torque = false;
     }
     const AssemblyPair pair = test::build_small_pair(scene);
-    auto engine = make_query_engine(test::test_context(), pair.spectra, query_variant_for(scene, Interpolation::tricubic),
-                                     test::test_program_cache());
+    auto engine = make_query_engine(test::test_context(), pair.spectra,
+                                    query_variant_for(scene, Interpolation::tricubic), test::test_program_cache());
     const Pose assembled = *scene.assembled_pose;
     std::vector<Pose> batch;
     for (int i = 0; i < 8; ++i) batch.push_back(test::pose_at(assembled.translation + Eigen::Vector3d(0.1 * i, 0, 1)));

@@ -3,7 +3,6 @@
 // land on the grid (lattice rotations), and the device kernel's float result against
 // it at the same m'.
 #include <doctest/doctest.h>
-
 #include <random>
 
 #include "engine/fft3d.h"
@@ -101,7 +100,7 @@ TEST_CASE("reference query: the device kernel's float sums agree with double acc
   const FftLibrary fft;
   const PairSpectra s = compute_pair_spectra(fft, test::test_context(), g1, r1, g2, r2, true);
   auto engine = make_query_engine(test::test_context(), s, QueryVariant{true, true, false, Interpolation::tricubic},
-                         test::test_program_cache());
+                                  test::test_program_cache());
   const std::vector<std::size_t> order = mode_order(s);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1, 1);

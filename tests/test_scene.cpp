@@ -1,13 +1,12 @@
 // Scene files (snapfit/scene.h): the shipped scenes, round trips, and one check per error class.
-#include <doctest/doctest.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
+#include <doctest/doctest.h>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <unistd.h>
 
 #include "snapfit/error.h"
 #include "snapfit/scene.h"
@@ -55,12 +54,12 @@ std::string error_of(const json& j) { return error_of(j.dump()); }
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 // Expects an error whose message contains `part` (and so names the file and field).
-#define CHECK_ERROR(scene, part)                     \
-  do {                                               \
-    const std::string msg_ = error_of(scene);        \
-    INFO("message: ", msg_);                         \
-    CHECK(contains(msg_, "test.json: "));            \
-    CHECK(contains(msg_, part));                     \
+#define CHECK_ERROR(scene, part)              \
+  do {                                        \
+    const std::string msg_ = error_of(scene); \
+    INFO("message: ", msg_);                  \
+    CHECK(contains(msg_, "test.json: "));     \
+    CHECK(contains(msg_, part));              \
   } while (0)
 
 // A fresh empty folder under the temp directory, removed at scope exit.
@@ -86,10 +85,10 @@ bool same_pose(const Pose& a, const Pose& b) {
   return a.rotation.coeffs() == b.rotation.coeffs() && a.translation == b.translation;
 }
 bool same_part(const PartSpec& a, const PartSpec& b) {
-  const bool same_proc = a.procedural.has_value() == b.procedural.has_value() &&
-                         (!a.procedural || (a.procedural->type == b.procedural->type &&
-                                            a.procedural->numbers == b.procedural->numbers &&
-                                            a.procedural->arrays == b.procedural->arrays));
+  const bool same_proc =
+      a.procedural.has_value() == b.procedural.has_value() &&
+      (!a.procedural || (a.procedural->type == b.procedural->type && a.procedural->numbers == b.procedural->numbers &&
+                         a.procedural->arrays == b.procedural->arrays));
   return a.name == b.name && a.mesh_path == b.mesh_path && a.mesh_scale == b.mesh_scale && same_proc &&
          same_pose(a.pose, b.pose);
 }
@@ -146,9 +145,10 @@ std::vector<fs::path> shipped_scenes() {
 
 TEST_CASE("scene: haptics fields round-trip and unknown ones are refused") {
   json j = base_scene();
-  j["haptics"] = {{"mass_kg", 0.2}, {"stiffness_n_per_m", 1500}, {"rot_stiffness_nm_per_rad", 0.3},
-                  {"damping_ratio", 0.7}, {"max_force_n", 3.3}, {"max_torque_nm", 0}, {"geometry_gain", 2e-4},
-                  {"settle_s", 0.5}, {"success_position", 0.25}, {"success_angle_deg", 2}};
+  j["haptics"] = {{"mass_kg", 0.2},        {"stiffness_n_per_m", 1500}, {"rot_stiffness_nm_per_rad", 0.3},
+                  {"damping_ratio", 0.7},  {"max_force_n", 3.3},        {"max_torque_nm", 0},
+                  {"geometry_gain", 2e-4}, {"settle_s", 0.5},           {"success_position", 0.25},
+                  {"success_angle_deg", 2}};
   const Scene s = parse_scene(j.dump(), "test.json");
   CHECK(s.haptics.mass_kg == 0.2);
   CHECK(s.haptics.rot_stiffness_nm_per_rad == 0.3);

@@ -6,11 +6,10 @@
 // the blind hole's bottom (the skeletal-density penalty is soft at lambda_in/lambda_out
 // = 3), so the part ends ~0.4 mm deep, where the coupling balances that pull.
 #include <doctest/doctest.h>
-
 #include <iostream>
 
-#include "pipeline/assembly_pair.h"
 #include "engine/query_engine.h"
+#include "pipeline/assembly_pair.h"
 #include "scheduler/assembly_session.h"
 #include "tests/test_engine_support.h"
 
@@ -25,7 +24,8 @@ SessionResult insert(const std::string& scene_file, std::size_t modes, std::opti
   PairOptions options;
   options.note = [](const std::string&) {};
   const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, options);
-  auto engine = make_query_engine(test::test_context(), pair.spectra, query_variant_for(scene), test::test_program_cache());
+  auto engine =
+      make_query_engine(test::test_context(), pair.spectra, query_variant_for(scene), test::test_program_cache());
   const TuningResult fixed = pick_modes({TimingPoint{modes, 0, 0, 0, 1}}, scene.frame_budget_ms, 0.25);
   SessionOptions session;
   session.simulated_time = true;

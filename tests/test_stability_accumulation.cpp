@@ -4,18 +4,17 @@
 // spectra, mode order and trilinear interpolation, is evaluated on the host entirely in
 // double, and the engine's relative error is measured against m' up to every mode of
 // the FFT grid, at poses in contact (where the sum cancels most) and in free space.
-#include <doctest/doctest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <doctest/doctest.h>
 #include <iomanip>
 #include <iostream>
 #include <numeric>
 
 #include "engine/mode_order.h"
-#include "tests/stability_support.h"
 #include "engine/query_engine.h"
+#include "tests/stability_support.h"
 
 using namespace snapfit;
 using Eigen::Vector3d;
@@ -84,7 +83,8 @@ Cd sample(const std::vector<Complex>& s, const std::array<std::size_t, 3>& d, co
     for (int b = 0; b < 2; ++b)
       for (int a = 0; a < 2; ++a) {
         const double w = (a ? t.x() : 1 - t.x()) * (b ? t.y() : 1 - t.y()) * (c ? t.z() : 1 - t.z());
-        const std::size_t k = wrap(long(f.x()) + a, d[0]) + d[0] * (wrap(long(f.y()) + b, d[1]) + d[1] * wrap(long(f.z()) + c, d[2]));
+        const std::size_t k =
+            wrap(long(f.x()) + a, d[0]) + d[0] * (wrap(long(f.y()) + b, d[1]) + d[1] * wrap(long(f.z()) + c, d[2]));
         v += w * Cd(s[k]);
       }
   return v;
@@ -152,7 +152,8 @@ DoubleSums double_sum(const PairSpectra& s, const std::vector<std::size_t>& orde
 
 }  // namespace
 
-TEST_CASE("stability accumulation: float32 sums in the query kernel against a double-precision sum, m' up to every mode") {
+TEST_CASE(
+    "stability accumulation: float32 sums in the query kernel against a double-precision sum, m' up to every mode") {
   test::SmallPairParams params;
   params.spacing = 1.0;
   const Scene scene = test::small_peg_hole_scene(params);
@@ -185,7 +186,8 @@ TEST_CASE("stability accumulation: float32 sums in the query kernel against a do
   const std::size_t max_groups = std::max<std::size_t>(2, 2 * test::test_context().device.info.compute_units);
   std::cout << "accumulation: work-group " << wg << ", up to " << max_groups << " groups per pose\n"
             << "relative error against the double sum: engine (all float) | float accumulation alone (kernel order)\n"
-            << "    m'   | pose | E engine | E accum | E Kahan | |F| engine | |F| accum | |F| Kahan | |T| engine | |T| accum | |T| Kahan | sum|Re term| / |E|\n";
+            << "    m'   | pose | E engine | E accum | E Kahan | |F| engine | |F| accum | |F| Kahan | |T| engine | |T| "
+               "accum | |T| Kahan | sum|Re term| / |E|\n";
   double worst_e = 0, worst_f = 0, worst_t = 0, worst_acc_e = 0, worst_acc_f = 0, worst_acc_t = 0;
   double worst_k_e = 0, worst_k_f = 0, worst_k_t = 0, worst_t_haptic = 0;
   for (std::size_t m : ladder) {
@@ -218,9 +220,9 @@ TEST_CASE("stability accumulation: float32 sums in the query kernel against a do
     }
   }
   std::cout << "accumulation: worst relative error, engine: E " << worst_e << ", |F| " << worst_f << ", |T| " << worst_t
-            << " (|T| at m' <= 32768: " << worst_t_haptic << "); float accumulation alone: E " << worst_acc_e << ", |F| "
-            << worst_acc_f << ", |T| " << worst_acc_t << "; Kahan work items: E " << worst_k_e << ", |F| " << worst_k_f
-            << ", |T| " << worst_k_t << "\n";
+            << " (|T| at m' <= 32768: " << worst_t_haptic << "); float accumulation alone: E " << worst_acc_e
+            << ", |F| " << worst_acc_f << ", |T| " << worst_acc_t << "; Kahan work items: E " << worst_k_e << ", |F| "
+            << worst_k_f << ", |T| " << worst_k_t << "\n";
   // Measured (this machine, PoCL, conjugate pairs folded): engine E 9.0e-5 (free space,
   // where the sum cancels 2,600-fold), |F| 3.6e-6, |T| 4.0e-3 at all 421,875 modes
   // (2.3e-5 at m' <= 32,768); the float accumulation alone, in the kernel's order,

@@ -3,28 +3,26 @@
 // options; a cache root that is a file; a full disk while writing a cache entry. Each
 // gives a clear error naming the problem or a documented safe fallback, never a crash,
 // and never a half-written cache file.
+#include <array>
+#include <cstdio>
 #include <doctest/doctest.h>
-
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
+#include <tuple>
 #include <unistd.h>
 
-#include <array>
-#include <cstdio>
-#include <filesystem>
-#include <iostream>
-#include <tuple>
-#include <nlohmann/json.hpp>
-
-#include "snapfit/error.h"
 #include "engine/kernel_sources.h"
+#include "engine/query_engine.h"
 #include "io/cache_file.h"
 #include "io/mesh_load.h"
-#include "snapfit/haptic_loop.h"
 #include "scheduler/virtual_coupling.h"
+#include "snapfit/error.h"
+#include "snapfit/haptic_loop.h"
 #include "tests/stability_support.h"
-#include "engine/query_engine.h"
 
 using namespace snapfit;
 using Eigen::Vector3d;
@@ -90,7 +88,8 @@ TEST_CASE("stability bad input: an infinite number in any numeric scene field is
         CHECK(m.find("inf.json") != std::string::npos);
         // The JSON reader refuses the overflow itself, with its line and column.
         CHECK_MESSAGE((m.find(key) != std::string::npos ||
-                       (m.find("number overflow") != std::string::npos && m.find("column") != std::string::npos)), m);
+                       (m.find("number overflow") != std::string::npos && m.find("column") != std::string::npos)),
+                      m);
       }
     }
   std::cout << "bad input: " << refused << " infinite scene values refused\n";
@@ -129,7 +128,8 @@ TEST_CASE("stability bad input: non-finite and huge poses, library and CLI") {
   cached.note = [](const std::string&) {};
   cached.descriptors.program_cache = test::test_program_cache();
   const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, cached);
-  auto engine = make_query_engine(test::test_context(), pair.spectra, query_variant_for(scene), test::test_program_cache());
+  auto engine =
+      make_query_engine(test::test_context(), pair.spectra, query_variant_for(scene), test::test_program_cache());
   engine->set_modes(1024);
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   const double denormal = std::numeric_limits<double>::denorm_min(), huge = std::numeric_limits<double>::max();
@@ -161,16 +161,16 @@ TEST_CASE("stability bad input: non-finite and huge poses, library and CLI") {
   // pose; a finite pose outside the grid gives zeros and the flag.
   const std::string scene_file = cache.dir.file("small.json");
   test::write_text(scene_file, scene_to_json(scene));
-  const std::string cli = std::string("SNAPFIT_CACHE_DIR=") + cache.dir.path.string() + " " + SNAPFIT_CLI_PATH + " query " + scene_file;
-  for (const auto& [pose, expect] : std::vector<std::pair<std::string, std::string>>{
-           {"nan,0,0", "non-finite"},
-           {"0,inf,0", "non-finite"},
-           {"0,0,-INF", "non-finite"},
-           {"0,0,0,1,0,0,nan", "non-finite"},
-           {"1e999,0,0", "is not a number"},
-           {"0,0,0,0,0,0,90", "axis is zero"},
-           {"0,0", "expected 3 or 7 numbers"},
-           {"1,2,3x", "is not a number"}}) {
+  const std::string cli =
+      std::string("SNAPFIT_CACHE_DIR=") + cache.dir.path.string() + " " + SNAPFIT_CLI_PATH + " query " + scene_file;
+  for (const auto& [pose, expect] : std::vector<std::pair<std::string, std::string>>{{"nan,0,0", "non-finite"},
+                                                                                     {"0,inf,0", "non-finite"},
+                                                                                     {"0,0,-INF", "non-finite"},
+                                                                                     {"0,0,0,1,0,0,nan", "non-finite"},
+                                                                                     {"1e999,0,0", "is not a number"},
+                                                                                     {"0,0,0,0,0,0,90", "axis is zero"},
+                                                                                     {"0,0", "expected 3 or 7 numbers"},
+                                                                                     {"1,2,3x", "is not a number"}}) {
     CAPTURE(pose);
     const test::Command c = test::run_command(cli + " --pose '" + pose + "'");
     CHECK(c.status == 1);
@@ -208,8 +208,10 @@ TEST_CASE("stability bad input: device readings that are huge but finite stay wi
   WrenchEvaluator eval;
   eval.evaluate = [](const Pose& p) {
     QueryResult r;
-    if (p.translation.norm() > 100) r.flags = query_outside_grid;
-    else r.force = -p.translation;
+    if (p.translation.norm() > 100)
+      r.flags = query_outside_grid;
+    else
+      r.force = -p.translation;
     return r;
   };
   LoopConfig config;
@@ -225,7 +227,8 @@ TEST_CASE("stability bad input: truncated copies of valid mesh files fail cleanl
   // Every prefix length in 1/16 steps of a few real models of different formats.
   const std::string root = "/usr/share/assimp/models";  // assimp-testmodels (dpkg -L)
   const std::vector<std::string> models = {"STL/Spider_ascii.stl", "STL/Spider_binary.stl", "OBJ/box.obj",
-                                           "PLY/cube.ply", "PLY/cube_binary.ply", "OFF/Cube.off", "OFF/Wuson.off"};
+                                           "PLY/cube.ply",         "PLY/cube_binary.ply",   "OFF/Cube.off",
+                                           "OFF/Wuson.off"};
   test::TempDir dir;
   int tried = 0, refused = 0;
   for (const std::string& m : models) {
@@ -249,7 +252,8 @@ TEST_CASE("stability bad input: truncated copies of valid mesh files fail cleanl
       }
     }
   }
-  std::cout << "bad input: " << tried << " truncated mesh files, " << refused << " refused with an error naming the file, the rest loaded finite\n";
+  std::cout << "bad input: " << tried << " truncated mesh files, " << refused
+            << " refused with an error naming the file, the rest loaded finite\n";
   CHECK(tried >= 16);
 }
 
@@ -333,15 +337,17 @@ TEST_CASE("stability bad input: PLY files cut inside the header or body are refu
   // cut inside its header and aborts (ai_assert) on one cut inside its body;
   // io/mesh_load.cpp now walks PLY headers and bodies before Assimp sees them.
   test::TempDir dir;
-  const std::string ascii = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                            "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const std::string ascii =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   REQUIRE(load_mesh([&] {
             test::write_text(dir.file("whole.ply"), ascii);
             return dir.file("whole.ply");
-          }()).triangles.size() == 1);
-  for (const std::size_t n : {std::size_t(5), std::size_t(40), std::size_t(75), std::size_t(120), ascii.find("end_header") + 4,
-                              ascii.size() - 4, ascii.size() - 2}) {
+          }())
+              .triangles.size() == 1);
+  for (const std::size_t n : {std::size_t(5), std::size_t(40), std::size_t(75), std::size_t(120),
+                              ascii.find("end_header") + 4, ascii.size() - 4, ascii.size() - 2}) {
     const std::string file = dir.file("cut" + std::to_string(n) + ".ply");
     test::write_text(file, ascii.substr(0, n));
     CAPTURE(n);
@@ -355,8 +361,9 @@ TEST_CASE("stability bad input: PLY files cut inside the header or body are refu
     }
   }
   // Binary: a face list whose declared length runs past the end of the file.
-  std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string binary =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
   binary += std::string(36, '\0');
   binary += char(200);  // 200 indices declared, none present
   test::write_text(dir.file("list.ply"), binary);
@@ -373,17 +380,21 @@ TEST_CASE("stability bad input: fuzz regression: a malformed bzip-compressed Dir
   CHECK_THROWS_WITH_AS(load_mesh(file), doctest::Contains("compressed DirectX .x"), Error);
 }
 
-TEST_CASE("stability bad input: fuzz regression: a binary PLY face with fewer than 3 indices is refused, not an abort") {
+TEST_CASE(
+    "stability bad input: fuzz regression: a binary PLY face with fewer than 3 indices is refused, not an abort") {
   // fuzz/fuzz_mesh found this input (byte 0 picked ".ply"): a face list of 0 indices makes
   // Debian's Assimp 5.2 abort in its triangulation (ai_assert numOut != mNumFaces).
   test::TempDir dir;
   const std::string file = dir.file("crash.ply");
-  test::write_bytes(file, test::read_bytes(std::string(SNAPFIT_SOURCE_DIR) + "/tests/data/fuzz/ply_face_count_abort.bin"));
+  test::write_bytes(file,
+                    test::read_bytes(std::string(SNAPFIT_SOURCE_DIR) + "/tests/data/fuzz/ply_face_count_abort.bin"));
   REQUIRE(fs::file_size(file) == 448);
   CHECK_THROWS_WITH_AS(load_mesh(file), doctest::Contains("vertex indices (at least 3 needed)"), Error);
   // The same in ASCII: a line (2 indices) among the faces.
-  test::write_text(file, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                         "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n2 0 1\n");
+  test::write_text(
+      file,
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n2 0 1\n");
   CHECK_THROWS_WITH_AS(load_mesh(file), doctest::Contains("PLY face 1 has 2 vertex indices"), Error);
 }
 
@@ -394,12 +405,15 @@ TEST_CASE("stability bad input: fuzz regression: Assimp's memory blowups stop at
   // 64x the file size by default), and snapfit reports the limit.
   test::TempDir dir;
   test::EnvScope env("SNAPFIT_IMPORT_MEMORY_MIB", nullptr);
-  for (const auto& [name, ext, size] : {std::tuple<const char*, const char*, std::uintmax_t>{"x_memory_blowup.bin", ".x", 2817},
-                                        {"dae_memory_blowup.bin", ".dae", 8486}}) {
+  for (const auto& [name, ext, size] :
+       {std::tuple<const char*, const char*, std::uintmax_t>{"x_memory_blowup.bin", ".x", 2817},
+        {"dae_memory_blowup.bin", ".dae", 8486}}) {
     const std::string file = dir.file(std::string("blowup") + ext);
     test::write_bytes(file, test::read_bytes(std::string(SNAPFIT_SOURCE_DIR) + "/tests/data/fuzz/" + name));
     REQUIRE(fs::file_size(file) == size);
     // 1088 MiB here (less on a machine with under 2.2 GiB of memory: half of it).
-    CHECK_THROWS_WITH_AS(load_mesh(file), doctest::Contains((file + ": cannot read mesh: the importer exceeded its memory limit of ").c_str()), Error);
+    CHECK_THROWS_WITH_AS(
+        load_mesh(file),
+        doctest::Contains((file + ": cannot read mesh: the importer exceeded its memory limit of ").c_str()), Error);
   }
 }

@@ -5,17 +5,16 @@
 // energy; beyond the box the result is zero and flagged, never an aliased wrap-around
 // force; and the same scene scaled from micrometres to kilometres gives E ~ L^3,
 // F ~ L^2, T ~ L^3.
-#include <doctest/doctest.h>
-
 #include <cmath>
+#include <doctest/doctest.h>
 #include <iostream>
 #include <limits>
 #include <map>
 #include <utility>
 
+#include "engine/query_engine.h"
 #include "scheduler/virtual_coupling.h"
 #include "tests/stability_support.h"
-#include "engine/query_engine.h"
 
 using namespace snapfit;
 using Eigen::Vector3d;
@@ -62,15 +61,16 @@ SmallEngine small_engine(const test::SmallPairParams& params, std::size_t modes)
   SmallEngine s;
   s.pair = test::build_small_pair(test::small_peg_hole_scene(params), params.oversampling);
   s.engine = make_query_engine(test::test_context(), s.pair.spectra,
-                                               query_variant_for(s.pair.scene, Interpolation::tricubic),
-                                               test::test_program_cache());
+                               query_variant_for(s.pair.scene, Interpolation::tricubic), test::test_program_cache());
   s.engine->set_modes(modes);
   return s;
 }
 
 }  // namespace
 
-TEST_CASE("stability extreme: contact, interpenetration, near-180-degree rotations and the box edge are finite and match the energy's differences") {
+TEST_CASE(
+    "stability extreme: contact, interpenetration, near-180-degree rotations and the box edge are finite and match the "
+    "energy's differences") {
   SmallEngine s = small_engine({}, 4096);
   QueryEngine& engine = *s.engine;
   const double h = s.pair.spectra.spacing;
@@ -201,8 +201,8 @@ TEST_CASE("stability extreme: the same scene in micrometres and in kilometres sc
   // point, |s_a - s_b| <= bound_a + bound_b, and w the same off the surface. E, F and T
   // differ accordingly; measured: at most 5.9e-4 of the largest E, 2.5e-3 of the largest
   // F and 1.4e-2 of the largest T over these poses (reported, not bounded).
-  const std::vector<Pose> poses = {pose_at({1, 0, -8}, 2), pose_at({0.5, 0.3, 2}, 10, {1, 1, 0}),
-                                   pose_at({0, 0, -20}), pose_at({4, -3, 12}, 170, {0, 1, 1})};
+  const std::vector<Pose> poses = {pose_at({1, 0, -8}, 2), pose_at({0.5, 0.3, 2}, 10, {1, 1, 0}), pose_at({0, 0, -20}),
+                                   pose_at({4, -3, 12}, 170, {0, 1, 1})};
   std::map<double, SmallEngine> runs;
   std::map<double, std::vector<QueryResult>> results;
   for (double scale : {std::ldexp(1.0, -10), std::ldexp(1.0, 20), 1e-3, 1e6}) {
@@ -235,8 +235,8 @@ TEST_CASE("stability extreme: the same scene in micrometres and in kilometres sc
                                       (b[n].force / (r * r) - a[n].force).norm() / f_scale,
                                       (b[n].torque / (r * r * r) - a[n].torque).norm() / t_scale));
     }
-    std::cout << "scale: " << what << ": largest differences in E, F, T over their largest values " << worst.x()
-              << ", " << worst.y() << ", " << worst.z() << "\n";
+    std::cout << "scale: " << what << ": largest differences in E, F, T over their largest values " << worst.x() << ", "
+              << worst.y() << ", " << worst.z() << "\n";
     return worst;
   };
   CHECK(compare(std::ldexp(1.0, -10), std::ldexp(1.0, 20), "2^-10 (um-sized) vs 2^20 (km-sized), exact scaling") ==

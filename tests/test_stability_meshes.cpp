@@ -5,13 +5,11 @@
 // against the clean mesh: zero-area triangles add nothing, slivers that tile the same
 // surface change nothing, duplicated faces count twice, reversed faces count negative,
 // and an open mesh gives a winding number between 0 and 1 near its hole.
-#include <doctest/doctest.h>
-
-#include <sys/resource.h>
-
 #include <chrono>
 #include <cmath>
+#include <doctest/doctest.h>
 #include <iostream>
+#include <sys/resource.h>
 
 #include "engine/descriptors.h"
 #include "tests/test_engine_support.h"
@@ -57,13 +55,16 @@ double excess(const std::vector<float>& a, const std::vector<float>& ba, const s
               const std::vector<float>& bb, double factor, double slack) {
   double worst = -1e30;
   for (std::size_t i = 0; i < a.size(); ++i)
-    worst = std::max(worst, std::abs(a[i] - factor * b[i]) - (ba[i] + std::abs(factor) * bb[i]) - slack * (1 + std::abs(b[i])));
+    worst = std::max(
+        worst, std::abs(a[i] - factor * b[i]) - (ba[i] + std::abs(factor) * bb[i]) - slack * (1 + std::abs(b[i])));
   return worst;
 }
 
 }  // namespace
 
-TEST_CASE("stability meshes: degenerate, sliver, duplicated, flipped and open meshes give finite fields with the documented values") {
+TEST_CASE(
+    "stability meshes: degenerate, sliver, duplicated, flipped and open meshes give finite fields with the documented "
+    "values") {
   const Mesh clean = test::peg_mesh(1, 3);
   const GridSpec grid = peg_grid();
   const DescriptorFields ref = fields_of(clean, grid);
@@ -78,9 +79,9 @@ TEST_CASE("stability meshes: degenerate, sliver, duplicated, flipped and open me
     degenerate.vertices.push_back(0.5 * (a + b));
     degenerate.vertices.push_back(a + 1e-9 * (b - a));
     for (int t = 0; t < 20; ++t) degenerate.triangles.emplace_back(t % n, t % n, (t + 1) % n);
-    degenerate.triangles.emplace_back(0, 1, n);       // collinear
-    degenerate.triangles.emplace_back(0, n + 1, 1);   // collinear, 1e-9 sliver of a point
-    degenerate.triangles.emplace_back(3, 3, 3);       // a point
+    degenerate.triangles.emplace_back(0, 1, n);      // collinear
+    degenerate.triangles.emplace_back(0, n + 1, 1);  // collinear, 1e-9 sliver of a point
+    degenerate.triangles.emplace_back(3, 3, 3);      // a point
   }
   // Slivers: every triangle split into a fan of 16 needles (aspect ratio ~ 30-300)
   // tiling exactly the same surface.
@@ -115,8 +116,9 @@ TEST_CASE("stability meshes: degenerate, sliver, duplicated, flipped and open me
       open.triangles.push_back(t);
   REQUIRE(open.triangles.size() < clean.triangles.size());
 
-  const DescriptorFields deg = fields_of(degenerate, grid), sl = fields_of(slivers, grid), dup = fields_of(duplicated, grid),
-                         flip = fields_of(flipped, grid), one = fields_of(one_flipped, grid), op = fields_of(open, grid);
+  const DescriptorFields deg = fields_of(degenerate, grid), sl = fields_of(slivers, grid),
+                         dup = fields_of(duplicated, grid), flip = fields_of(flipped, grid),
+                         one = fields_of(one_flipped, grid), op = fields_of(open, grid);
   for (const auto* f : {&deg, &sl, &dup, &flip, &one, &op}) CHECK(all_finite(*f));
 
   // Zero-area triangles contribute nothing; slivers tile the same surface. The clean
@@ -202,8 +204,8 @@ TEST_CASE("stability meshes: a 1e6-triangle mesh on a small grid, within memory"
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  std::cout << "meshes: 998,000 triangles on 8^3 points in " << seconds << " s; peak resident memory of the test process "
-            << usage.ru_maxrss / 1024 << " MiB\n";
+  std::cout << "meshes: 998,000 triangles on 8^3 points in " << seconds
+            << " s; peak resident memory of the test process " << usage.ru_maxrss / 1024 << " MiB\n";
   CHECK(all_finite(f));
   int checked = 0;
   for (int k = 0; k < 8; ++k)

@@ -5,17 +5,16 @@
 // growing amplitude, and must be passive: the total energy (coupling + kinetic,
 // scheduler/virtual_coupling.h coupling_energy, plus the geometric potential
 // gain * E * metres_per_unit) never rises above its start by more than a stated tolerance.
-#include <doctest/doctest.h>
-
 #include <algorithm>
 #include <cmath>
+#include <doctest/doctest.h>
 #include <iostream>
 #include <memory>
 
-#include "snapfit/haptic_loop.h"
-#include "scheduler/haptic_setup.h"
-#include "tests/stability_support.h"
 #include "engine/query_engine.h"
+#include "scheduler/haptic_setup.h"
+#include "snapfit/haptic_loop.h"
+#include "tests/stability_support.h"
 
 using namespace snapfit;
 using Eigen::Vector3d;
@@ -45,8 +44,8 @@ struct EnergyTrace {
 // Rebuilds the part's state before each frame from the log (the step is x' = x + dt v',
 // R' = exp(dt w') R, so velocities follow exactly from consecutive poses) and sums the
 // coupling's energy and the geometric potential at that state.
-EnergyTrace energy_trace(const LoopReport& r, const BodyState& start, const BodyState& device,
-                         const CouplingParams& c, double gain, double dt) {
+EnergyTrace energy_trace(const LoopReport& r, const BodyState& start, const BodyState& device, const CouplingParams& c,
+                         double gain, double dt) {
   EnergyTrace t;
   t.potential_scale = gain * c.metres_per_unit;
   BodyState prev = start, cur = start;
@@ -83,8 +82,7 @@ StiffPair stiff_pair(const test::SmallPairParams& params, double stiffness) {
   s.scene.haptics.stiffness_n_per_m = stiffness;
   s.pair = test::build_small_pair(s.scene);
   s.engine = make_query_engine(test::test_context(), s.pair.spectra,
-                                               query_variant_for(s.scene, Interpolation::trilinear),
-                                               test::test_program_cache());
+                               query_variant_for(s.scene, Interpolation::trilinear), test::test_program_cache());
   s.modes = std::min<std::size_t>(2048, s.engine->max_modes());
   s.engine->set_modes(s.modes);
   return s;
@@ -124,7 +122,9 @@ double max_of(const std::vector<double>& v, std::size_t from, std::size_t to) {
 
 }  // namespace
 
-TEST_CASE("stability stiff: sigma 0.15, lambda 1e3, coupling at a device's maximum stiffness, 60 s static contact is passive") {
+TEST_CASE(
+    "stability stiff: sigma 0.15, lambda 1e3, coupling at a device's maximum stiffness, 60 s static contact is "
+    "passive") {
   // The peg pressed 1 mm sideways into the wall of the zero-clearance hole, 8 mm deep,
   // tilted 2 degrees: the device holds it there. 14,500 N/m: the closed-loop stiffness
   // of a Force Dimension omega.x, among the stiffest desktop devices.
@@ -171,9 +171,9 @@ TEST_CASE("stability stiff: sigma 0.15, lambda 1e3, coupling at a device's maxim
     std::cout << "stiff contact (" << c.name << "): gain " << run.gain << " N/unit; total energy start " << w0
               << " J, max " << w_max << " J, min " << w_min << " J, end " << w_end
               << " J; largest rise above the running minimum " << created << " J = " << created / dissipated
-              << " of the energy dissipated; passivity controller active in " << r.passivity_frames << " frames, removed "
-              << r.passivity_dissipated_j << " J; peak speed first 1 s " << v_first << " mm/s, last 10 s " << v_last
-              << " mm/s\n";
+              << " of the energy dissipated; passivity controller active in " << r.passivity_frames
+              << " frames, removed " << r.passivity_dissipated_j << " J; peak speed first 1 s " << v_first
+              << " mm/s, last 10 s " << v_last << " mm/s\n";
     // Passive: the total never exceeds its start, ends lower, and no rise above the
     // running minimum exceeds 5% of the energy the run dissipates (the explicit step's
     // and the trilinear torque's O(dt) error, removed by the controller).

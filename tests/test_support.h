@@ -1,15 +1,14 @@
 #pragma once
 // Small helpers shared by the test files: temporary folders and file bytes.
-#include <sys/wait.h>
-
 #include <array>
 #include <cstdio>
-#include <filesystem>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <random>
 #include <string>
+#include <sys/wait.h>
 #include <vector>
 
 namespace snapfit::test {

@@ -1,15 +1,13 @@
 // scheduler/thread_priority.h: raising every thread of the process for the haptic loop
 // and putting each back afterwards.
-#include <doctest/doctest.h>
-
-#include <sched.h>
-#include <sys/resource.h>
-
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <doctest/doctest.h>
 #include <filesystem>
 #include <map>
+#include <sched.h>
+#include <sys/resource.h>
 #include <thread>
 
 #include "scheduler/thread_priority.h"
@@ -19,7 +17,9 @@ namespace {
 
 struct ThreadPolicy {
   int policy = -1, priority = -1, nice = 0;
-  bool operator==(const ThreadPolicy& o) const { return policy == o.policy && priority == o.priority && nice == o.nice; }
+  bool operator==(const ThreadPolicy& o) const {
+    return policy == o.policy && priority == o.priority && nice == o.nice;
+  }
 };
 
 std::map<int, ThreadPolicy> thread_policies() {
@@ -59,8 +59,10 @@ TEST_CASE("thread priority: every thread is raised (SCHED_FIFO where allowed, el
   CHECK(change.previous.size() == static_cast<std::size_t>(change.threads));
   int fifo = 0, niced = 0;
   for (const auto& [tid, p] : during) {
-    if (p.policy == SCHED_FIFO && p.priority == 3) ++fifo;
-    else if (p.nice == -5) ++niced;
+    if (p.policy == SCHED_FIFO && p.priority == 3)
+      ++fifo;
+    else if (p.nice == -5)
+      ++niced;
   }
   CHECK(fifo == change.realtime);
   CHECK(niced == change.threads - change.realtime);

@@ -2,8 +2,8 @@
 // positions and slerp rotations in between, held outside, errors.
 #include <doctest/doctest.h>
 
-#include "snapfit/error.h"
 #include "scheduler/trajectory.h"
+#include "snapfit/error.h"
 
 using namespace snapfit;
 

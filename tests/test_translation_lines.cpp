@@ -3,16 +3,15 @@
 // modes of the mode order exactly once, in the real outputs and in Im f, and every
 // other mode not at all. Checked node by node against the mode order, on small grids
 // with even and odd axes (Nyquist planes or none), folded and unfolded.
-#include <doctest/doctest.h>
-
 #include <cstring>
+#include <doctest/doctest.h>
 #include <numeric>
 #include <string>
 #include <vector>
 
-#include "snapfit/error.h"
 #include "engine/mode_order.h"
 #include "engine/translation_lines.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
@@ -54,8 +53,10 @@ void coverage(const TranslationLines& t, const LineSelection& sel, std::vector<i
     REQUIRE(line.xb <= t.box_max[0]);
     REQUIRE(line.xa <= line.xb);
     // row0 is the box index of (0, ky, kz).
-    CHECK(std::size_t(line.row0) == std::size_t(-t.box_min[0]) + std::size_t(t.box_dims[0]) *
-                                        (std::size_t(yz[0] - t.box_min[1]) + std::size_t(t.box_dims[1]) * std::size_t(yz[1] - t.box_min[2])));
+    CHECK(std::size_t(line.row0) ==
+          std::size_t(-t.box_min[0]) +
+              std::size_t(t.box_dims[0]) *
+                  (std::size_t(yz[0] - t.box_min[1]) + std::size_t(t.box_dims[1]) * std::size_t(yz[1] - t.box_min[2])));
     for (int kx = line.xa; kx <= line.xb; ++kx) {
       const std::size_t k = fft_node(d, kx, yz[0], yz[1]);
       if (!sel.folded) {
@@ -125,8 +126,10 @@ TEST_CASE("translation lines: every m' weighs exactly the first m' modes once, f
         CHECK(wrong == 0);
         CHECK(sel.nodes == nodes);
         // Folding halves the terms: one node per pair (plus nodes without partners).
-        if (sel.folded) CHECK(sel.nodes <= (m + 1) / 2 + kMaxUnpairedExtras + 1);
-        else CHECK(sel.nodes == m);
+        if (sel.folded)
+          CHECK(sel.nodes <= (m + 1) / 2 + kMaxUnpairedExtras + 1);
+        else
+          CHECK(sel.nodes == m);
       }
       if (parity != 0) CHECK(folded_count == t.fold_limit);
     }

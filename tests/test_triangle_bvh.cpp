@@ -2,20 +2,19 @@
 // leaf ranges, node bounds and moments recomputed in double from each node's own
 // triangles, depth, errors, and the first-order far-field expansion against exact
 // solid angles within the remainder bound kernels/winding_number.cl documents.
-#include <doctest/doctest.h>
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <doctest/doctest.h>
 #include <functional>
 #include <random>
 #include <string>
 #include <vector>
 
-#include "snapfit/error.h"
 #include "engine/triangle_bvh.h"
 #include "mesh/procedural/procedural_parts.h"
+#include "snapfit/error.h"
 #include "tests/test_meshes.h"
 
 using namespace snapfit;
@@ -40,8 +39,8 @@ Mesh with_degenerate_triangles() {
   Mesh m;
   m.vertices = {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0), Vector3d(0, 0, 1),
                 Vector3d(2, 2, 2), Vector3d(3, 3, 3), Vector3d(4, 4, 4)};
-  m.triangles = {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2), Eigen::Vector3i(1, 2, 3),
-                 Eigen::Vector3i(4, 5, 6), Eigen::Vector3i(5, 5, 5)};
+  m.triangles = {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(0, 3, 2),
+                 Eigen::Vector3i(1, 2, 3), Eigen::Vector3i(4, 5, 6), Eigen::Vector3i(5, 5, 5)};
   return m;
 }
 
@@ -342,7 +341,8 @@ TEST_CASE("bvh: first-order far field is within the documented remainder bound")
           const Vector3d u = c - p;
           const double d = u.norm();
           const Vector3d u_hat = u / d;
-          const Eigen::Matrix3d jacobian = (Eigen::Matrix3d::Identity() - 3.0 * u_hat * u_hat.transpose()) / (d * d * d);
+          const Eigen::Matrix3d jacobian =
+              (Eigen::Matrix3d::Identity() - 3.0 * u_hat * u_hat.transpose()) / (d * d * d);
           const double approx = normal.dot(u / (d * d * d)) + (jacobian.array() * moment.array()).sum();
           const double bound = 3.0 * r * r * area / std::pow(d - r, 4);
           // Slack for the float rounding of the node's data (relative to the zeroth-order size).

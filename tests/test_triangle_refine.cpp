@@ -1,17 +1,16 @@
 // Triangle refinement (mesh/triangle_refine.h): pieces fit the radius, and the
 // surface integrals (area, area vector, enclosed volume) and orientation are unchanged;
 // a coarse radius is a no-op; the piece limit and bad radii throw.
-#include <doctest/doctest.h>
-
 #include <cmath>
+#include <doctest/doctest.h>
 #include <limits>
 #include <random>
 #include <string>
 #include <vector>
 
-#include "snapfit/error.h"
-#include "mesh/triangle_refine.h"
 #include "mesh/procedural/procedural_parts.h"
+#include "mesh/triangle_refine.h"
+#include "snapfit/error.h"
 #include "tests/test_meshes.h"
 
 using namespace snapfit;
@@ -27,7 +26,7 @@ Mesh random_soup(int n, unsigned seed) { return test::random_soup(n, seed, 2.0, 
 Mesh awkward_triangles() {
   Mesh m;
   m.vertices = {Vector3d(0, 0, 0), Vector3d(10, 0, 0), Vector3d(5, 0.01, 0.002),
-                Vector3d(0, 1, 0), Vector3d(4, 1, 0), Vector3d(8, 1, 0)};
+                Vector3d(0, 1, 0), Vector3d(4, 1, 0),  Vector3d(8, 1, 0)};
   m.triangles = {Eigen::Vector3i(0, 1, 2), Eigen::Vector3i(3, 4, 5)};
   return m;
 }

@@ -1,15 +1,14 @@
 // The virtual coupling and its integrator (scheduler/virtual_coupling.h): settling
 // without overshoot when critically damped, passivity with a stiff coupling, and the
 // solid moments the proxy's inertia comes from (mesh/mesh_mass_properties.h).
-#include <doctest/doctest.h>
-
 #include <cmath>
+#include <doctest/doctest.h>
 #include <random>
 
-#include "snapfit/error.h"
 #include "mesh/mesh_mass_properties.h"
-#include "snapfit/haptic_device.h"
 #include "scheduler/virtual_coupling.h"
+#include "snapfit/error.h"
+#include "snapfit/haptic_device.h"
 #include "tests/test_meshes.h"
 
 using namespace snapfit;

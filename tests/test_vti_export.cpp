@@ -1,18 +1,17 @@
 // VTK XML ImageData export (io/vti_export.h), read back by a small independent parser.
-#include <doctest/doctest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <doctest/doctest.h>
 #include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
 
-#include "snapfit/error.h"
 #include "io/vti_export.h"
+#include "snapfit/error.h"
 #include "tests/test_support.h"
 
 using namespace snapfit;
@@ -170,7 +169,8 @@ TEST_CASE("vti export: header, offsets and every float round trip bit-exactly") 
     CHECK(r.arrays[a].byte_count == 4 * n * components[a]);
     REQUIRE(r.arrays[a].values.size() == expected[a]->size());
     int mismatches = 0;
-    for (std::size_t i = 0; i < expected[a]->size(); ++i) mismatches += !same_bits(r.arrays[a].values[i], (*expected[a])[i]);
+    for (std::size_t i = 0; i < expected[a]->size(); ++i)
+      mismatches += !same_bits(r.arrays[a].values[i], (*expected[a])[i]);
     CHECK(mismatches == 0);
   }
   // Nothing but the closing tags after the last block.

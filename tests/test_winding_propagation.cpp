@@ -3,12 +3,10 @@
 // path against the full winding kernel at every point and the double-precision
 // reference (tests/descriptor_reference.h), including overlapping shells (w = 2) and
 // open or inconsistently oriented meshes (full path).
-#include <doctest/doctest.h>
-
-#include <tbb/parallel_for.h>
-
 #include <cmath>
+#include <doctest/doctest.h>
 #include <string>
+#include <tbb/parallel_for.h>
 #include <vector>
 
 #include "engine/descriptors.h"
@@ -27,15 +25,21 @@ Mesh peg(double radius, double length, int segments) {
 }
 
 Mesh three_peg_base(int segments) {
-  return make_procedural_part({"three_peg_base",
-                               {{"cell", 20}, {"base_thickness", 8}, {"cover_thickness", 6}, {"segments", double(segments)}},
-                               {{"peg_radii", {3, 4.5, 6}}, {"peg_heights", {8, 10, 12}}, {"fillet_radii", {1, 1.5, 2}}}});
+  return make_procedural_part(
+      {"three_peg_base",
+       {{"cell", 20}, {"base_thickness", 8}, {"cover_thickness", 6}, {"segments", double(segments)}},
+       {{"peg_radii", {3, 4.5, 6}}, {"peg_heights", {8, 10, 12}}, {"fillet_radii", {1, 1.5, 2}}}});
 }
 
 Mesh hole_block() {
   return make_procedural_part({"hole_block",
-                               {{"peg_radius", 5}, {"clearance", 0}, {"hole_depth", 20}, {"width", 30},
-                                {"height", 30}, {"chamfer", 0.5}, {"segments", 32}},
+                               {{"peg_radius", 5},
+                                {"clearance", 0},
+                                {"hole_depth", 20},
+                                {"width", 30},
+                                {"height", 30},
+                                {"chamfer", 0.5},
+                                {"segments", 32}},
                                {}});
 }
 
@@ -101,8 +105,10 @@ DescriptorFields check_against_full(const std::string& name, const Mesh& mesh, c
   for (std::size_t i = 0; i < grid.count(); ++i) {
     const double wp = prop.winding[i], bp = prop.winding_bound[i];
     const double wf = full.winding[i], bf = full.winding_bound[i];
-    if (bp > 0) ++unproven;
-    else CHECK(wp == std::nearbyint(wp));
+    if (bp > 0)
+      ++unproven;
+    else
+      CHECK(wp == std::nearbyint(wp));
     excess = std::max(excess, std::abs(wp - wf) - (bp + bf));
     // The bounds hold up to the float rounding of the kernel's sum of solid angles.
     if (std::abs(wp - wf) > bp + bf + 1e-4) ++outside_bounds;
@@ -112,8 +118,8 @@ DescriptorFields check_against_full(const std::string& name, const Mesh& mesh, c
       if (wp == k) ++equal;
     }
   }
-  MESSAGE(name << ": " << grid.count() << " points, kernel at " << prop.winding_kernel_points << " seeds; "
-               << decided << " decided by the full kernel, " << equal << " equal; " << unproven
+  MESSAGE(name << ": " << grid.count() << " points, kernel at " << prop.winding_kernel_points << " seeds; " << decided
+               << " decided by the full kernel, " << equal << " equal; " << unproven
                << " propagated values not proven integers; largest excess over the summed bounds " << excess);
   CHECK(outside_bounds == 0);
   CHECK(decided > grid.count() * 9 / 10);

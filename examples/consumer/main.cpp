@@ -5,10 +5,9 @@
 //
 // Prints one JSON line. The pose: part 2 unrotated at (x, y, z) in part 1's frame, else
 // its initial pose in the scene.
-#include <snapfit/snapfit.h>
-
 #include <cstdio>
 #include <cstdlib>
+#include <snapfit/snapfit.h>
 #include <string>
 
 int main(int argc, char** argv) {
@@ -29,10 +28,11 @@ int main(int argc, char** argv) {
     std::unique_ptr<snapfit::QueryEngine> engine = assembly.make_query_engine();
     engine->set_modes(modes);
     const snapfit::QueryResult r = engine->query(pose);
-    std::printf("{\"device\": \"%s\", \"modes\": %zu, \"energy\": %.17g, \"force\": [%.17g, %.17g, %.17g], "
-                "\"torque\": [%.17g, %.17g, %.17g], \"flags\": %u}\n",
-                assembly.device_name().c_str(), r.modes, r.energy, r.force.x(), r.force.y(), r.force.z(),
-                r.torque.x(), r.torque.y(), r.torque.z(), r.flags);
+    std::printf(
+        "{\"device\": \"%s\", \"modes\": %zu, \"energy\": %.17g, \"force\": [%.17g, %.17g, %.17g], "
+        "\"torque\": [%.17g, %.17g, %.17g], \"flags\": %u}\n",
+        assembly.device_name().c_str(), r.modes, r.energy, r.force.x(), r.force.y(), r.force.z(), r.torque.x(),
+        r.torque.y(), r.torque.z(), r.flags);
     return r.flags == snapfit::query_ok ? 0 : 1;
   } catch (const snapfit::Error& e) {
     std::fprintf(stderr, "snapfit_consumer: %s\n", e.what());

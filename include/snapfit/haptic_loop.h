@@ -82,7 +82,7 @@ struct WrenchEvaluator {
 };
 
 struct ModePolicy {
-  std::vector<std::size_t> levels;  // increasing m' values; the last one is the tuned m'
+  std::vector<std::size_t> levels;                  // increasing m' values; the last one is the tuned m'
   std::function<double(std::size_t)> predicted_ms;  // cost model for step-up; null: proportional to m'
   std::size_t miss_window = 100;
   std::size_t misses_to_step_down = 2;
@@ -93,26 +93,26 @@ struct ModePolicy {
 
 struct LoopConfig {
   double rate_hz = 1000;
-  double duration_s = 1;           // loop time to run; <= 0 runs until `stop` is set
-  double budget_ms = 1;            // the frame budget the policy measures headroom against
+  double duration_s = 1;  // loop time to run; <= 0 runs until `stop` is set
+  double budget_ms = 1;   // the frame budget the policy measures headroom against
   CouplingParams coupling;
-  double geometry_gain = 1;        // N per engine force unit (loop_config sets it from the scene)
+  double geometry_gain = 1;  // N per engine force unit (loop_config sets it from the scene)
   ModePolicy modes;
-  bool passivity_control = true;   // observer + damping controller on the geometric wrench (above)
-  bool keep_log = true;            // one FrameRecord per frame
+  bool passivity_control = true;  // observer + damping controller on the geometric wrench (above)
+  bool keep_log = true;           // one FrameRecord per frame
   const std::atomic<bool>* stop = nullptr;
 };
 
 struct FrameRecord {
-  double time_s = 0;       // the frame's tick time
-  double frame_ms = 0;     // tick to wrench sent
-  Pose device;             // the device's pose read this frame
-  Pose part;               // the part's pose the engine was queried at (before this frame's step)
-  double energy = 0;       // engine energy at `part`
-  Wrench geometric;        // scaled to N, N m
-  Wrench sent;             // to the device, after clamping
+  double time_s = 0;    // the frame's tick time
+  double frame_ms = 0;  // tick to wrench sent
+  Pose device;          // the device's pose read this frame
+  Pose part;            // the part's pose the engine was queried at (before this frame's step)
+  double energy = 0;    // engine energy at `part`
+  Wrench geometric;     // scaled to N, N m
+  Wrench sent;          // to the device, after clamping
   std::size_t modes = 0;
-  std::uint32_t flags = 0; // QueryFlags of the engine
+  std::uint32_t flags = 0;  // QueryFlags of the engine
   bool missed = false;
 };
 
@@ -124,23 +124,23 @@ struct ModeChange {
 };
 
 struct LoopReport {
-  double rate_hz = 0;            // the configured rate
-  double measured_rate_hz = 0;   // frames run / wall time of the loop
+  double rate_hz = 0;           // the configured rate
+  double measured_rate_hz = 0;  // frames run / wall time of the loop
   double elapsed_s = 0;
-  std::size_t ticks = 0;         // ticks that came due
-  std::size_t frames = 0;        // frames run (ticks - skipped)
-  std::size_t misses = 0;        // frames that ended after their deadline
-  std::size_t skipped_ticks = 0; // ticks not run because a frame overran them
-  std::size_t flagged_frames = 0;  // frames whose query returned flags (zero geometric wrench)
-  std::size_t bad_device_reads = 0;  // non-finite device states, replaced by the last good one
-  std::size_t part_resets = 0;     // non-finite part states, reset to the device state
+  std::size_t ticks = 0;               // ticks that came due
+  std::size_t frames = 0;              // frames run (ticks - skipped)
+  std::size_t misses = 0;              // frames that ended after their deadline
+  std::size_t skipped_ticks = 0;       // ticks not run because a frame overran them
+  std::size_t flagged_frames = 0;      // frames whose query returned flags (zero geometric wrench)
+  std::size_t bad_device_reads = 0;    // non-finite device states, replaced by the last good one
+  std::size_t part_resets = 0;         // non-finite part states, reset to the device state
   std::size_t passivity_frames = 0;    // frames in which the passivity controller damped the part
   double passivity_dissipated_j = 0;   // energy its damping removed, J
   std::size_t late_wakeup_misses = 0;  // misses whose own work fit: the thread woke late
   std::size_t stall_misses = 0;        // misses whose work was far beyond the model (ModePolicy::stall_factor)
-  std::vector<double> frame_ms;  // every frame: tick to wrench sent
-  std::vector<double> wake_late_ms;  // every frame: how late the thread woke after its tick
-  std::vector<FrameRecord> log;  // when keep_log
+  std::vector<double> frame_ms;        // every frame: tick to wrench sent
+  std::vector<double> wake_late_ms;    // every frame: how late the thread woke after its tick
+  std::vector<FrameRecord> log;        // when keep_log
   std::vector<ModeChange> mode_changes;
   BodyState final_part;
   std::size_t final_modes = 0;

@@ -24,9 +24,7 @@ struct Pose {
     out.translation = rotation * other.translation + translation;
     return out;
   }
-  bool is_finite() const {
-    return rotation.coeffs().allFinite() && translation.allFinite();
-  }
+  bool is_finite() const { return rotation.coeffs().allFinite() && translation.allFinite(); }
 };
 
 }  // namespace snapfit

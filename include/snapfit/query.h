@@ -27,8 +27,8 @@ enum class Interpolation {
 
 struct QueryVariant {
   bool force = true;
-  bool torque = true;                 // needs spectra with torque
-  bool translation_only = false;      // R fixed at the identity: no interpolation at all
+  bool torque = true;             // needs spectra with torque
+  bool translation_only = false;  // R fixed at the identity: no interpolation at all
   Interpolation interpolation = Interpolation::trilinear;
   // Store the 6-DOF spectrum cube as half floats (scaled per spectrum): half the bytes
   // per tap (a smaller cache footprint at large m'). Adds about 1e-5 relative to the
@@ -55,8 +55,8 @@ struct QueryResult {
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();
   std::complex<double> score = 0;  // f(R, t)
   std::uint32_t flags = query_ok;
-  std::size_t modes = 0;           // m' used
-  double seconds = 0;              // wall time of this query (batch: of the whole batch / count)
+  std::size_t modes = 0;  // m' used
+  double seconds = 0;     // wall time of this query (batch: of the whole batch / count)
 };
 
 // The per-frame engine of an assembly pair on one device. Two implementations: the

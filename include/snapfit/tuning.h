@@ -32,9 +32,9 @@ struct TuningResult {
   std::vector<TimingPoint> points;  // by increasing m'
   CostModel model;
   std::size_t chosen_modes = 0;
-  bool fits = false;                // the chosen m' meets the budget with margin
+  bool fits = false;  // the chosen m' meets the budget with margin
   double budget_ms = 0, margin = 0;
-  std::string created;              // UTC date and time of the measurement
+  std::string created;  // UTC date and time of the measurement
   double target_ms() const { return budget_ms * (1.0 - margin); }
 };
 

@@ -65,8 +65,8 @@ Mesh make_hole_block(const HoleBlockParams& p) {
   const std::vector<int> wall_top = p.chamfer > 0 ? b.ring(ngon, axis, radius, -p.chamfer) : entry;
   const std::vector<int> wall_bottom = b.ring(ngon, axis, radius, -p.hole_depth);
 
-  b.stitch(sq_top, entry);     // top face, normal +z
-  b.stitch(sq_bottom, sq_top);  // box sides, normals outward
+  b.stitch(sq_top, entry);                       // top face, normal +z
+  b.stitch(sq_bottom, sq_top);                   // box sides, normals outward
   if (p.chamfer > 0) b.stitch(entry, wall_top);  // countersink, normals up and toward the axis
   b.stitch(wall_top, wall_bottom);               // hole wall, normals toward the axis
   if (p.through()) {

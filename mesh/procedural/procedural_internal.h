@@ -54,9 +54,7 @@ struct ThreePegParams {
   double cover_thickness = 0;            // cover: mating surface up to max(h) + this
   int segments = kDefaultSegments;
 
-  double top() const {
-    return std::max(peg_heights[0], std::max(peg_heights[1], peg_heights[2])) + cover_thickness;
-  }
+  double top() const { return std::max(peg_heights[0], std::max(peg_heights[1], peg_heights[2])) + cover_thickness; }
 };
 
 // Peg k of the three-peg pair stands at the centre of cell kPegCells[k] = (ix, iy).
@@ -82,8 +80,8 @@ inline std::vector<Eigen::Vector2d> unit_ngon(int n) {
   std::vector<Eigen::Vector2d> first(quarter + 1);  // angles 0 .. pi/2
   for (int i = 0; i <= eighth; ++i) {
     const double a = 2.0 * kPi * i / n;
-    first[i] = (i == eighth) ? Eigen::Vector2d(std::sqrt(0.5), std::sqrt(0.5))
-                             : Eigen::Vector2d(std::cos(a), std::sin(a));
+    first[i] =
+        (i == eighth) ? Eigen::Vector2d(std::sqrt(0.5), std::sqrt(0.5)) : Eigen::Vector2d(std::cos(a), std::sin(a));
   }
   for (int i = eighth + 1; i <= quarter; ++i) first[i] = {first[quarter - i].y(), first[quarter - i].x()};
   first[0] = {1.0, 0.0};
@@ -113,8 +111,8 @@ struct MeshBuilder {
   }
 
   // Ring of vertices centre + radius * ngon[i] at height z.
-  std::vector<int> ring(const std::vector<Eigen::Vector2d>& ngon, const Eigen::Vector2d& centre,
-                        double radius, double z) {
+  std::vector<int> ring(const std::vector<Eigen::Vector2d>& ngon, const Eigen::Vector2d& centre, double radius,
+                        double z) {
     std::vector<int> ids(ngon.size());
     for (size_t i = 0; i < ngon.size(); ++i) {
       const Eigen::Vector2d q = centre + radius * ngon[i];
@@ -139,8 +137,10 @@ struct MeshBuilder {
     const size_t n = ring_ids.size();
     for (size_t i = 0; i < n; ++i) {
       const int a = ring_ids[i], b = ring_ids[(i + 1) % n];
-      if (up) tri(centre, a, b);
-      else tri(centre, b, a);
+      if (up)
+        tri(centre, a, b);
+      else
+        tri(centre, b, a);
     }
   }
 };

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <vector>
 
-#include "snapfit/error.h"
 #include "mesh/procedural/procedural_internal.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 
@@ -67,8 +67,7 @@ struct Params {
       std::vector<std::string> known = numbers;
       known.insert(known.end(), arrays.begin(), arrays.end());
       std::string problem = "unknown parameter for " + spec.type;
-      if (unknown.size() > 1)
-        problem += " (also unknown: " + join({unknown.begin() + 1, unknown.end()}) + ")";
+      if (unknown.size() > 1) problem += " (also unknown: " + join({unknown.begin() + 1, unknown.end()}) + ")";
       throw Error(unknown.front() + ": " + problem + "; known parameters: " + join(known));
     }
   }
@@ -149,11 +148,9 @@ procedural::HoleBlockParams read_hole_block(const Params& in) {
   p.clearance = in.non_negative("clearance", 0.0);
   p.height = in.positive("height");
   p.hole_depth = in.positive("hole_depth");
-  if (p.hole_depth > p.height)
-    fail("hole_depth", "must be <= height (" + show(p.height) + ")", show(p.hole_depth));
+  if (p.hole_depth > p.height) fail("hole_depth", "must be <= height (" + show(p.height) + ")", show(p.hole_depth));
   p.chamfer = in.non_negative("chamfer", 0.0);
-  if (p.chamfer >= p.hole_depth)
-    fail("chamfer", "must be < hole_depth (" + show(p.hole_depth) + ")", show(p.chamfer));
+  if (p.chamfer >= p.hole_depth) fail("chamfer", "must be < hole_depth (" + show(p.hole_depth) + ")", show(p.chamfer));
   p.width = in.positive("width");
   // The entry ring (circumradius hole_radius + chamfer) must leave a wall of at least
   // kMinWallFraction of the half-width to the square's sides.
@@ -161,8 +158,8 @@ procedural::HoleBlockParams read_hole_block(const Params& in) {
   if (entry > (1.0 - kMinWallFraction) * 0.5 * p.width)
     fail("width",
          "must exceed 2 * (hole circumradius + chamfer) = " + show(2 * entry) + " with a wall of at least " +
-             show(100 * kMinWallFraction) + "% of the half-width, i.e. be >= " +
-             show(2 * entry / (1.0 - kMinWallFraction)),
+             show(100 * kMinWallFraction) +
+             "% of the half-width, i.e. be >= " + show(2 * entry / (1.0 - kMinWallFraction)),
          show(p.width));
   return p;
 }
@@ -186,11 +183,13 @@ procedural::ThreePegParams read_three_peg(const Params& in) {
     const std::string idx = "[" + std::to_string(k) + "]";
     const double f = p.fillet_radii[k];
     if (r[k] > room)
-      fail("peg_radii" + idx, "must be <= " + show(room) + " (cell/2 less a " +
-                                  show(100 * kMinWallFraction) + "% wall)", show(r[k]));
+      fail("peg_radii" + idx,
+           "must be <= " + show(room) + " (cell/2 less a " + show(100 * kMinWallFraction) + "% wall)", show(r[k]));
     if (r[k] + f > room)
-      fail("fillet_radii" + idx, "peg radius + fillet radius must be <= " + show(room) + " (cell/2 less a " +
-                                     show(100 * kMinWallFraction) + "% wall)", show(f));
+      fail("fillet_radii" + idx,
+           "peg radius + fillet radius must be <= " + show(room) + " (cell/2 less a " + show(100 * kMinWallFraction) +
+               "% wall)",
+           show(f));
     if (f >= p.peg_heights[k])
       fail("fillet_radii" + idx, "must be < peg_heights" + idx + " (" + show(p.peg_heights[k]) + ")", show(f));
   }
@@ -201,11 +200,15 @@ procedural::ThreePegParams read_three_peg(const Params& in) {
 
 void check_procedural_spec(const ProceduralPartSpec& spec) {
   const Params in{spec};
-  if (spec.type == "peg") read_peg(in);
-  else if (spec.type == "hole_block") read_hole_block(in);
-  else if (spec.type == "three_peg_base" || spec.type == "three_peg_cover") read_three_peg(in);
-  else fail("type", "unknown procedural part type, expected peg, hole_block, three_peg_base or three_peg_cover",
-            "\"" + spec.type + "\"");
+  if (spec.type == "peg")
+    read_peg(in);
+  else if (spec.type == "hole_block")
+    read_hole_block(in);
+  else if (spec.type == "three_peg_base" || spec.type == "three_peg_cover")
+    read_three_peg(in);
+  else
+    fail("type", "unknown procedural part type, expected peg, hole_block, three_peg_base or three_peg_cover",
+         "\"" + spec.type + "\"");
 }
 
 Mesh make_procedural_part(const ProceduralPartSpec& spec) {

@@ -22,8 +22,8 @@ namespace snapfit::procedural {
 namespace {
 
 struct MatingSurface {
-  Mesh mesh;                  // z = h(x, y) with the pegs; normals up (the base's outside)
-  std::vector<int> boundary;  // footprint boundary vertices, counter-clockwise from +z
+  Mesh mesh;                   // z = h(x, y) with the pegs; normals up (the base's outside)
+  std::vector<int> boundary;   // footprint boundary vertices, counter-clockwise from +z
   std::vector<double> gx, gy;  // global node coordinates: 3M + 1 along x, 2M + 1 along y
 };
 
@@ -43,11 +43,11 @@ std::vector<double> tan_nodes(int m, double cell) {
 // measured from the cell centre: the right edge covers angles [-pi/4, pi/4], and so on.
 std::pair<int, int> boundary_node(int i, int m) {
   const int n = 4 * m, h = m / 2;
-  if (i >= n - h) i -= n;                           // right edge, angles just below 0
-  if (i <= h) return {m, h + i};                     // right edge, x = +cell/2
-  if (i <= 3 * h) return {3 * h - i, m};             // top edge, y = +cell/2
-  if (i <= 5 * h) return {0, 5 * h - i};             // left edge, x = -cell/2
-  return {i - 5 * h, 0};                             // bottom edge, y = -cell/2
+  if (i >= n - h) i -= n;                 // right edge, angles just below 0
+  if (i <= h) return {m, h + i};          // right edge, x = +cell/2
+  if (i <= 3 * h) return {3 * h - i, m};  // top edge, y = +cell/2
+  if (i <= 5 * h) return {0, 5 * h - i};  // left edge, x = -cell/2
+  return {i - 5 * h, 0};                  // bottom edge, y = -cell/2
 }
 
 MatingSurface build_mating_surface(const ThreePegParams& p) {
@@ -112,8 +112,8 @@ MatingSurface build_mating_surface(const ThreePegParams& p) {
         rows.push_back(b.ring(ngon, centre, r, 0.0));
       }
       const std::vector<int> top = b.ring(ngon, centre, r, h);
-      b.fan(b.vertex({centre.x(), centre.y(), h}), top, /*up=*/true);  // peg top
-      b.stitch(rows.front(), top);                                      // peg wall
+      b.fan(b.vertex({centre.x(), centre.y(), h}), top, /*up=*/true);               // peg top
+      b.stitch(rows.front(), top);                                                  // peg wall
       for (size_t k = 0; k + 1 < rows.size(); ++k) b.stitch(rows[k + 1], rows[k]);  // fillet
       b.stitch(border, rows.back());  // flat band out to the cell boundary, normal +z
     }
@@ -138,8 +138,10 @@ void close_with_flat_face(MeshBuilder& b, const MatingSurface& s, double z, bool
   auto at = [&](int a, int c) { return flat[a * ny + c]; };
   for (int a = 0; a + 1 < nx; ++a) {
     for (int c = 0; c + 1 < ny; ++c) {
-      if (below) b.quad(at(a, c), at(a, c + 1), at(a + 1, c + 1), at(a + 1, c));  // normal -z
-      else b.quad(at(a, c), at(a + 1, c), at(a + 1, c + 1), at(a, c + 1));        // normal +z
+      if (below)
+        b.quad(at(a, c), at(a, c + 1), at(a + 1, c + 1), at(a + 1, c));  // normal -z
+      else
+        b.quad(at(a, c), at(a + 1, c), at(a + 1, c + 1), at(a, c + 1));  // normal +z
     }
   }
   // The flat face's boundary in the same counter-clockwise order as s.boundary.
@@ -148,8 +150,10 @@ void close_with_flat_face(MeshBuilder& b, const MatingSurface& s, double z, bool
   for (int c = 0; c + 1 < ny; ++c) ring.push_back(at(nx - 1, c));
   for (int a = nx - 1; a > 0; --a) ring.push_back(at(a, ny - 1));
   for (int c = ny - 1; c > 0; --c) ring.push_back(at(0, c));
-  if (below) b.stitch(ring, s.boundary);  // lower ring first: normals outward
-  else b.stitch(s.boundary, ring);
+  if (below)
+    b.stitch(ring, s.boundary);  // lower ring first: normals outward
+  else
+    b.stitch(s.boundary, ring);
 }
 
 }  // namespace
@@ -165,7 +169,7 @@ Mesh make_three_peg_base(const ThreePegParams& p) {
 Mesh make_three_peg_cover(const ThreePegParams& p) {
   MatingSurface s = build_mating_surface(p);
   MeshBuilder b;
-  b.mesh.vertices = s.mesh.vertices;  // same indices, so s.boundary stays valid
+  b.mesh.vertices = s.mesh.vertices;                                          // same indices, so s.boundary stays valid
   for (const Eigen::Vector3i& t : s.mesh.triangles) b.tri(t[0], t[2], t[1]);  // normals down
   close_with_flat_face(b, s, p.top(), /*below=*/false);
   return std::move(b.mesh);
