@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "cli/parse_options.h"
 #include "core/progress.h"
 #include "engine/descriptors.h"
 #include "io/png_export.h"
@@ -29,20 +30,6 @@ struct FieldsOptions {
   int pixels = 4;
   bool no_cache = false;
 };
-
-// "z=12.5" -> ('z', 12.5)
-std::pair<char, double> parse_slice(const std::string& text) {
-  if (text.size() < 3 || text[1] != '=' || std::string("xyz").find(text[0]) == std::string::npos)
-    throw Error("--slice: expected x=VALUE, y=VALUE or z=VALUE (got '" + text + "')");
-  try {
-    std::size_t used = 0;
-    const double value = std::stod(text.substr(2), &used);
-    if (used != text.size() - 2 || !std::isfinite(value)) throw std::invalid_argument("trailing");
-    return {text[0], value};
-  } catch (const std::exception&) {
-    throw Error("--slice: '" + text.substr(2) + "' is not a number");
-  }
-}
 
 const std::vector<float>& pick_field(const DescriptorFields& f, const std::vector<float>& rho,
                                      const std::string& name) {

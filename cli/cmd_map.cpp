@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/parse_options.h"
 #include "core/progress.h"
 #include "engine/full_map.h"
 #include "io/png_export.h"
@@ -45,15 +46,7 @@ Eigen::Matrix3d parse_rotation(const std::string& text) {
 void run_map(const MapOptions& opt) {
   const Scene scene = load_scene(opt.scene);
   const Eigen::Matrix3d R = parse_rotation(opt.rotation);
-  if (opt.slice.size() < 3 || opt.slice[1] != '=' || std::string("xyz").find(opt.slice[0]) == std::string::npos)
-    throw Error("--slice: expected x=V, y=V or z=V (got '" + opt.slice + "')");
-  const char axis = opt.slice[0];
-  double coordinate = 0;
-  try {
-    coordinate = std::stod(opt.slice.substr(2));
-  } catch (const std::exception&) {
-    throw Error("--slice: '" + opt.slice.substr(2) + "' is not a number");
-  }
+  const auto [axis, coordinate] = parse_slice(opt.slice);
   const FftLibrary fft;
   const ComputeContext ctx = make_compute_context(select_device(device_spec_from(opt.device)));
   PairOptions options;
