@@ -79,14 +79,19 @@ struct DescriptorFields {
 DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh, const GridSpec& grid,
                                      const DescriptorParams& params, const DescriptorOptions& options = {});
 
+// The same descriptors at arbitrary points (the part's frame, scene units), computed in
+// the grid units of (origin, spacing): at the points of a grid with that origin and
+// spacing the values equal compute_descriptors' (w by the full kernel, not by sign
+// propagation). The result's grid is a 1-D list of the points (dims (n, 1, 1)); for
+// references that evaluate a part at moved or rotated positions.
+DescriptorFields descriptors_at_points(const ComputeContext& ctx, const Mesh& mesh,
+                                       const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin,
+                                       double spacing, const DescriptorParams& params,
+                                       const DescriptorOptions& options = {});
+
 // The affinity rho = i * lambda * s (docs/design.md): its imaginary part lambda * s, with
 // lambda = lambda_in where w >= 1/2 and lambda_out elsewhere. For the indicator kind,
 // the indicator itself (1 inside, 0 outside), real-valued.
 std::vector<float> affinity_imaginary(const DescriptorFields& fields);
-
-// The three fields q_a * Im(rho)(q), a = x, y, z, with q measured from
-// `reference_point` (part 2's rotation centre): the torque spectra's inputs (seed 000 eq. 12).
-std::vector<std::vector<float>> affinity_moments(const DescriptorFields& fields,
-                                                 const Eigen::Vector3d& reference_point);
 
 }  // namespace snapfit

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "engine/rotated_product_query.h"
 #include "engine/six_dof_query.h"
 #include "engine/translation_query.h"
 #include "snapfit/error.h"
@@ -14,6 +15,8 @@ std::unique_ptr<QueryEngine> make_query_engine(const ComputeContext& ctx, const 
     if (n > 65534)
       throw Error("FFT grid axis of " + std::to_string(n) + " points is beyond the query kernel's 16-bit mode indices");
   if (variant.translation_only) return make_translation_query(ctx, spectra, variant, cache);
+  if (variant.rotation == RotationMethod::exact_product)
+    return make_rotated_product_query(ctx, spectra, variant, cache);
   return make_six_dof_query(ctx, spectra, variant, cache);
 }
 

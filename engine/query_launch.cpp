@@ -51,8 +51,8 @@ std::uint32_t PoseFrame::place(const Pose& pose, bool identity_only, Eigen::Matr
 
 QueryLaunch::QueryLaunch(const ComputeContext& ctx, const PairSpectra& spectra, const QueryVariant& variant, int reach,
                          const std::string& kernel_name, const std::string& options, const SharedQueryArgs& args,
-                         const ProgramCacheConfig& cache)
-    : ctx_(ctx), frame_(spectra), variant_(variant), args_(args) {
+                         const ProgramCacheConfig& cache, const QueryHooks* hooks)
+    : ctx_(ctx), frame_(spectra), variant_(variant), args_(args), hooks_(hooks ? hooks : &default_hooks_) {
   const DeviceInfo& info = ctx.device.info;
   wg_ = 1;
   while (wg_ * 2 <= std::min<std::size_t>(env_size("SNAPFIT_QUERY_WG", 64), info.max_work_group_size)) wg_ *= 2;
@@ -110,6 +110,11 @@ void fill_result(const double sums[8], const Eigen::Matrix3d& R, const QueryVari
   if (variant.torque) result.torque = R * Eigen::Vector3d(sums[5], sums[6], sums[7]);  // to part 1's frame
 }
 
+void QueryHooks::finish(const double sums[8], const Eigen::Matrix3d& R, const QueryVariant& variant,
+                        QueryResult& result) const {
+  fill_result(sums, R, variant, result);
+}
+
 void QueryLaunch::evaluate(const Pose* poses, std::size_t count, QueryResult* results) {
   const auto start = std::chrono::steady_clock::now();
   try {
@@ -119,7 +124,9 @@ void QueryLaunch::evaluate(const Pose* poses, std::size_t count, QueryResult* re
       results[i] = QueryResult{};
       results[i].modes = modes_;
       results[i].flags = frame_.place(poses[i], variant_.translation_only, rotations_[sent], packed_[sent]);
-      if (results[i].flags == query_ok) slot_[sent++] = i;
+      if (results[i].flags != query_ok) continue;
+      hooks_->encode(rotations_[sent], packed_[sent]);
+      slot_[sent++] = i;
     }
     if (sent > 0) {
       if (sent == 1) {
@@ -135,7 +142,7 @@ void QueryLaunch::evaluate(const Pose* poses, std::size_t count, QueryResult* re
         double sums[8] = {0, 0, 0, 0, 0, 0, 0, 0};
         for (std::size_t g = 0; g < groups_per_pose_; ++g)
           for (int j = 0; j < 8; ++j) sums[j] += partial_host_[8 * (s * groups_per_pose_ + g) + j];
-        fill_result(sums, rotations_[s], variant_, results[slot_[s]]);
+        hooks_->finish(sums, rotations_[s], variant_, results[slot_[s]]);
       }
     }
   } catch (const cl::Error& e) {

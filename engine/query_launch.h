@@ -34,6 +34,23 @@ struct PoseFrame {
   std::uint32_t place(const Pose& pose, bool identity_only, Eigen::Matrix3d& R, cl_float16& packed) const;
 };
 
+// The per-pose sums a kernel returns, added over its work-groups (kernels/pose_query.cl:
+// Re f, Im f, F, T in part 2's frame), into a result: E = -Re f, F, and T rotated by R.
+void fill_result(const double sums[8], const Eigen::Matrix3d& R, const QueryVariant& variant, QueryResult& result);
+
+// What a strategy adds to the shared launch (all optional): how a placed pose becomes the
+// kernel's pose, and how the kernel's sums become a result. Called on the querying
+// thread, once per pose; they must not allocate.
+class QueryHooks {
+ public:
+  virtual ~QueryHooks() = default;
+  // The pose as place() packed it (R row-major, tau / L), for R.
+  virtual void encode(const Eigen::Matrix3d& /*R*/, cl_float16& /*packed*/) const {}
+  // Default: fill_result.
+  virtual void finish(const double sums[8], const Eigen::Matrix3d& R, const QueryVariant& variant,
+                      QueryResult& result) const;
+};
+
 // The numbers of the kernel arguments QueryLaunch sets itself.
 struct SharedQueryArgs {
   cl_uint pose;             // float16: the pose of a single query
@@ -55,7 +72,7 @@ class QueryLaunch {
   // memory or the set-up fails.
   QueryLaunch(const ComputeContext& ctx, const PairSpectra& spectra, const QueryVariant& variant, int reach,
               const std::string& kernel_name, const std::string& options, const SharedQueryArgs& args,
-              const ProgramCacheConfig& cache);
+              const ProgramCacheConfig& cache, const QueryHooks* hooks = nullptr);
 
   cl::Kernel& kernel() { return kernel_; }
   const cl::Context& context() const { return ctx_.context; }
@@ -76,6 +93,8 @@ class QueryLaunch {
   PoseFrame frame_;
   QueryVariant variant_;
   SharedQueryArgs args_;
+  const QueryHooks* hooks_;
+  QueryHooks default_hooks_;
   // The engine's own in-order queue without profiling: a query is one kernel launch and
   // one small blocking read, not queued behind other stages' work on ctx.queue.
   cl::CommandQueue queue_;

@@ -18,12 +18,15 @@ using Cd = std::complex<double>;
 
 std::size_t wrap(long i, std::size_t n) { return static_cast<std::size_t>(((i % long(n)) + long(n)) % long(n)); }
 
-// Interpolation weights along one axis at fractional index u; returns the first tap.
-int axis_weights(double u, Interpolation scheme, double* w) {
+// Interpolation weights along one axis at fractional index u and their derivatives;
+// returns the first tap.
+int axis_weights(double u, Interpolation scheme, double* w, double* dw) {
   const double f = std::floor(u), t = u - f;
   if (scheme == Interpolation::trilinear) {
     w[0] = 1 - t;
     w[1] = t;
+    dw[0] = -1;
+    dw[1] = 1;
     return int(f);
   }
   const double t2 = t * t, t3 = t2 * t;  // Catmull-Rom
@@ -31,6 +34,10 @@ int axis_weights(double u, Interpolation scheme, double* w) {
   w[1] = 0.5 * (3 * t3 - 5 * t2 + 2);
   w[2] = 0.5 * (-3 * t3 + 4 * t2 + t);
   w[3] = 0.5 * (t3 - t2);
+  dw[0] = 0.5 * (-3 * t2 + 4 * t - 1);
+  dw[1] = 0.5 * (9 * t2 - 10 * t);
+  dw[2] = 0.5 * (-9 * t2 + 8 * t + 1);
+  dw[3] = 0.5 * (3 * t2 - 2 * t);
   return int(f) - 1;
 }
 
@@ -48,7 +55,6 @@ struct Sums {
 QueryResult reference_query(const PairSpectra& s, const Pose& pose, const ReferenceOptions& options,
                             const std::vector<std::size_t>* order_in) {
   const auto start = std::chrono::steady_clock::now();
-  if (options.torque && !s.torque) throw Error("reference query: torque asked of spectra without torque terms");
   const auto& d = s.dims;
   const std::size_t total = d[0] * d[1] * d[2];
   QueryResult r;
@@ -73,19 +79,24 @@ QueryResult reference_query(const PairSpectra& s, const Pose& pose, const Refere
   const int taps = options.interpolation == Interpolation::tricubic ? 4 : 2;
   const bool torque = options.torque;
 
-  const auto sample = [&](const Eigen::Vector3d& u, Cd* out) {  // S2 and SQ at fractional index u
-    double wx[4], wy[4], wz[4];
-    const int ix = axis_weights(u.x(), options.interpolation, wx), iy = axis_weights(u.y(), options.interpolation, wy),
-              iz = axis_weights(u.z(), options.interpolation, wz);
+  // S2 and its gradient (in fractional index) at fractional index u.
+  const auto sample = [&](const Eigen::Vector3d& u, Cd* out) {
+    double wx[4], wy[4], wz[4], dx[4], dy[4], dz[4];
+    const int ix = axis_weights(u.x(), options.interpolation, wx, dx),
+              iy = axis_weights(u.y(), options.interpolation, wy, dy),
+              iz = axis_weights(u.z(), options.interpolation, wz, dz);
     for (int i = 0; i < 4; ++i) out[i] = 0;
     for (int c = 0; c < taps; ++c)
       for (int b = 0; b < taps; ++b)
         for (int a = 0; a < taps; ++a) {
           const std::size_t k = wrap(ix + a, d[0]) + d[0] * (wrap(iy + b, d[1]) + d[1] * wrap(iz + c, d[2]));
-          const double weight = wx[a] * wy[b] * wz[c];
-          out[0] += weight * Cd(s.part2.rho[k]);
-          if (torque)
-            for (int m = 0; m < 3; ++m) out[1 + m] += weight * Cd(s.part2.moments[m][k]);
+          const Cd v(s.part2.rho[k]);
+          out[0] += wx[a] * wy[b] * wz[c] * v;
+          if (torque) {
+            out[1] += dx[a] * wy[b] * wz[c] * v;
+            out[2] += wx[a] * dy[b] * wz[c] * v;
+            out[3] += wx[a] * wy[b] * dz[c] * v;
+          }
         }
   };
 
@@ -105,13 +116,13 @@ QueryResult reference_query(const PairSpectra& s, const Pose& pose, const Refere
           const Cd term = e * v[0];
           acc.v[0] += term.real();
           acc.v[1] += term.imag();
-          if (options.force)  // Re(2 pi i w term), eq. 11
+          if (options.force || torque)  // Re(2 pi i w term), eq. 11
             for (int a = 0; a < 3; ++a) acc.v[2 + a] += -2 * M_PI * term.imag() * w[a];
-          if (torque) {  // Re[2 pi i e (w' x SQ(w'))] in part 2's frame, eq. 12
-            const Cd t0 = e * v[1], t1 = e * v[2], t2 = e * v[3];
-            acc.v[5] += -2 * M_PI * (wp.y() * t2.imag() - wp.z() * t1.imag());
-            acc.v[6] += -2 * M_PI * (wp.z() * t0.imag() - wp.x() * t2.imag());
-            acc.v[7] += -2 * M_PI * (wp.x() * t1.imag() - wp.y() * t0.imag());
+          if (torque) {  // Re[e (grad S2(w') x w')] in part 2's frame: dE/dtheta of the interpolant
+            const Eigen::Vector3d g_re((e * v[1]).real() * s.length.x(), (e * v[2]).real() * s.length.y(),
+                                       (e * v[3]).real() * s.length.z());
+            const Eigen::Vector3d t = g_re.cross(wp);
+            for (int a = 0; a < 3; ++a) acc.v[5 + a] += t[a];
           }
         }
         return acc;
@@ -120,8 +131,10 @@ QueryResult reference_query(const PairSpectra& s, const Pose& pose, const Refere
 
   r.score = {sums.v[0], sums.v[1]};
   r.energy = -sums.v[0];
-  if (options.force) r.force = Eigen::Vector3d(sums.v[2], sums.v[3], sums.v[4]);
-  if (torque) r.torque = R * Eigen::Vector3d(sums.v[5], sums.v[6], sums.v[7]);
+  const Eigen::Vector3d force(sums.v[2], sums.v[3], sums.v[4]);
+  if (options.force) r.force = force;
+  // About part 2's origin: the box centre's lever arm R c2 added (the centre turns with R).
+  if (torque) r.torque = R * Eigen::Vector3d(sums.v[5], sums.v[6], sums.v[7]) + (R * s.part2.centre).cross(force);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

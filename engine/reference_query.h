@@ -17,14 +17,13 @@ struct ReferenceOptions {
   Interpolation interpolation = Interpolation::tricubic;
   std::size_t modes = 0;  // m': the first modes of mode_order (engine/mode_order.h); 0 = every mode
   bool force = true;
-  bool torque = true;  // needs spectra with torque terms
+  bool torque = true;  // the derivative of the interpolated energy under rotation
 };
 
 // The result for part 2 at `pose` in part 1's frame, with the engine's frames, signs
 // and flags (query_outside_grid, query_bad_pose). `order` may be passed to avoid
 // re-sorting (it must be mode_order(spectra)). Parallel over modes on TBB, with a
-// deterministic reduction. Throws snapfit::Error when torque is asked of spectra
-// without torque terms.
+// deterministic reduction.
 QueryResult reference_query(const PairSpectra& spectra, const Pose& pose, const ReferenceOptions& options = {},
                             const std::vector<std::size_t>* order = nullptr);
 

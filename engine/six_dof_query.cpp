@@ -37,13 +37,11 @@ cl_float4 xyz(const Eigen::Vector3d& v) { return cl_float4{{float(v.x()), float(
 // a mode or, with a real correlation folded, a conjugate pair w, -w: one float4
 // (Re W, Im W, (kx, ky) and (kz, folded) as shorts) with W = S1(w_k) dw, twice that
 // for a pair, which adds to the real outputs only (its Im f is 0).
-class SixDofQuery final : public QueryEngine {
+class SixDofQuery final : public QueryEngine, private QueryHooks {
  public:
   SixDofQuery(const ComputeContext& ctx, const PairSpectra& spectra, QueryVariant variant,
               const ProgramCacheConfig& cache)
-      : variant_(variant), dims_(spectra.dims), length_(spectra.length) {
-    if (variant.torque && !spectra.torque)
-      throw Error("the query variant needs torque, but the spectra have no torque terms");
+      : variant_(variant), dims_(spectra.dims), length_(spectra.length), c2_(spectra.part2.centre) {
     const std::vector<std::size_t> order = mode_order(spectra);
     const std::size_t total = order.size();
     reach_ = mode_reach(dims_, order);
@@ -56,7 +54,6 @@ class SixDofQuery final : public QueryEngine {
       mode_radius_[i] = std::sqrt(wx * wx + wy * wy + wz * wz);
     }
     s2_ = spectra.part2.rho;
-    if (variant.torque) sq_ = spectra.part2.moments;
 
     // dw = 1 / (L_x L_y L_z) (docs/design.md), folded into the weights. Records follow
     // the mode order; record_modes_[j] is the number of modes records [0, j] hold.
@@ -77,13 +74,13 @@ class SixDofQuery final : public QueryEngine {
     }
 
     std::string options;
-    if (variant.force) options += " -D FORCE";
+    if (variant.force || variant.torque) options += " -D FORCE";  // the torque needs F (R c2 x F)
     if (variant.torque) options += " -D TORQUE";
     if (variant.interpolation == Interpolation::tricubic) options += " -D TRICUBIC";
     if (variant.half_cube) options += " -D HALF_CUBE";
-    launch_ =
-        std::make_unique<QueryLaunch>(ctx, spectra, variant, reach_.back(), "pose_query", options,
-                                      SharedQueryArgs{kPose, kPoses, kPoseCount, kGroupsPerPose, kPartials}, cache);
+    launch_ = std::make_unique<QueryLaunch>(ctx, spectra, variant, reach_.back(), "pose_query", options,
+                                            SharedQueryArgs{kPose, kPoses, kPoseCount, kGroupsPerPose, kPartials},
+                                            cache, static_cast<const QueryHooks*>(this));
     try {
       cl::Kernel& k = launch_->kernel();
       records_ = cl::Buffer(launch_->context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
@@ -165,7 +162,14 @@ class SixDofQuery final : public QueryEngine {
     return out;
   }
 
-  // Uploads the part of S2 (and SQ) that interpolation at |w'| <= radius can touch:
+  // QueryHooks: the kernel's torque sums are in part 2's frame, about its box centre.
+  void finish(const double sums[8], const Eigen::Matrix3d& R, const QueryVariant& variant,
+              QueryResult& result) const override {
+    fill_result(sums, R, variant, result);
+    if (variant.torque) result.torque += (R * c2_).cross(Eigen::Vector3d(sums[2], sums[3], sums[4]));
+  }
+
+  // Uploads the part of S2 that interpolation at |w'| <= radius can touch:
   // signed indices |i_a| <= ceil(radius L_a) + 2 (Catmull-Rom reaches 2 beyond floor),
   // sampled periodically. Grown with a margin, so m' changes rarely re-upload.
   void ensure_cube(double radius) {
@@ -176,36 +180,26 @@ class SixDofQuery final : public QueryEngine {
       half[a] = static_cast<int>(std::ceil(radius * length_[a])) + 2;
       n[a] = 2 * half[a] + 2;
     }
-    const int per_node = variant_.torque ? 4 : 1;
-    std::vector<Complex> data(static_cast<std::size_t>(n[0]) * n[1] * n[2] * per_node);
+    std::vector<Complex> data(static_cast<std::size_t>(n[0]) * n[1] * n[2]);
     auto wrap = [](long i, std::size_t m) { return static_cast<std::size_t>(((i % long(m)) + long(m)) % long(m)); };
     for (int z = 0; z < n[2]; ++z)
       for (int y = 0; y < n[1]; ++y)
         for (int x = 0; x < n[0]; ++x) {
           const std::size_t k = wrap(x - half[0], dims_[0]) +
                                 dims_[0] * (wrap(y - half[1], dims_[1]) + dims_[1] * wrap(z - half[2], dims_[2]));
-          Complex* node =
-              &data[per_node * (static_cast<std::size_t>(x) + n[0] * (static_cast<std::size_t>(y) + n[1] * z))];
-          node[0] = s2_[k];
-          if (variant_.torque)
-            for (int a = 0; a < 3; ++a) node[1 + a] = sq_[a][k];
+          data[static_cast<std::size_t>(x) + n[0] * (static_cast<std::size_t>(y) + n[1] * z)] = s2_[k];
         }
     cl_float4 scale{{1.0f, 1.0f, 0.0f, 0.0f}};
     if (variant_.half_cube) {
-      // Half floats hold |x| <= 65504 with 11 significant bits: scale S2 and SQ each
-      // by 1 / (largest component) so every stored value is at most 1 in magnitude.
-      float largest[2] = {0, 0};
-      for (std::size_t i = 0; i < data.size(); ++i) {
-        float& l = largest[i % per_node == 0 ? 0 : 1];
-        l = std::max({l, std::abs(data[i].real()), std::abs(data[i].imag())});
-      }
-      for (int j = 0; j < 2; ++j) {
-        if (!(largest[j] > 0) || !std::isfinite(largest[j])) largest[j] = 1;
-        scale.s[j] = largest[j];
-      }
+      // Half floats hold |x| <= 65504 with 11 significant bits: scale S2 by 1 / (largest
+      // component) so every stored value is at most 1 in magnitude.
+      float largest = 0;
+      for (const Complex& c : data) largest = std::max({largest, std::abs(c.real()), std::abs(c.imag())});
+      if (!(largest > 0) || !std::isfinite(largest)) largest = 1;
+      scale.s[0] = largest;
       std::vector<std::uint16_t> halves(2 * data.size());
+      const float inv = 1.0f / largest;
       for (std::size_t i = 0; i < data.size(); ++i) {
-        const float inv = 1.0f / largest[i % per_node == 0 ? 0 : 1];
         halves[2 * i] = float_to_half(data[i].real() * inv);
         halves[2 * i + 1] = float_to_half(data[i].imag() * inv);
       }
@@ -225,14 +219,13 @@ class SixDofQuery final : public QueryEngine {
 
   QueryVariant variant_;
   std::array<std::size_t, 3> dims_;
-  Eigen::Vector3d length_;
+  Eigen::Vector3d length_, c2_;
   std::vector<int> reach_;          // max |k| of the modes [0, i]: the phase tables' reach
   std::vector<float> mode_radius_;  // |w| of every mode, in order
   std::vector<std::size_t> record_modes_;
   std::vector<cl_float4> first_of_record_;
-  // Part 2's spectra (host), for the cube; the |w| radius the device cube covers.
+  // Part 2's spectrum (host), for the cube; the |w| radius the device cube covers.
   std::vector<Complex> s2_;
-  std::array<std::vector<Complex>, 3> sq_;
   double cube_radius_ = -1;
   std::unique_ptr<QueryLaunch> launch_;
   cl::Buffer records_, cube_;

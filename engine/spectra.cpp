@@ -55,13 +55,20 @@ std::vector<Complex> centred_spectrum(const ComputeContext& ctx, const Fft3d& ff
 
 }  // namespace
 
+EsKernel PairSpectra::rotation_kernel() const {
+  EsKernel kernel;
+  kernel.width = part2.deconvolved_width;
+  kernel.beta = 2.30 * kernel.width;
+  return kernel;
+}
+
 double PairSpectra::frequency(int axis, std::size_t k) const {
   return static_cast<double>(signed_index(k, dims[axis])) / length[axis];
 }
 
 PairSpectra compute_pair_spectra(const FftLibrary& library, const ComputeContext& ctx, const GridSpec& grid1,
                                  const std::vector<Complex>& rho1, const GridSpec& grid2,
-                                 const std::vector<Complex>& rho2, bool torque, const SpectrumOptions& options) {
+                                 const std::vector<Complex>& rho2, const SpectrumOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   if (std::abs(grid1.spacing - grid2.spacing) > 1e-9 * grid1.spacing)
     throw Error("the parts' grids must share one spacing to share frequencies (got " + std::to_string(grid1.spacing) +
@@ -71,9 +78,12 @@ PairSpectra compute_pair_spectra(const FftLibrary& library, const ComputeContext
   if (!(options.oversampling >= 1.0)) throw Error("spectrum oversampling must be at least 1");
   PairSpectra out;
   out.spacing = grid1.spacing;
-  out.torque = torque;
+  // The exact rotation's kernel needs part 2's samples within L / 4 of its centre:
+  // 2 N2 + 4 points on each axis cover the half-spacing offsets of the centring.
+  const bool exact_rotation = options.exact_rotation_width > 0 && options.oversampling >= 2.0;
   for (int a = 0; a < 3; ++a) {
-    const double points = options.oversampling * std::max(grid1.dims[a], grid2.dims[a]);
+    double points = options.oversampling * std::max(grid1.dims[a], grid2.dims[a]);
+    if (exact_rotation) points = std::max(points, 2.0 * grid2.dims[a] + 4.0);
     out.dims[a] = next_fft_size(static_cast<std::size_t>(std::ceil(points - 1e-9)));
     out.length[a] = out.dims[a] * out.spacing;
   }
@@ -98,19 +108,37 @@ PairSpectra compute_pair_spectra(const FftLibrary& library, const ComputeContext
   out.part2.sample_parity = parity(rho2);
   out.part1.rho = centred_spectrum(ctx, fft, grid1, p1, [&](std::size_t i, int, int, int) { return rho1[i]; });
   out.part2.rho = centred_spectrum(ctx, fft, grid2, p2, [&](std::size_t i, int, int, int) { return rho2[i]; });
-  if (torque) {
-    // Q2_a(q) = q_a rho2(q), q in part 2's own frame (seed 000 eq. 12).
-    for (int a = 0; a < 3; ++a)
-      out.part2.moments[a] = centred_spectrum(ctx, fft, grid2, p2, [&](std::size_t i, int x, int y, int z) {
-        return rho2[i] * static_cast<float>(grid2.point(x, y, z)[a]);
-      });
+  // The kernel is accurate while part 2's samples stay within L / 4 of its centre (2x
+  // oversampling); a coarser box (oversampling < 2) gets no deconvolved spectrum.
+  const bool deconvolve =
+      exact_rotation &&
+      ((2.0 * out.part2.half_extent.array() + grid2.spacing) * 2.0 <= out.length.array() * (1 + 1e-9)).all();
+  if (deconvolve) {
+    // c'_j = c_j / prod_a Phi((q_j - c2)_a / L_a): type-2 non-uniform FFT pre-correction
+    // (engine/es_kernel.h), so the kernel's taps give S2 at any frequency.
+    EsKernel kernel;
+    kernel.width = options.exact_rotation_width;
+    kernel.beta = 2.30 * kernel.width;
+    std::array<std::vector<double>, 3> inverse;
+    for (int a = 0; a < 3; ++a) {
+      inverse[a].resize(static_cast<std::size_t>(grid2.dims[a]));
+      for (int i = 0; i < grid2.dims[a]; ++i) {
+        const double x = grid2.origin[a] + grid2.spacing * i - p2.centre[a];
+        inverse[a][std::size_t(i)] = 1.0 / kernel.transform(x / out.length[a]);
+      }
+    }
+    out.part2.deconvolved = centred_spectrum(ctx, fft, grid2, p2, [&](std::size_t i, int x, int y, int z) {
+      return rho2[i] *
+             static_cast<float>(inverse[0][std::size_t(x)] * inverse[1][std::size_t(y)] * inverse[2][std::size_t(z)]);
+    });
+    out.part2.deconvolved_width = kernel.width;
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 
 PairSpectra compute_pair_spectra(const FftLibrary& library, const ComputeContext& ctx, const DescriptorFields& part1,
-                                 const DescriptorFields& part2, bool torque, const SpectrumOptions& options) {
+                                 const DescriptorFields& part2, const SpectrumOptions& options) {
   // The affinity is i * (lambda s) (or i * indicator): purely imaginary samples.
   auto imaginary = [](const std::vector<float>& values) {
     std::vector<Complex> out(values.size());
@@ -118,7 +146,7 @@ PairSpectra compute_pair_spectra(const FftLibrary& library, const ComputeContext
     return out;
   };
   return compute_pair_spectra(library, ctx, part1.grid, imaginary(affinity_imaginary(part1)), part2.grid,
-                              imaginary(affinity_imaginary(part2)), torque, options);
+                              imaginary(affinity_imaginary(part2)), options);
 }
 
 }  // namespace snapfit

@@ -25,13 +25,6 @@ std::int32_t pack_shorts(int a, int b) {
   return out;
 }
 
-// The box node of signed frequency index k.
-std::size_t box_node(const TranslationLines& t, int kx, int ky, int kz) {
-  return std::size_t(kx - t.box_min[0]) +
-         std::size_t(t.box_dims[0]) *
-             (std::size_t(ky - t.box_min[1]) + std::size_t(t.box_dims[1]) * std::size_t(kz - t.box_min[2]));
-}
-
 // Groups the nodes with a key (key_of(FFT node) != kExcluded) into x-lines ordered by
 // their first key. On each side of kx = 0 the kept nodes must start at the centre and
 // their keys grow with |kx| (true of any |w| order), so that a key threshold keeps one
@@ -84,49 +77,55 @@ LineSet group_lines(const TranslationLines& t, KeyOf key_of) {
 
 ExtraMode extra_mode(const TranslationLines& t, std::size_t node, int code) {
   const std::array<int, 3> k = signed_node(t.dims, node);
-  const std::complex<float> w = t.weights[box_node(t, k[0], k[1], k[2])];
+  const std::complex<float> w =
+      t.weights.empty() ? std::complex<float>(0, 0) : t.weights[box_node(t, k[0], k[1], k[2])];
   return ExtraMode{w.real(), w.imag(), pack_shorts(k[0], k[1]), pack_shorts(k[2], code)};
 }
 
 }  // namespace
 
-TranslationLines build_translation_lines(const PairSpectra& spectra, const std::vector<std::size_t>& order, bool fold) {
+std::size_t box_node(const TranslationLines& t, int kx, int ky, int kz) {
+  return std::size_t(kx - t.box_min[0]) +
+         std::size_t(t.box_dims[0]) *
+             (std::size_t(ky - t.box_min[1]) + std::size_t(t.box_dims[1]) * std::size_t(kz - t.box_min[2]));
+}
+
+TranslationLines build_translation_lines(const std::array<std::size_t, 3>& dims, const std::vector<std::size_t>& order,
+                                         bool conjugate_pairs, std::size_t max_modes) {
   TranslationLines t;
-  t.dims = spectra.dims;
+  t.dims = dims;
   const auto& d = t.dims;
   const std::size_t total = d[0] * d[1] * d[2];
   if (order.size() != total) throw Error("translation-only lines: the mode order does not list every FFT node");
   if (total >= std::size_t(kExcluded))
     throw Error("translation-only lines: FFT grid of " + std::to_string(total) + " nodes is too large");
-  for (int a = 0; a < 3; ++a) {
-    t.box_max[a] = int(d[a] / 2);
-    t.box_min[a] = t.box_max[a] - int(d[a]) + 1;
-    t.box_dims[a] = int(d[a]) + (a == 0 ? 8 : 0);  // 8 nodes of padding: the kernel reads 8-wide chunks
+  t.max_modes = max_modes == 0 ? total : std::min(max_modes, total);
+  // The box: every signed index of the first max_modes modes (8 nodes of padding along x:
+  // the translation kernel reads 8-wide chunks).
+  std::array<int, 3> reach{0, 0, 0};
+  for (std::size_t i = 0; i < t.max_modes; ++i) {
+    const std::array<int, 3> k = signed_node(d, order[i]);
+    for (int a = 0; a < 3; ++a) reach[a] = std::max(reach[a], std::abs(k[a]));
   }
-  t.weights.assign(std::size_t(t.box_dims[0]) * t.box_dims[1] * t.box_dims[2], std::complex<float>(0, 0));
+  for (int a = 0; a < 3; ++a) {
+    t.box_max[a] = std::min(int(d[a] / 2), reach[a]);
+    t.box_min[a] = std::max(int(d[a] / 2) - int(d[a]) + 1, -reach[a]);
+    t.box_dims[a] = t.box_max[a] - t.box_min[a] + 1 + (a == 0 ? 8 : 0);
+  }
   t.order.resize(total);
   std::vector<Key> rank(total);
-  // W_k = S1(w_k) S2(-w_k) dw (docs/design.md; seed 000 section 3.3), S2(-w_k) at node -k
-  // (a Nyquist index wraps onto itself).
-  const double dw = 1.0 / (spectra.length.x() * spectra.length.y() * spectra.length.z());
   for (std::size_t i = 0; i < total; ++i) {
-    const std::size_t k = order[i];
-    t.order[i] = static_cast<std::uint32_t>(k);
-    rank[k] = static_cast<Key>(i);
-    const std::size_t x = k % d[0], y = (k / d[0]) % d[1], z = k / (d[0] * d[1]);
-    const std::size_t neg = (d[0] - x) % d[0] + d[0] * ((d[1] - y) % d[1] + d[1] * ((d[2] - z) % d[2]));
-    const std::array<int, 3> kk = signed_node(d, k);
-    t.weights[box_node(t, kk[0], kk[1], kk[2])] =
-        spectra.part1.rho[k] * static_cast<float>(dw) * spectra.part2.rho[neg];
+    t.order[i] = static_cast<std::uint32_t>(order[i]);
+    rank[order[i]] = i < t.max_modes ? static_cast<Key>(i) : kExcluded;
   }
   t.unfolded = group_lines(t, [&](std::size_t k, int, int, int) { return rank[k]; });
-  if (!fold || spectra.conjugate_pairs() != 1) return t;
+  if (!conjugate_pairs) return t;
 
   // Folded: one member of each pair (the visited half), keyed by the later of the two
   // ranks; unpartnered nodes keyed by their own rank.
   auto visited = [](int kx, int ky, int kz) { return kz > 0 || (kz == 0 && (ky > 0 || (ky == 0 && kx >= 0))); };
-  t.fold_limit = total;
-  for (std::size_t i = 0; i < total; ++i) {
+  t.fold_limit = t.max_modes;
+  for (std::size_t i = 0; i < t.max_modes; ++i) {
     const std::size_t k = order[i], neg = negated_node(d, k);
     if (neg != kNoNode && neg != k) continue;
     const std::array<int, 3> kk = signed_node(d, k);
@@ -143,6 +142,28 @@ TranslationLines build_translation_lines(const PairSpectra& spectra, const std::
     const std::size_t neg = negated_node(d, k);
     return neg == kNoNode || neg == k ? rank[k] : std::max(rank[k], rank[neg]);
   });
+  return t;
+}
+
+void fill_translation_weights(TranslationLines& t, const PairSpectra& spectra) {
+  const auto& d = t.dims;
+  t.weights.assign(std::size_t(t.box_dims[0]) * t.box_dims[1] * t.box_dims[2], std::complex<float>(0, 0));
+  // W_k = S1(w_k) S2(-w_k) dw (docs/design.md; seed 000 section 3.3), S2(-w_k) at node -k
+  // (a Nyquist index wraps onto itself).
+  const double dw = 1.0 / (spectra.length.x() * spectra.length.y() * spectra.length.z());
+  for (std::size_t i = 0; i < t.max_modes; ++i) {
+    const std::size_t k = t.order[i];
+    const std::size_t x = k % d[0], y = (k / d[0]) % d[1], z = k / (d[0] * d[1]);
+    const std::size_t neg = (d[0] - x) % d[0] + d[0] * ((d[1] - y) % d[1] + d[1] * ((d[2] - z) % d[2]));
+    const std::array<int, 3> kk = signed_node(d, k);
+    t.weights[box_node(t, kk[0], kk[1], kk[2])] =
+        spectra.part1.rho[k] * static_cast<float>(dw) * spectra.part2.rho[neg];
+  }
+}
+
+TranslationLines build_translation_lines(const PairSpectra& spectra, const std::vector<std::size_t>& order, bool fold) {
+  TranslationLines t = build_translation_lines(spectra.dims, order, fold && spectra.conjugate_pairs() == 1);
+  fill_translation_weights(t, spectra);
   return t;
 }
 
@@ -168,7 +189,7 @@ void select_lines(const TranslationLines& t, std::size_t modes, LineSelection& o
   out.extras.clear();
   if (!out.folded) return;
   // The pair that m' cuts: its first mode (rank m' - 1) alone.
-  if (modes < t.order.size()) {
+  if (modes < t.order.size()) {  // (the box holds the first max_modes modes; m' <= max_modes)
     const std::size_t k = t.order[modes - 1], neg = negated_node(t.dims, k);
     if (neg != kNoNode && neg != k && t.order[modes] == neg) out.extras.push_back(extra_mode(t, k, 1));
   }

@@ -59,6 +59,7 @@ struct LineSet {
 };
 
 struct TranslationLines {
+  std::size_t max_modes = 0;                            // lines and box hold the first max_modes modes
   std::array<int, 3> box_min{}, box_max{}, box_dims{};  // signed k of node 0; rows padded by 8 nodes
   std::vector<std::complex<float>> weights;  // W_k at box node (kx - min) + dims_x ((ky - min) + dims_y (kz - min))
   LineSet unfolded;                          // every line; key = rank in the mode order
@@ -80,11 +81,23 @@ struct LineSelection {
   std::size_t nodes = 0;  // sum of the interval lengths
 };
 
-// Builds the box and both line sets. `order` is mode_order(spectra); `fold` allows the
-// folded sum (it is used only for a real correlation).
+// The box and both line sets for the first max_modes modes (0: every mode) of `order`
+// (mode_order on an FFT grid of `dims`), without weights; the folded set only for a real
+// correlation (`conjugate_pairs`).
+TranslationLines build_translation_lines(const std::array<std::size_t, 3>& dims, const std::vector<std::size_t>& order,
+                                         bool conjugate_pairs, std::size_t max_modes = 0);
+
+// W_k = S1(w_k) S2(-w_k) dw at the box's nodes: the translation-only product.
+void fill_translation_weights(TranslationLines& lines, const PairSpectra& spectra);
+
+// Every mode, with the translation-only product. `order` is mode_order(spectra); `fold`
+// allows the folded sum (it is used only for a real correlation).
 TranslationLines build_translation_lines(const PairSpectra& spectra, const std::vector<std::size_t>& order, bool fold);
 
-// Fills `out` for m' = modes (1 <= modes <= every mode).
+// The box node of signed frequency index k.
+std::size_t box_node(const TranslationLines& lines, int kx, int ky, int kz);
+
+// Fills `out` for m' = modes (1 <= modes <= lines.max_modes).
 void select_lines(const TranslationLines& lines, std::size_t modes, LineSelection& out);
 
 }  // namespace snapfit

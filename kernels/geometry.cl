@@ -16,6 +16,8 @@ typedef struct {
 #endif
 
 // Grid point number `id`: origin + spacing * (i, j, k), i fastest (core/grid.h).
+// With -D EXPLICIT_POINTS the descriptor kernels read each point's coordinates instead,
+// from three arrays (x, y, z) holding the chunk's items in order, like their inputs.
 inline float3 grid_point(const long id, const float3 origin, const float spacing, const int nx, const int ny) {
   const long i = id % nx;
   const long j = (id / nx) % ny;

@@ -3,12 +3,14 @@
 // the retained modes of one pose; the host adds the groups' partial sums.
 //
 // Options: -D WG_SIZE=n (power of two)  -D MAX_HALF=h (largest |k| on any axis)
-//          -D FORCE  -D TORQUE  -D TRANSLATION_ONLY
+//          -D FORCE  -D TORQUE  -D TRANSLATION_ONLY  -D ROTATED_LINES (with TRANSLATION_ONLY)
 //          -D TRICUBIC (Catmull-Rom; default trilinear)  -D HALF_CUBE (cube stored as half)
 // Per mode k: w = w_k (part 1's frequency node), weight W_k = S1(w_k) dw, and
 //   6-DOF: w' = -R^T w, term = W_k S2(w') e^{i phi}, phi = 2 pi w.tau, tau = t + R c2 - c1
 //          (e^{i phi} from per-axis tables built here in local memory: no sincos per mode)
-//          torque (part 2 frame): Re[2 pi i W_k e^{i phi} (w' x SQ(w'))]
+//          torque: the derivative of the same interpolated energy under R -> exp(theta e) R
+//          (include/snapfit/query.h), Re[W_k e^{i phi} (grad S2(w') x w')] in part 2's frame
+//          (the host adds R c2 x F for the rotating box centre), so E, F, T are consistent
 //   translation only: W_k already holds S1(w_k) S2(-w_k) dw, term = W_k e^{i phi}.
 // Partial sums per group (8 floats): Re f, Im f, F (3), T in part 2's frame (3).
 //
@@ -24,26 +26,23 @@
 // mode alone as `extra_mode` (weight 0 otherwise), added once per pose.
 
 // The spectrum of part 2 near the low-pass ball, as a compact cube (no wrapping):
-// signed FFT index i sits at cube index i + offset. With torque each node holds
-// S2, SQ_x, SQ_y, SQ_z interleaved (one 32-byte load per tap, 16 with HALF_CUBE;
-// half values are scaled by 1 / max |component| and scaled back here).
-#ifdef TORQUE
-typedef float8 Sample;
-#ifdef HALF_CUBE
-#define LOAD_SAMPLE(i) vload_half8((i), cube)
-#endif
-#else
-typedef float2 Sample;
-#ifdef HALF_CUBE
-#define LOAD_SAMPLE(i) vload_half2((i), cube)
-#endif
-#endif
+// signed FFT index i sits at cube index i + offset (one 8-byte load per tap, 4 with
+// HALF_CUBE; half values are scaled by 1 / max |component| and scaled back here).
 #ifdef HALF_CUBE
 #define CUBE_T half
+#define LOAD_SAMPLE(i) vload_half2((i), cube)
 #else
-#define CUBE_T Sample
+#define CUBE_T float2
 #define LOAD_SAMPLE(i) cube[(i)]
 #endif
+
+// The interpolated sample and, with TORQUE, its gradient in fractional cube index.
+typedef struct {
+  float2 v;
+#ifdef TORQUE
+  float2 gx, gy, gz;
+#endif
+} Sample;
 
 // e^{2 pi i k x} for x = hi + lo (tau_a / L_a as a float pair), reduced to a fraction
 // of a turn first: k * hi is split exactly with fma, so |phase error| stays ~1e-7 rad
@@ -61,22 +60,47 @@ inline float2 axis_phase(const int k, const float hi, const float lo) {
 #ifndef TRANSLATION_ONLY
 __attribute__((always_inline)) inline Sample sample_cube(__global const CUBE_T* cube, const int4 cube_dims,
                                                          const int4 offset, const float3 u) {
-  float wx[TAPS], wy[TAPS], wz[TAPS];
-  const int ix = axis_weights(u.x, wx) + offset.x, iy = axis_weights(u.y, wy) + offset.y,
-            iz = axis_weights(u.z, wz) + offset.z;
-  Sample acc = (Sample)(0.0f);
+  float wx[TAPS], wy[TAPS], wz[TAPS], dwx[TAPS], dwy[TAPS], dwz[TAPS];
+  const int ix = axis_weights(u.x, wx, dwx) + offset.x, iy = axis_weights(u.y, wy, dwy) + offset.y,
+            iz = axis_weights(u.z, wz, dwz) + offset.z;
+  Sample acc;
+  acc.v = (float2)(0.0f);
+#ifdef TORQUE
+  acc.gx = acc.gy = acc.gz = (float2)(0.0f);
+#endif
 #pragma unroll
   for (int c = 0; c < TAPS; ++c) {
-    Sample plane = (Sample)(0.0f);
+    float2 plane = (float2)(0.0f);
+#ifdef TORQUE
+    float2 plane_x = (float2)(0.0f), plane_y = (float2)(0.0f);
+#endif
 #pragma unroll
     for (int b = 0; b < TAPS; ++b) {
       const int row = cube_dims.x * (cube_dims.y * (iz + c) + iy + b) + ix;
-      Sample line = (Sample)(0.0f);
+      float2 line = (float2)(0.0f);
+#ifdef TORQUE
+      float2 line_x = (float2)(0.0f);
+#endif
 #pragma unroll
-      for (int a = 0; a < TAPS; ++a) line += wx[a] * LOAD_SAMPLE(row + a);
+      for (int a = 0; a < TAPS; ++a) {
+        const float2 sample = LOAD_SAMPLE(row + a);
+        line += wx[a] * sample;
+#ifdef TORQUE
+        line_x += dwx[a] * sample;
+#endif
+      }
       plane += wy[b] * line;
+#ifdef TORQUE
+      plane_x += wy[b] * line_x;
+      plane_y += dwy[b] * line;
+#endif
     }
-    acc += wz[c] * plane;
+    acc.v += wz[c] * plane;
+#ifdef TORQUE
+    acc.gx += wz[c] * plane_x;
+    acc.gy += wz[c] * plane_y;
+    acc.gz += dwz[c] * plane;
+#endif
   }
   return acc;
 }
@@ -117,19 +141,16 @@ __attribute__((always_inline)) inline void add_mode(const float4 mode, const flo
   // w' = -R^T w (R^T's rows are R's columns), as a fractional FFT index u = w' L.
   const float3 wp = -(float3)(P.s0 * w.x + P.s3 * w.y + P.s6 * w.z, P.s1 * w.x + P.s4 * w.y + P.s7 * w.z,
                               P.s2 * w.x + P.s5 * w.y + P.s8 * w.z);
-  const Sample acc = sample_cube(cube, cube_dims, offset, wp * length.xyz);
+  const Sample s = sample_cube(cube, cube_dims, offset, wp * length.xyz);
 #ifdef TORQUE
-  const float2 v = acc.s01 * cube_scale.x;
-  const float2 q0 = acc.s23 * cube_scale.y, q1 = acc.s45 * cube_scale.y, q2 = acc.s67 * cube_scale.y;
-  // 2 pi i term_q (w' x SQ): Re of i z is -Im z.
+  // Re[e (grad S2 x w')], grad in physical units: d/dw'_a = L_a d/du_a.
+  const float2 gx = s.gx * (cube_scale.x * length.x), gy = s.gy * (cube_scale.x * length.y),
+               gz = s.gz * (cube_scale.x * length.z);
   const float2 e = term;  // W_k e^{i phi}
-  const float2 t0 = cmul(e, q0), t1 = cmul(e, q1), t2 = cmul(e, q2);
-  const float3 im = (float3)(wp.y * t2.y - wp.z * t1.y, wp.z * t0.y - wp.x * t2.y, wp.x * t1.y - wp.y * t0.y);
-  *torque += -TWO_PI * im;
-#else
-  const float2 v = acc * cube_scale.x;
+  const float ex = cmul(e, gx).x, ey = cmul(e, gy).x, ez = cmul(e, gz).x;
+  *torque += (float3)(ey * wp.z - ez * wp.y, ez * wp.x - ex * wp.z, ex * wp.y - ey * wp.x);
 #endif
-  term = cmul(term, v);
+  term = cmul(term, s.v * cube_scale.x);
 #endif
   *f += kzf.y ? (float2)(term.x, 0.0f) : term;
 #ifdef FORCE
@@ -277,5 +298,88 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void translation_l
 
   __local float scratch[8 * WG_SIZE];
   reduce_partials(scratch, lid, f, force, (float3)(0.0f), partials + 8 * group);
+}
+#endif
+
+#ifdef ROTATED_LINES
+// The x-lines of a product spectrum made for part 2 turned by R0 (kernels/rotated_product.cl,
+// engine/rotated_product.h), at a pose R = exp([dtheta]x) R0 (docs/design.md "Exact
+// rotation"): each box node holds float8 (W0, D_x, D_y, D_z), and the term is
+//   W_k = W0_k + dtheta . D_k,   f = sum_k W_k e^{i phi},   phi = 2 pi w_k.tau,
+// the energy to first order in the rotation since the product was made. The lines and
+// extras are those of the translation-only sum (same selection, same folding), the extras
+// given as int4 (box node, (kx, ky), (kz, code) as shorts, 0). Outputs as the other
+// kernels, with the last three the rotation sums Re sum_k D_k e^{i phi} (from which the
+// host makes the torque). The pose's s0-s2 hold dtheta (R itself enters only through tau).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void rotated_lines(
+    __global const float8* W, __global const int4* lines, __global const int4* extras, const int extra_count,
+    const int folded, const float16 pose_arg, __global const float16* poses, const int pose_count, const int line_count,
+    const int groups_per_pose, const int table_half, __global float* partials, const float4 inv_length) {
+  const int group = get_group_id(0);
+  const int pose = group / groups_per_pose;
+  const int slice = group % groups_per_pose;
+  const int lid = get_local_id(0);
+  const float16 P = pose_count > 1 ? poses[pose] : pose_arg;
+  const float3 dtheta = (float3)(P.s0, P.s1, P.s2);
+
+  __local float2 tables[3 * (2 * MAX_HALF + 1)];
+  __local float2* tx = tables + MAX_HALF;
+  __local float2* ty = tx + (2 * MAX_HALF + 1);
+  __local float2* tz = ty + (2 * MAX_HALF + 1);
+  const int reach = min(table_half, MAX_HALF);
+  for (int k = lid - reach; k <= reach; k += WG_SIZE) {
+    tx[k] = axis_phase(k, P.s9, P.sc);
+    ty[k] = axis_phase(k, P.sa, P.sd);
+    tz[k] = axis_phase(k, P.sb, P.se);
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+
+  const float real_weight = folded ? 2.0f : 1.0f;
+  float2 f = (float2)(0.0f);
+  float3 force = (float3)(0.0f), rotation = (float3)(0.0f);
+  for (int l = slice * WG_SIZE + lid; l < line_count; l += groups_per_pose * WG_SIZE) {
+    const int4 line = lines[l];
+    const short2 kyz = as_short2(line.y);
+    __global const float8* row = W + line.x;
+    float2 s = (float2)(0.0f), sx = (float2)(0.0f), d0 = (float2)(0.0f), d1 = (float2)(0.0f), d2 = (float2)(0.0f);
+    for (int x = line.z; x <= line.w; ++x) {
+      const float8 node = row[x];
+      const float2 t = tx[x];
+      const float2 wk = node.s01 + dtheta.x * node.s23 + dtheta.y * node.s45 + dtheta.z * node.s67;
+      const float2 term = cmul(wk, t);
+      s += term;
+      sx += (float)x * term;
+      d0 += cmul(node.s23, t);
+      d1 += cmul(node.s45, t);
+      d2 += cmul(node.s67, t);
+    }
+    const float2 p = cmul(ty[kyz.x], tz[kyz.y]);
+    const float2 term = real_weight * cmul(s, p);
+    f += (float2)(term.x, folded ? 0.0f : term.y);
+#ifdef FORCE
+    force +=
+        -TWO_PI * (float3)(real_weight * cmul(sx, p).y, (float)kyz.x * term.y, (float)kyz.y * term.y) * inv_length.xyz;
+#endif
+    rotation += real_weight * (float3)(cmul(d0, p).x, cmul(d1, p).x, cmul(d2, p).x);
+  }
+  if (slice == 0 && lid == 0) {
+    for (int e = 0; e < extra_count; ++e) {
+      const int4 mode = extras[e];
+      const short2 kxy = as_short2(mode.y), kzc = as_short2(mode.z);
+      const float8 node = W[mode.x];
+      const float2 phase = cmul(tx[kxy.x], cmul(ty[kxy.y], tz[kzc.x]));
+      const float2 wk = node.s01 + dtheta.x * node.s23 + dtheta.y * node.s45 + dtheta.z * node.s67;
+      const float2 term = cmul(wk, phase);
+      const float real = kzc.y == 1 ? 1.0f : -1.0f;
+      f += (float2)(real * term.x, term.y);
+#ifdef FORCE
+      force += -TWO_PI * real * term.y * convert_float3((int3)(kxy.x, kxy.y, kzc.x)) * inv_length.xyz;
+#endif
+      rotation += real * (float3)(cmul(node.s23, phase).x, cmul(node.s45, phase).x, cmul(node.s67, phase).x);
+    }
+  }
+
+  __local float scratch[8 * WG_SIZE];
+  reduce_partials(scratch, lid, f, force, rotation, partials + 8 * group);
 }
 #endif

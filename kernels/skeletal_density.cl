@@ -222,22 +222,36 @@ inline void integrate_triangle(const Points p, const mask_v active, const Gaussi
 }
 
 // Work item i evaluates the LANES points point_ids[first_item + LANES i + lane] (a
-// negative id: padding); distance_in and the outputs hold the chunk's items in that order.
+// negative id: padding); distance_in and the outputs hold the chunk's items in that order,
+// and so do point_x/y/z with -D EXPLICIT_POINTS (the points' coordinates, read instead of
+// the grid's).
 __kernel void skeletal_density(const long first_item, const long item_count, const float3 origin, const float spacing,
                                const int nx, const int ny, __global const BvhNode* nodes,
                                __global const float4* triangles, __global const float* distance_in,
                                const float min_distance, const float sigma, const float tolerance,
                                const int triangle_count, __global float* density_out, __global float* bound_out,
-                               __global const long* point_ids) {
+                               __global const long* point_ids
+#ifdef EXPLICIT_POINTS
+                               ,
+                               __global const float* point_x, __global const float* point_y,
+                               __global const float* point_z
+#endif
+) {
   const long gid = get_global_id(0);
   if (gid * LANES >= item_count) return;
   const long_v id = LOAD_V(0, point_ids + first_item + gid * LANES);
   const mask_v valid = convert_mask_v(id >= 0);
-  const long_v cell = max(id, (long_v)(0));
   Points p;
+#ifdef EXPLICIT_POINTS
+  p.x = LOAD_V(gid, point_x);
+  p.y = LOAD_V(gid, point_y);
+  p.z = LOAD_V(gid, point_z);
+#else
+  const long_v cell = max(id, (long_v)(0));
   p.x = origin.x + spacing * convert_real_v(cell % nx);
   p.y = origin.y + spacing * convert_real_v((cell / nx) % ny);
   p.z = origin.z + spacing * convert_real_v(cell / ((long)nx * ny));
+#endif
   p.xi = fmax(LOAD_V(gid, distance_in), min_distance);
   Gaussian g;
   g.sigma = sigma;

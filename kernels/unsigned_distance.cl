@@ -4,10 +4,20 @@
 
 __kernel void unsigned_distance(const long first_point, const long point_count, const float3 origin,
                                 const float spacing, const int nx, const int ny, __global const BvhNode* nodes,
-                                __global const float4* triangles, __global float* distance_out) {
-  const long id = first_point + get_global_id(0);
+                                __global const float4* triangles, __global float* distance_out
+#ifdef EXPLICIT_POINTS
+                                ,
+                                __global const float* point_x, __global const float* point_y,
+                                __global const float* point_z
+#endif
+) {
   if (get_global_id(0) >= point_count) return;
-  const float3 p = grid_point(id, origin, spacing, nx, ny);
+#ifdef EXPLICIT_POINTS
+  const size_t i = get_global_id(0);
+  const float3 p = (float3)(point_x[i], point_y[i], point_z[i]);
+#else
+  const float3 p = grid_point(first_point + get_global_id(0), origin, spacing, nx, ny);
+#endif
   float best2 = INFINITY;
   int stack[STACK_SIZE];
   int top = 0;

@@ -9,7 +9,8 @@
 // otherwise its children are visited, and leaves are summed exactly.
 // Output: w and its error bound (sum of the accepted remainders / 4pi).
 // With -D POINT_LIST the points are grid indices point_ids[first_point + i] (the seeds
-// of engine/winding_propagation.h) instead of the range first_point + i.
+// of engine/winding_propagation.h) instead of the range first_point + i; with
+// -D EXPLICIT_POINTS (and no POINT_LIST) the chunk's points are read from point_x/y/z.
 
 __kernel void winding_number(const long first_point, const long point_count, const float3 origin, const float spacing,
                              const int nx, const int ny, __global const BvhNode* nodes,
@@ -19,14 +20,20 @@ __kernel void winding_number(const long first_point, const long point_count, con
                              ,
                              __global const long* point_ids
 #endif
+#ifdef EXPLICIT_POINTS
+                             ,
+                             __global const float* point_x, __global const float* point_y, __global const float* point_z
+#endif
 ) {
   if (get_global_id(0) >= point_count) return;
-#ifdef POINT_LIST
-  const long id = point_ids[first_point + get_global_id(0)];
+#if defined(EXPLICIT_POINTS)
+  const size_t i = get_global_id(0);
+  const float3 p = (float3)(point_x[i], point_y[i], point_z[i]);
+#elif defined(POINT_LIST)
+  const float3 p = grid_point(point_ids[first_point + get_global_id(0)], origin, spacing, nx, ny);
 #else
-  const long id = first_point + get_global_id(0);
+  const float3 p = grid_point(first_point + get_global_id(0), origin, spacing, nx, ny);
 #endif
-  const float3 p = grid_point(id, origin, spacing, nx, ny);
   float omega = 0.0f, bound = 0.0f;
   int stack[STACK_SIZE];
   int top = 0;

@@ -485,7 +485,7 @@ snapfit::PairSpectra synthetic_spectra(const snapfit::FftLibrary& lib, const sna
       }
   snapfit::SpectrumOptions opt;
   opt.oversampling = 1.0;
-  snapfit::PairSpectra s = snapfit::compute_pair_spectra(lib, ctx, g, rho1, g, rho2, false, opt);
+  snapfit::PairSpectra s = snapfit::compute_pair_spectra(lib, ctx, g, rho1, g, rho2, opt);
   if (s.dims != d) throw snapfit::Error("synthetic spectra: got " + dims_text(s.dims) + ", wanted " + dims_text(d));
   return s;
 }

@@ -24,6 +24,7 @@ AssemblyPair prepare_assembly_pair(const Scene& scene) {
     for (Eigen::Vector3d& v : pair.parts.part2.mesh.vertices) v = scene.part2.pose.rotation * v;
   }
   pair.grids = scene_part_grids(scene.grid, pair.parts.part1.mesh, pair.parts.part2.mesh);
+  add_grid_warnings(pair.plan, scene, pair.grids.part1.spacing);
   return pair;
 }
 
@@ -44,17 +45,17 @@ void compute_assembly_spectra(AssemblyPair& pair, const ComputeContext& ctx, con
   if (pair.fields1.fields.winding.empty() || pair.fields2.fields.winding.empty())
     throw Error("compute_assembly_spectra: both parts' fields are needed first (compute_assembly_fields)");
   const auto note = note_of(options);
-  const bool torque = pair.plan.torque_fields;
-  const std::string key = options.use_cache
-                              ? spectra_cache_key(pair.fields1.fields, pair.fields2.fields, torque, options.spectrum)
-                              : std::string();
+  SpectrumOptions spectrum = options.spectrum;
+  if (!pair.plan.rotation) spectrum.exact_rotation_width = 0;  // part 2 never turns
+  const std::string key =
+      options.use_cache ? spectra_cache_key(pair.fields1.fields, pair.fields2.fields, spectrum) : std::string();
   pair.spectra_from_cache = false;
   if (auto cached = options.use_cache ? load_cached_spectra(key, note) : std::nullopt) {
     pair.spectra = std::move(*cached);
     pair.spectra_from_cache = true;
     return;
   }
-  pair.spectra = compute_pair_spectra(fft, ctx, pair.fields1.fields, pair.fields2.fields, torque, options.spectrum);
+  pair.spectra = compute_pair_spectra(fft, ctx, pair.fields1.fields, pair.fields2.fields, spectrum);
   if (options.use_cache) save_cached_spectra(key, pair.spectra, note);
 }
 

@@ -60,8 +60,8 @@ AssemblyPair prepare_assembly_pair(const Scene& scene);
 void compute_assembly_fields(AssemblyPair& pair, const ComputeContext& ctx, const PairOptions& options = {},
                              int which = 0);
 
-// Stage 3 (needs both parts' fields), with torque spectra only when the plan asks for
-// them (torque with 6-DOF motion).
+// Stage 3 (needs both parts' fields), with part 2's deconvolved spectrum when the plan
+// rotates it (6-DOF motion).
 void compute_assembly_spectra(AssemblyPair& pair, const ComputeContext& ctx, const FftLibrary& fft,
                               const PairOptions& options = {});
 

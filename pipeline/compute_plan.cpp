@@ -19,7 +19,6 @@ ComputePlan plan_computation(const Scene& scene) {
   plan.rotation = scene.motion == Motion::six_dof;
   plan.force = scene.outputs.force;
   plan.torque = scene.outputs.torque && plan.rotation;
-  plan.torque_fields = plan.torque;
 
   if (plan.skeletal_density) {
     plan.lines.push_back(
@@ -32,17 +31,29 @@ ComputePlan plan_computation(const Scene& scene) {
         "fields: winding number (indicator) only: the scene asks for collision response, "
         "so no signed distance or skeletal density is computed");
   }
-  plan.lines.push_back(plan.torque_fields
-                           ? "torque fields: q*rho2 (3 components) for part 2, because the scene needs torque"
-                           : "torque fields: none, the scene does not need torque");
-  plan.lines.push_back(plan.rotation ? "per frame: rotate part 2's spectrum (6-DOF motion), multiply, reduce"
-                                     : "per frame: phase sum over a precomputed product (translation-only motion, "
-                                       "no spectrum rotation)");
+  plan.lines.push_back(plan.rotation
+                           ? "spectra: both parts', and part 2's deconvolved for its exact rotation (6-DOF motion)"
+                           : "spectra: both parts' (translation-only motion: part 2 never turns)");
+  plan.lines.push_back(plan.rotation
+                           ? "per frame: part 2's spectrum interpolated at the rotated frequencies (tricubic); "
+                             "snapfit accuracy measures the exact-rotation product beside it"
+                           : "per frame: phase sum over a precomputed product (translation-only motion, "
+                             "no spectrum rotation)");
+  if (plan.torque)
+    plan.lines.push_back("torque: the derivative of the rendered energy under rotation (no extra fields)");
   std::string outputs = "energy";
   if (plan.force) outputs += ", force";
   if (plan.torque) outputs += ", torque";
   plan.lines.push_back("outputs per query: " + outputs);
   return plan;
+}
+
+void add_grid_warnings(ComputePlan& plan, const Scene& scene, double spacing) {
+  if (!plan.skeletal_density || !(scene.descriptor.sigma < spacing)) return;
+  plan.warnings.push_back("descriptor.sigma " + number(scene.descriptor.sigma) + " is below the grid spacing " +
+                          number(spacing) +
+                          ": the skeletal density's surface layer is under-resolved; a spacing of at most sigma "
+                          "(or a larger sigma, which blurs the fit) resolves it");
 }
 
 }  // namespace snapfit

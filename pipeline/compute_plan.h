@@ -10,13 +10,18 @@ namespace snapfit {
 
 struct ComputePlan {
   bool skeletal_density = true;  // false: winding number (indicator) only
-  bool torque_fields = true;     // the three q * rho2 fields of part 2 and their spectra
   bool rotation = true;          // spectrum rotation per frame (false: translation fast path)
   bool force = true;
   bool torque = true;
-  std::vector<std::string> lines;  // one sentence per decision, with its reason
+  std::vector<std::string> lines;     // one sentence per decision, with its reason
+  std::vector<std::string> warnings;  // settings that will cost accuracy, with what to change
 };
 
 ComputePlan plan_computation(const Scene& scene);
+
+// Warnings that need the grid: a skeletal density narrower than the grid spacing (its
+// surface layer falls between samples, so the sampled field, and every energy from it,
+// misses part of the geometry whatever m').
+void add_grid_warnings(ComputePlan& plan, const Scene& scene, double spacing);
 
 }  // namespace snapfit

@@ -11,8 +11,9 @@
 namespace snapfit {
 namespace {
 
-// 2: each part's sample parity (engine/spectra.h).
-constexpr std::uint32_t kSpectraCacheVersion = 2;
+// 2: each part's sample parity (engine/spectra.h). 3: part 2's deconvolved spectrum and
+// its kernel width in place of the torque moments.
+constexpr std::uint32_t kSpectraCacheVersion = 3;
 constexpr const char* kKind = "pair-spectra";
 
 std::uint64_t field_hash(const DescriptorFields& f) {
@@ -75,12 +76,12 @@ std::string path_for(const std::string& key) {
 
 }  // namespace
 
-std::string spectra_cache_key(const DescriptorFields& part1, const DescriptorFields& part2, bool torque,
+std::string spectra_cache_key(const DescriptorFields& part1, const DescriptorFields& part2,
                               const SpectrumOptions& options) {
   std::ostringstream key;
   key.precision(17);
   key << "fields1=" << hex64(field_hash(part1)) << "|fields2=" << hex64(field_hash(part2))
-      << "|oversampling=" << options.oversampling << "|torque=" << torque;
+      << "|oversampling=" << options.oversampling << "|exact_rotation_width=" << options.exact_rotation_width;
   return key.str();
 }
 
@@ -95,13 +96,13 @@ std::optional<PairSpectra> load_cached_spectra(const std::string& key,
   for (auto& d : s.dims) d = r.get<std::uint64_t>();
   s.spacing = r.get<double>();
   s.length = get_vector(r);
-  s.torque = r.get<std::uint8_t>() != 0;
   for (PartSpectrum* part : {&s.part1, &s.part2}) {
     part->centre = get_vector(r);
     part->half_extent = get_vector(r);
     part->sample_parity = r.get<std::int8_t>();
     part->rho = r.get_array();
-    for (auto& m : part->moments) m = r.get_array();
+    part->deconvolved = r.get_array();
+    part->deconvolved_width = r.get<std::int32_t>();
   }
   const std::size_t count = s.dims[0] * s.dims[1] * s.dims[2];
   if (!r.ok || r.at != payload->size() || s.part1.rho.size() != count || s.part2.rho.size() != count) {
@@ -117,13 +118,13 @@ void save_cached_spectra(const std::string& key, const PairSpectra& s,
   for (auto d : s.dims) w.put<std::uint64_t>(d);
   w.put(s.spacing);
   put_vector(w, s.length);
-  w.put<std::uint8_t>(s.torque ? 1 : 0);
   for (const PartSpectrum* part : {&s.part1, &s.part2}) {
     put_vector(w, part->centre);
     put_vector(w, part->half_extent);
     w.put<std::int8_t>(static_cast<std::int8_t>(part->sample_parity));
     w.put_array(part->rho);
-    for (const auto& m : part->moments) w.put_array(m);
+    w.put_array(part->deconvolved);
+    w.put<std::int32_t>(part->deconvolved_width);
   }
   try {
     write_cache_file(path_for(key), kKind, kSpectraCacheVersion, key, w.bytes.data(), w.bytes.size());

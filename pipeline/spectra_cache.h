@@ -1,7 +1,7 @@
 #pragma once
 // On-disk cache of pair spectra (engine/spectra.h), in the versioned, checksummed,
 // atomically written container of io/cache_file.h, under cache_root()/spectra. The key
-// hashes both affinity fields and their grids, the oversampling and the torque flag.
+// hashes both affinity fields and their grids, the oversampling and the exact-rotation kernel.
 #include <functional>
 #include <optional>
 #include <string>
@@ -10,7 +10,7 @@
 
 namespace snapfit {
 
-std::string spectra_cache_key(const DescriptorFields& part1, const DescriptorFields& part2, bool torque,
+std::string spectra_cache_key(const DescriptorFields& part1, const DescriptorFields& part2,
                               const SpectrumOptions& options);
 
 // Nothing when missing; a stale or corrupt entry is reported through `note` and ignored.

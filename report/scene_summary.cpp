@@ -36,6 +36,7 @@ void print_scene_summary(std::ostream& out, const Scene& scene, const PreparedPa
   if (!scene.trajectory.keyframes.empty()) out << " over " << scene.trajectory.keyframes.back().time_s << " s";
   out << "\nplan:\n";
   for (const std::string& line : plan.lines) out << "  - " << line << "\n";
+  for (const std::string& warning : plan.warnings) out << "warning: " << warning << "\n";
 }
 
 void print_fields_summary(std::ostream& out, const PartFieldsResult& result) {

@@ -16,7 +16,11 @@ std::string variant_name(const QueryVariant& v) {
   name += " energy";
   if (v.force) name += " force";
   if (v.torque) name += " torque";
-  if (!v.translation_only) name += v.interpolation == Interpolation::tricubic ? " tricubic" : " trilinear";
+  if (v.translation_only) return name;
+  if (v.rotation == RotationMethod::exact_product)
+    name += v.product_update == ProductUpdate::background ? " exact-product background" : " exact-product each-query";
+  else
+    name += v.interpolation == Interpolation::tricubic ? " tricubic" : " trilinear";
   return name;
 }
 
@@ -28,8 +32,8 @@ TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, 
   key.driver = device.driver_version;
   key.variant = variant_name(variant);
   std::ostringstream features;
-  features << "fft " << spectra.dims[0] << "x" << spectra.dims[1] << "x" << spectra.dims[2] << " torque_spectra "
-           << spectra.torque << " spacing " << spectra.spacing;
+  features << "fft " << spectra.dims[0] << "x" << spectra.dims[1] << "x" << spectra.dims[2] << " exact_rotation "
+           << spectra.part2.deconvolved_width << " spacing " << spectra.spacing;
   key.scene_features = features.str();
   key.budget_ms = budget_ms;
   key.margin = margin;

@@ -966,7 +966,7 @@ TEST_CASE("descriptors: grid points exactly on the surface give finite values") 
 
 // ================================================================= i. affinity
 
-TEST_CASE("descriptors: affinity is lambda * s by side, and its moments are q * affinity") {
+TEST_CASE("descriptors: affinity is lambda * s by side") {
   const Mesh m = peg_mesh(0.8, 1.6, 8);
   const GridSpec grid = grid_around(m, 10, 0.2);
   DescriptorParams params = density_params(0.5, 0.05);
@@ -983,16 +983,6 @@ TEST_CASE("descriptors: affinity is lambda * s by side, and its moments are q * 
     CHECK(rho[i] == doctest::Approx(expect).epsilon(1e-6));
   }
   CHECK(inside > 0);
-  const Vector3d ref_point(0.3, -0.2, 0.1);
-  const auto moments = affinity_moments(f, ref_point);
-  REQUIRE(moments.size() == 3);
-  for (int a = 0; a < 3; ++a) {
-    REQUIRE(moments[a].size() == grid.count());
-    for (std::size_t i = 0; i < rho.size(); ++i) {
-      const double expect = (point_of(grid, i) - ref_point)[a] * rho[i];
-      CHECK(moments[a][i] == doctest::Approx(expect).epsilon(1e-6).scale(1e-6));
-    }
-  }
   // The indicator kind: the affinity is the indicator itself.
   const DescriptorFields g = compute(m, grid, indicator_params());
   CHECK(g.skeletal_density.empty());

@@ -41,7 +41,7 @@ TEST_CASE("full map: every translation of the map equals a per-pose query there"
   const Eigen::Matrix3d B1 = Eigen::Vector3d(1.5, 1.0, 0.8).asDiagonal();
   const Eigen::Matrix3d B2 = Eigen::Vector3d(3.0, 1.2, 0.7).asDiagonal();
   const GridSpec g1 = cube_grid(m1, 24, h), g2 = cube_grid(m2, 20, h);
-  const PairSpectra spectra = compute_pair_spectra(fft, ctx, g1, gaussian(g1, m1, B1), g2, gaussian(g2, m2, B2), false);
+  const PairSpectra spectra = compute_pair_spectra(fft, ctx, g1, gaussian(g1, m1, B1), g2, gaussian(g2, m2, B2));
   for (const Interpolation interpolation : {Interpolation::trilinear, Interpolation::tricubic}) {
     for (const double degrees : {0.0, 35.0, 170.0}) {
       const Eigen::Matrix3d R =

@@ -62,7 +62,7 @@ TEST_CASE("reference query: all modes equal a brute-force physical-domain sum un
   const GridSpec g1 = grid({10, 10, 8}), g2 = grid({6, 6, 5});
   const auto r1 = random_field(g1, 1), r2 = random_field(g2, 2);
   const FftLibrary fft;
-  const PairSpectra s = compute_pair_spectra(fft, test::test_context(), g1, r1, g2, r2, true);
+  const PairSpectra s = compute_pair_spectra(fft, test::test_context(), g1, r1, g2, r2);
   REQUIRE(s.dims[0] == s.dims[1]);  // so a quarter turn about z maps nodes onto nodes
   struct Case {
     Eigen::Matrix3d R;
@@ -98,7 +98,7 @@ TEST_CASE("reference query: the device kernel's float sums agree with double acc
   const GridSpec g1 = grid({12, 10, 9}), g2 = grid({7, 6, 6});
   const auto r1 = random_field(g1, 3), r2 = random_field(g2, 4);
   const FftLibrary fft;
-  const PairSpectra s = compute_pair_spectra(fft, test::test_context(), g1, r1, g2, r2, true);
+  const PairSpectra s = compute_pair_spectra(fft, test::test_context(), g1, r1, g2, r2);
   auto engine = make_query_engine(test::test_context(), s, QueryVariant{true, true, false, Interpolation::tricubic},
                                   test::test_program_cache());
   const std::vector<std::size_t> order = mode_order(s);

@@ -72,25 +72,38 @@ std::array<double, 8> kernel_order_float_sum(const std::vector<std::array<double
   return total;
 }
 
-// Trilinear interpolation (kernels/spectrum_sample.cl) of a spectrum at fractional
-// index u, periodic, in double.
-Cd sample(const std::vector<Complex>& s, const std::array<std::size_t, 3>& d, const Vector3d& u) {
-  const auto wrap = [](long i, std::size_t n) { return static_cast<std::size_t>(((i % long(n)) + long(n)) % long(n)); };
-  const Vector3d f = u.array().floor();
-  const Vector3d t = u - f;
-  Cd v = 0;
-  for (int c = 0; c < 2; ++c)
-    for (int b = 0; b < 2; ++b)
-      for (int a = 0; a < 2; ++a) {
-        const double w = (a ? t.x() : 1 - t.x()) * (b ? t.y() : 1 - t.y()) * (c ? t.z() : 1 - t.z());
-        const std::size_t k =
-            wrap(long(f.x()) + a, d[0]) + d[0] * (wrap(long(f.y()) + b, d[1]) + d[1] * wrap(long(f.z()) + c, d[2]));
-        v += w * Cd(s[k]);
-      }
-  return v;
+// Catmull-Rom weights along one axis at t in [0, 1) and their derivatives d/dt, for
+// the taps floor(u) - 1 .. floor(u) + 2 (kernels/spectrum_sample.cl, written out again).
+void catmull_rom(double t, double* w, double* dw) {
+  const double t2 = t * t, t3 = t2 * t;
+  w[0] = 0.5 * (-t3 + 2 * t2 - t), dw[0] = 0.5 * (-3 * t2 + 4 * t - 1);
+  w[1] = 0.5 * (3 * t3 - 5 * t2 + 2), dw[1] = 0.5 * (9 * t2 - 10 * t);
+  w[2] = 0.5 * (-3 * t3 + 4 * t2 + t), dw[2] = 0.5 * (-9 * t2 + 8 * t + 1);
+  w[3] = 0.5 * (t3 - t2), dw[3] = 0.5 * (3 * t2 - 2 * t);
 }
 
-// seed 000 eq. 10-12 over the first m' modes, 6-DOF, trilinear, all in double.
+// Tricubic interpolation of a spectrum at fractional index u, periodic, in double: the
+// value in out[0], its gradient in index in out[1..3].
+void sample(const std::vector<Complex>& s, const std::array<std::size_t, 3>& d, const Vector3d& u, Cd* out) {
+  const auto wrap = [](long i, std::size_t n) { return static_cast<std::size_t>(((i % long(n)) + long(n)) % long(n)); };
+  const Vector3d f = u.array().floor();
+  double w[3][4], dw[3][4];
+  for (int a = 0; a < 3; ++a) catmull_rom(u[a] - f[a], w[a], dw[a]);
+  for (int j = 0; j < 4; ++j) out[j] = 0;
+  for (int c = 0; c < 4; ++c)
+    for (int b = 0; b < 4; ++b)
+      for (int a = 0; a < 4; ++a) {
+        const std::size_t k = wrap(long(f.x()) - 1 + a, d[0]) +
+                              d[0] * (wrap(long(f.y()) - 1 + b, d[1]) + d[1] * wrap(long(f.z()) - 1 + c, d[2]));
+        const Cd v(s[k]);
+        out[0] += w[0][a] * w[1][b] * w[2][c] * v;
+        out[1] += dw[0][a] * w[1][b] * w[2][c] * v;
+        out[2] += w[0][a] * dw[1][b] * w[2][c] * v;
+        out[3] += w[0][a] * w[1][b] * dw[2][c] * v;
+      }
+}
+
+// seed 000 eq. 10-12 over the first m' modes, 6-DOF, tricubic, all in double.
 DoubleSums double_sum(const PairSpectra& s, const std::vector<std::size_t>& order, std::size_t modes, const Pose& pose,
                       std::size_t wg, std::size_t max_groups) {
   const auto& d = s.dims;
@@ -109,22 +122,23 @@ DoubleSums double_sum(const PairSpectra& s, const std::vector<std::size_t>& orde
     const Vector3d wp = -(R.transpose() * w);
     const Vector3d u = wp.cwiseProduct(s.length);
     const Cd e = Cd(s.part1.rho[k]) * dw * std::exp(Cd(0, 2 * M_PI * w.dot(tau)));
-    const Cd term = e * sample(s.part2.rho, d, u);
+    Cd v[4];
+    sample(s.part2.rho, d, u, v);
+    const Cd term = e * v[0];
     f += term;
     out.abs_energy += std::abs(term.real());
     const Vector3d fk = -2 * M_PI * term.imag() * w;
     out.force += fk;
-    Vector3d tk = Vector3d::Zero();
-    if (s.torque) {
-      Vector3d im;
-      for (int a = 0; a < 3; ++a) im[a] = (e * sample(s.part2.moments[a], d, u)).imag();
-      tk = -2 * M_PI * wp.cross(im);
-      tq += tk;
-    }
+    // The torque: Re[e (grad S2 x w')] in part 2's frame (kernels/pose_query.cl).
+    const Vector3d g((e * v[1]).real() * s.length.x(), (e * v[2]).real() * s.length.y(),
+                     (e * v[3]).real() * s.length.z());
+    const Vector3d tk = g.cross(wp);
+    tq += tk;
     terms[i] = {term.real(), term.imag(), fk.x(), fk.y(), fk.z(), tk.x(), tk.y(), tk.z()};
   }
   out.energy = -f.real();
-  out.torque = R * tq;
+  const Vector3d arm = R * s.part2.centre;  // the box centre's lever arm, added by the host
+  out.torque = R * tq + arm.cross(out.force);
   // The kernel's records: a conjugate pair w, -w (adjacent in the mode order) is one
   // record, its terms' sum (real parts doubled, Im f zero), as the engine folds them
   // (QueryVariant::fold_conjugate_pairs; both parts' samples are imaginary here).
@@ -142,11 +156,11 @@ DoubleSums double_sum(const PairSpectra& s, const std::vector<std::size_t>& orde
   const std::array<double, 8> fl = kernel_order_float_sum(terms, wg, max_groups);
   out.float_energy = -fl[0];
   out.float_force = Vector3d(fl[2], fl[3], fl[4]);
-  out.float_torque = R * Vector3d(fl[5], fl[6], fl[7]);
+  out.float_torque = R * Vector3d(fl[5], fl[6], fl[7]) + arm.cross(out.float_force);
   const std::array<double, 8> ka = kernel_order_float_sum(terms, wg, max_groups, true);
   out.kahan_energy = -ka[0];
   out.kahan_force = Vector3d(ka[2], ka[3], ka[4]);
-  out.kahan_torque = R * Vector3d(ka[5], ka[6], ka[7]);
+  out.kahan_torque = R * Vector3d(ka[5], ka[6], ka[7]) + arm.cross(out.kahan_force);
   return out;
 }
 
@@ -159,7 +173,7 @@ TEST_CASE(
   const Scene scene = test::small_peg_hole_scene(params);
   const AssemblyPair pair = test::build_small_pair(scene);
   QueryVariant variant;  // 6-DOF, force and torque
-  variant.interpolation = Interpolation::trilinear;
+  variant.interpolation = Interpolation::tricubic;
   auto engine = make_query_engine(test::test_context(), pair.spectra, variant, test::test_program_cache());
   const std::vector<std::size_t> order = mode_order(pair.spectra);
   const std::size_t total = engine->max_modes();
@@ -223,17 +237,15 @@ TEST_CASE(
             << " (|T| at m' <= 32768: " << worst_t_haptic << "); float accumulation alone: E " << worst_acc_e
             << ", |F| " << worst_acc_f << ", |T| " << worst_acc_t << "; Kahan work items: E " << worst_k_e << ", |F| "
             << worst_k_f << ", |T| " << worst_k_t << "\n";
-  // Measured (this machine, PoCL, conjugate pairs folded): engine E 9.0e-5 (free space,
-  // where the sum cancels 2,600-fold), |F| 3.6e-6, |T| 4.0e-3 at all 421,875 modes
-  // (2.3e-5 at m' <= 32,768); the float accumulation alone, in the kernel's order,
-  // accounts for it (E 5.0e-5, |F| 2.8e-6, |T| 4.2e-3). Kahan-compensated work items
-  // (host model in the kernel's order) would cut the worst errors to E 1.2e-5, |F| 1.9e-7,
-  // |T| 3.2e-4: 4x, 15x and 13x (see the table). Before the folding (twice the float
-  // additions): engine E 1.3e-4, |F| 2.8e-6, |T| 6.3e-3.
+  // Measured (this machine, PoCL, tricubic, conjugate pairs folded): engine E 1.8e-4
+  // (free space, where the sum cancels ~1,000-fold), |F| 1.9e-6, |T| 3.2e-5 at every mode
+  // (1.3e-5 at m' <= 32,768); the float accumulation alone, in the kernel's order,
+  // accounts for it (E 1.6e-4, |F| 2.9e-6, |T| 3.7e-5). Kahan-compensated work items
+  // (host model in the kernel's order) would cut it to E 2.2e-5, |F| 3.2e-7, |T| 3.7e-6.
   CHECK(worst_e < 5e-4);
   CHECK(worst_f < 2e-5);
-  CHECK(worst_t < 3e-2);
-  CHECK(worst_t_haptic < 5e-4);
+  CHECK(worst_t < 5e-4);
+  CHECK(worst_t_haptic < 2e-4);
   CHECK(worst_k_e < worst_acc_e);
   CHECK(worst_k_t < 0.1 * worst_acc_t);
 }

@@ -82,7 +82,7 @@ StiffPair stiff_pair(const test::SmallPairParams& params, double stiffness) {
   s.scene.haptics.stiffness_n_per_m = stiffness;
   s.pair = test::build_small_pair(s.scene);
   s.engine = make_query_engine(test::test_context(), s.pair.spectra,
-                               query_variant_for(s.scene, Interpolation::trilinear), test::test_program_cache());
+                               query_variant_for(s.scene, Interpolation::tricubic), test::test_program_cache());
   s.modes = std::min<std::size_t>(2048, s.engine->max_modes());
   s.engine->set_modes(s.modes);
   return s;
@@ -176,12 +176,13 @@ TEST_CASE(
               << " mm/s, last 10 s " << v_last << " mm/s\n";
     // Passive: the total never exceeds its start, ends lower, and no rise above the
     // running minimum exceeds 5% of the energy the run dissipates (the explicit step's
-    // and the trilinear torque's O(dt) error, removed by the controller).
+    // and the float sums' error, removed by the controller).
     CHECK(w_max <= w0);
     CHECK(w_end <= w0);
     CHECK(created <= 0.05 * dissipated);
     // No growth late in the run: the last 50 s never exceed the total at 10 s.
-    CHECK(max_of(w, 10000, w.size()) <= w[10000] + 1e-6 * std::abs(w0));  // float noise of E
+    // Float noise of E: the query's float sums (tests/test_stability_accumulation.cpp)
+    CHECK(max_of(w, 10000, w.size()) <= w[10000] + 1e-5 * std::abs(w0));
     // No oscillation: the part comes to rest.
     CHECK(v_last <= v_first);
     CHECK(v_last < 1e-3);

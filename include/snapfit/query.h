@@ -1,15 +1,16 @@
 #pragma once
 // Per-pose queries (seed 000 eq. 10-12; docs/design.md "Correlation in the Fourier
 // domain"): for part 2 at pose (R, t) relative to part 1, with w' = -R^T w_k,
-//     f(R, t)     = sum_k rho1^(w_k) rho2^(w') exp(2 pi i w_k.t) dw          (score)
+//     f(R, t)     = sum_k rho1^(w_k) rho2^(w') exp(2 pi i w_k.tau) dw,  tau = t + R c2 - c1
 //     df/dt       = sum_k (2 pi i w_k) [same term]
-//     df/dtheta   = R sum_k (2 pi i) (w' x Q2^(w')) rho1^(w_k) exp(2 pi i w_k.t) dw
+//     df/dtheta   = the same sum's derivative under R -> exp(theta [e]x) R: through w'
+//                   (the gradient of rho2^ at w', crossed with w') and through R c2
 // over the m' retained modes (a low-pass ball: the modes with the smallest |w|, in
-// order, so m' changes without recompiling or re-uploading), with rho2^ and Q2^
-// interpolated at w' from the oversampled spectrum. Energy E = -Re f, force
-// F = -dE/dt = Re df/dt, torque T = -dE/dtheta = Re df/dtheta, all in part 1's frame,
-// the torque about part 2's reference point (its frame origin), for a rotation
-// increment applied on the left: R -> exp(theta [e]x) R.
+// order, so m' changes without recompiling or re-uploading), with rho2^ at w' either
+// interpolated from the oversampled spectrum or exact (RotationMethod). Energy E = -Re f,
+// force F = -dE/dt = Re df/dt, torque T = -dE/dtheta = Re df/dtheta, all in part 1's
+// frame, the torque about part 2's reference point (its frame origin): F and T are the
+// derivatives of the E the same query returns.
 #include <Eigen/Core>
 #include <complex>
 #include <cstddef>
@@ -25,10 +26,30 @@ enum class Interpolation {
   tricubic,   // Catmull-Rom, 64 taps per mode
 };
 
+// How a 6-DOF query follows part 2's rotation.
+enum class RotationMethod {
+  // Part 2's stored spectrum interpolated at the rotated frequencies, every retained mode
+  // every frame (seed 000); torque from the gradient of the same interpolant.
+  interpolated,
+  // The pair's product spectrum computed exactly (to ~1e-6) for a rotation R0, with its
+  // rotation derivative, then summed along x-lines like a translation-only query, to
+  // first order in the rotation since R0: far more modes per frame, exact at R0.
+  exact_product,
+};
+
+// When an exact_product engine remakes its product for the current rotation.
+enum class ProductUpdate {
+  each_query,  // before any query whose rotation is not R0: exact at every pose (tens of ms per new rotation)
+  background,  // on a worker thread that follows the poses queried (the haptic loop's: a frame never waits)
+};
+
 struct QueryVariant {
   bool force = true;
-  bool torque = true;             // needs spectra with torque
+  bool torque = true;             // T = -dE/dtheta of the same energy (include/snapfit/query.h)
   bool translation_only = false;  // R fixed at the identity: no interpolation at all
+  // The trilinear slope jumps at the spectrum's nodes, where an aligned pose (R = I)
+  // puts every rotated frequency: its torque there is a one-sided slope. Catmull-Rom's
+  // slope is continuous (what snapfit run and the pipeline's query_variant_for use).
   Interpolation interpolation = Interpolation::trilinear;
   // Store the 6-DOF spectrum cube as half floats (scaled per spectrum): half the bytes
   // per tap (a smaller cache footprint at large m'). Adds about 1e-5 relative to the
@@ -41,6 +62,11 @@ struct QueryVariant {
   // result (Re f, F, T; Im f is 0 for every complete pair). False sums every mode (for
   // checks).
   bool fold_conjugate_pairs = true;
+  RotationMethod rotation = RotationMethod::interpolated;    // 6-DOF only
+  ProductUpdate product_update = ProductUpdate::each_query;  // exact_product only
+  // exact_product: the most modes an engine can sum, its max_modes() (0: 2^19 or every
+  // mode, whichever is fewer). A product costs time in proportion to the m' in use.
+  std::size_t product_modes = 0;
 };
 
 enum QueryFlags : std::uint32_t {

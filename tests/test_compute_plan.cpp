@@ -1,0 +1,38 @@
+// The compute plan (pipeline/compute_plan.h) on shipped scenes: what it decides, and the
+// under-resolution warning when the skeletal density is narrower than the grid spacing.
+#include <doctest/doctest.h>
+
+#include "pipeline/assembly_pair.h"
+
+namespace snapfit {
+
+TEST_CASE("compute plan: a skeletal density narrower than the grid spacing is warned about, naming both") {
+  Scene scene = load_scene(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/default.json");
+  REQUIRE(scene.descriptor.kind == DescriptorKind::skeletal_density);
+  scene.grid.resolution.reset();
+  scene.grid.spacing = 2 * scene.descriptor.sigma;
+  const AssemblyPair coarse = prepare_assembly_pair(scene);
+  REQUIRE(coarse.plan.warnings.size() == 1);
+  CHECK(coarse.plan.warnings[0].find("descriptor.sigma") != std::string::npos);
+  CHECK(coarse.plan.warnings[0].find("grid spacing") != std::string::npos);
+
+  scene.grid.spacing = scene.descriptor.sigma;  // resolved: no warning
+  CHECK(prepare_assembly_pair(scene).plan.warnings.empty());
+
+  scene.descriptor.kind = DescriptorKind::indicator;  // no skeletal density at all
+  scene.grid.spacing = 2 * scene.descriptor.sigma;
+  CHECK(prepare_assembly_pair(scene).plan.warnings.empty());
+}
+
+TEST_CASE("compute plan: 6-DOF scenes get part 2's deconvolved spectrum and a torque, translation-only ones neither") {
+  const Scene six = load_scene(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/default.json");
+  const ComputePlan p6 = plan_computation(six);
+  CHECK(p6.rotation);
+  CHECK(p6.torque);
+  const Scene line = load_scene(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/peg_hole_translation.json");
+  const ComputePlan pt = plan_computation(line);
+  CHECK_FALSE(pt.rotation);
+  CHECK_FALSE(pt.torque);
+}
+
+}  // namespace snapfit
