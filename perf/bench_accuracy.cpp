@@ -1,17 +1,18 @@
-// Error against run time: for a scene, a reference energy,
-// force and torque at poses along its trajectory, computed without truncation in double
-// precision (engine/reference_query.h: every mode of the most oversampled spectra,
-// tricubic, double accumulation; validated exactly against a brute-force
-// physical-domain sum by tests/test_reference_query.cpp), then for every setting the
-// engine offers — m', interpolation (trilinear, tricubic), oversampling (zero padding
-// 1.5, 2, 3), float (the OpenCL kernel) or double (the host reference at the same m') —
-// the relative error of E, F and T against the time per query. Relative error over the
-// poses: sqrt(sum |x - ref|^2) / sqrt(sum |ref|^2). Charts: error against time (log-log)
-// per quantity with the Pareto front and the point the auto-tuner picked for the scene's
-// frame budget on this device (its tuning file, or a fresh tuning).
+// Error against run time: for a scene, a reference energy, force and torque at poses
+// along its trajectory that is exact in rotation (every mode of the exact-rotation
+// product made for each pose's rotation, scheduler/accuracy.h; checked against a double
+// sum over the DTFT of part 2 by tests/test_exact_rotation.cpp), then for every setting
+// the engine offers — m', interpolation (trilinear, tricubic) or the exact product,
+// oversampling (zero padding 1.5, 2, 3), float (the OpenCL kernel) or double (the host
+// reference evaluator at the same m') — the relative error of E, F and T against the time
+// per query (for the exact product: the frame's line sums, the product made once).
+// Relative error over the poses: sqrt(sum |x - ref|^2) / sqrt(sum |ref|^2). Charts: error
+// against time (log-log) per quantity with the Pareto front and the point the auto-tuner
+// picked for the scene's frame budget on this device. Last, `snapfit accuracy`'s summary
+// (measure_accuracy): each strategy tuned for the budget, its frame p50/p99 and errors.
 //
 //   ./build/perf/bench_accuracy [--scene scenes/default.json] [--quick] [--out DIR]
-// --quick: oversampling 2 only (reference included), 3 poses, m' <= 16384, fewer repeats.
+// --quick: oversampling 2 only, 3 poses, m' <= 16384, fewer repeats.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -29,6 +30,7 @@
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
 #include "report/plot.h"
+#include "scheduler/accuracy.h"
 #include "scheduler/engine_tuning.h"
 #include "scheduler/trajectory.h"
 
@@ -98,8 +100,8 @@ int main(int argc, char** argv) try {
   const FftLibrary fft;
   const ComputeContext ctx = make_compute_context(device);
   const AssemblyPair pair = build_assembly_pair(scene, ctx, fft);
-  const bool torque = pair.spectra.torque;
   const QueryVariant scene_variant = query_variant_for(scene, Interpolation::tricubic);
+  const bool torque = scene_variant.torque;
 
   // Poses: along the trajectory, every 0.5 s (3 of them with --quick), all in the grid.
   std::vector<Pose> poses;
@@ -108,6 +110,8 @@ int main(int argc, char** argv) try {
     poses.push_back(trajectory_pose(t, s));
   const std::vector<double> oversamplings = quick ? std::vector<double>{2.0} : std::vector<double>{1.5, 2.0, 3.0};
   const std::size_t max_ladder = quick ? 16384 : 262144;
+  // The exact product's frame only sums lines: its ladder goes 4x further.
+  const std::size_t exact_ladder = 4 * max_ladder;
   const int repeats = quick ? 30 : 200;
 
   // Spectra per oversampling (pipeline stage 3, from the spectra cache when present).
@@ -124,21 +128,32 @@ int main(int argc, char** argv) try {
     spectra.emplace(os, std::move(at.spectra));
   }
 
-  // The reference: the most oversampled spectra, every mode, tricubic, double.
-  const PairSpectra& ref_spectra = spectra.at(oversamplings.back());
-  const std::vector<std::size_t> ref_order = mode_order(ref_spectra);
+  // The reference, exact in rotation: every mode of the exact-rotation product, made for
+  // each pose's own rotation (scheduler/accuracy.h; tests/test_exact_rotation.cpp).
+  std::vector<QueryResult> reference;
+  const auto ref_start = std::chrono::steady_clock::now();
+  {
+    QueryVariant v = scene_variant;
+    if (!v.translation_only) {
+      v.rotation = RotationMethod::exact_product;
+      v.product_update = ProductUpdate::each_query;
+      v.product_modes = pair.spectra.part1.rho.size();
+    }
+    auto engine = make_query_engine(ctx, pair.spectra, v);
+    engine->set_modes(engine->max_modes());
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      reference.push_back(engine->query(poses[i]));
+      if (reference.back().flags) throw Error("reference pose " + std::to_string(i) + " is outside the grid");
+      std::cout << "reference " << i + 1 << "/" << poses.size() << ": E = " << reference.back().energy << " ("
+                << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s, "
+                << reference.back().modes << " modes)\n";
+    }
+  }
+  const double ref_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ref_start).count();
   ReferenceOptions ref_options;
   ref_options.force = scene.outputs.force;
   ref_options.torque = torque;
-  std::vector<QueryResult> reference;
-  const auto ref_start = std::chrono::steady_clock::now();
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    reference.push_back(reference_query(ref_spectra, poses[i], ref_options, &ref_order));
-    if (reference.back().flags) throw Error("reference pose " + std::to_string(i) + " is outside the grid");
-    std::cout << "reference " << i + 1 << "/" << poses.size() << ": E = " << reference.back().energy << " ("
-              << reference.back().seconds << " s, " << reference.back().modes << " modes)\n";
-  }
-  const double ref_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ref_start).count();
 
   // The auto-tuner's point for the scene's budget (tricubic, oversampling 2, float).
   auto tuned_engine = make_query_engine(ctx, pair.spectra, scene_variant);
@@ -155,14 +170,23 @@ int main(int argc, char** argv) try {
   for (double os : oversamplings) {
     const PairSpectra& s = spectra.at(os);
     const std::vector<std::size_t> order = mode_order(s);
-    for (Interpolation scheme : {Interpolation::trilinear, Interpolation::tricubic}) {
-      const std::string scheme_name = scheme == Interpolation::tricubic ? "tricubic" : "trilinear";
+    for (int strategy = 0; strategy < 3; ++strategy) {
+      const bool exact = strategy == 2;
+      if (exact && (scene_variant.translation_only || s.part2.deconvolved_width == 0)) continue;
+      const Interpolation scheme = strategy == 0 ? Interpolation::trilinear : Interpolation::tricubic;
+      const std::string scheme_name = exact ? "exact-product" : strategy == 0 ? "trilinear" : "tricubic";
       QueryVariant variant = scene_variant;
       variant.interpolation = scheme;
+      if (exact) {
+        variant.rotation = RotationMethod::exact_product;
+        variant.product_update = ProductUpdate::each_query;
+        variant.product_modes = exact_ladder;
+      }
       auto engine = make_query_engine(ctx, s, variant);
       std::vector<std::size_t> ladder;
-      for (std::size_t m = 1024; m <= std::min(max_ladder, engine->max_modes()); m *= 2) ladder.push_back(m);
-      if (os == 2.0 && scheme == Interpolation::tricubic) {  // the tuned point, measured like the others
+      for (std::size_t m = 1024; m <= std::min(exact ? exact_ladder : max_ladder, engine->max_modes()); m *= 2)
+        ladder.push_back(m);
+      if (os == 2.0 && strategy == 1) {  // the tuned point, measured like the others
         ladder.push_back(tuned.result.chosen_modes);
         std::sort(ladder.begin(), ladder.end());
         ladder.erase(std::unique(ladder.begin(), ladder.end()), ladder.end());
@@ -181,13 +205,21 @@ int main(int argc, char** argv) try {
         }
         std::vector<double> times;
         for (int k = 0; k < repeats; ++k) {
+          // The exact product: one pose, so the product is made once and the frame's line
+          // sums are timed (what a background product leaves to the frame).
+          const Pose& timed = poses[exact ? 0 : k % poses.size()];
           const auto t0 = std::chrono::steady_clock::now();
-          engine->query(poses[k % poses.size()]);
+          engine->query(timed);
           times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         }
         f.ms = quantile(times, 0.5);
         f.err_energy = fe.rel(0), f.err_force = fe.rel(1), f.err_torque = fe.rel(2);
         if (!f.flagged) rows.push_back(f);
+        if (exact) {
+          std::printf("os %.1f %-13s m' %7zu  float %8.3f ms  E %.2e F %.2e T %.2e\n", os, scheme_name.c_str(), m, f.ms,
+                      f.err_energy, f.err_force, f.err_torque);
+          continue;
+        }
         // double: the host reference evaluator at the same m' (skipped where it is slow).
         Row d{os, scheme_name, "double", m};
         ErrorSums de;
@@ -285,17 +317,40 @@ int main(int argc, char** argv) try {
     c.width = 1000, c.height = 650;
     write_chart_png((fs::path(out_dir) / (std::string("error_") + name + ".png")).string(), c);
   }
+  // What the budget buys (snapfit accuracy): each strategy tuned for it and measured.
+  AccuracyOptions at_options;
+  at_options.budget_ms = scene.frame_budget_ms;
+  at_options.poses = quick ? 3 : 24;
+  at_options.repetitions = quick ? 100 : 400;
+  const AccuracyReport budget_report = measure_accuracy(ctx, scene, pair.spectra, at_options);
+  nlohmann::json at_budget = nlohmann::json::array();
+  std::cout << "at the " << scene.frame_budget_ms << " ms budget on " << device.info.name << " (" << budget_report.poses
+            << " poses):\n";
+  for (const StrategyAccuracy& a : budget_report.strategies) {
+    std::printf("  %-50s m' %7zu  p50 %.3f ms  p99 %.3f ms  E %.2e F %.2e T %.2e%s\n", a.name.c_str(), a.modes,
+                a.frame_ms_p50, a.frame_ms_p99, a.energy_error, a.force_error, a.torque_error,
+                a.fits ? "" : "  (does not fit)");
+    at_budget.push_back({{"strategy", a.name},
+                         {"modes", a.modes},
+                         {"fits_budget", a.fits},
+                         {"frame_ms_p50", a.frame_ms_p50},
+                         {"frame_ms_p99", a.frame_ms_p99},
+                         {"energy_error", a.energy_error},
+                         {"force_error", a.force_error},
+                         {"torque_error", a.torque_error},
+                         {"product_ms", a.product_ms}});
+  }
   const nlohmann::json report = {{"command", bench::command_line(argc, argv)},
                                  {"date", bench::now_iso()},
                                  {"device", device.info.name},
                                  {"scene", scene_path},
                                  {"poses", poses.size()},
                                  {"reference",
-                                  {{"oversampling", oversamplings.back()},
-                                   {"interpolation", "tricubic"},
-                                   {"precision", "double"},
+                                  {{"method", "exact-rotation product, every mode, made for each pose's rotation"},
+                                   {"oversampling", 2.0},
                                    {"modes", reference.front().modes},
                                    {"seconds_total", ref_seconds}}},
+                                 {"at_budget", at_budget},
                                  {"tuned_modes", tuned.result.chosen_modes},
                                  {"rows", jrows},
                                  {"outside_alias_free_box", flagged_settings},

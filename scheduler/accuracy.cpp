@@ -1,0 +1,152 @@
+#include "scheduler/accuracy.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/quantile.h"
+#include "engine/query_engine.h"
+#include "scheduler/engine_tuning.h"
+#include "scheduler/trajectory.h"
+#include "snapfit/error.h"
+
+namespace snapfit {
+namespace {
+
+struct ErrorSums {
+  double d[3] = {0, 0, 0}, r[3] = {0, 0, 0};
+  void add(const QueryResult& x, const QueryResult& ref) {
+    d[0] += std::pow(x.energy - ref.energy, 2), r[0] += ref.energy * ref.energy;
+    d[1] += (x.force - ref.force).squaredNorm(), r[1] += ref.force.squaredNorm();
+    d[2] += (x.torque - ref.torque).squaredNorm(), r[2] += ref.torque.squaredNorm();
+  }
+  double relative(int i) const { return r[i] > 0 ? std::sqrt(d[i] / r[i]) : 0; }
+};
+
+QueryVariant exact_product(const QueryVariant& base, ProductUpdate update, std::size_t product_modes) {
+  QueryVariant v = base;
+  v.rotation = RotationMethod::exact_product;
+  v.product_update = update;
+  v.product_modes = product_modes;
+  return v;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+std::vector<Pose> accuracy_poses(const Scene& scene, std::size_t count) {
+  const auto& k = scene.trajectory.keyframes;
+  if (k.empty() || count == 0) return {scene.part2.pose};
+  std::vector<Pose> poses;
+  const double t0 = k.front().time_s, t1 = k.back().time_s;
+  for (std::size_t i = 0; i < count; ++i)
+    poses.push_back(
+        trajectory_pose(scene.trajectory, count == 1 ? t1 : t0 + (t1 - t0) * double(i) / double(count - 1)));
+  return poses;
+}
+
+AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, const PairSpectra& spectra,
+                                const AccuracyOptions& options) {
+  const auto note = [&](const std::string& m) {
+    if (options.note) options.note(m);
+  };
+  const auto progress = [&](const std::string& stage, std::uint64_t done, std::uint64_t total) {
+    if (options.progress) options.progress(stage, done, total);
+  };
+  const bool rotation = scene.motion != Motion::translation;
+  if (rotation && spectra.part2.deconvolved_width == 0)
+    throw Error(
+        "accuracy: the spectra have no deconvolved part 2, which the exact-rotation reference needs "
+        "(SpectrumOptions::exact_rotation_width > 0 and oversampling >= 2)");
+  QueryVariant base;
+  base.force = true;
+  base.torque = rotation && scene.outputs.torque;
+  base.translation_only = !rotation;
+  base.interpolation = Interpolation::tricubic;
+
+  AccuracyReport report;
+  const std::vector<Pose> poses = accuracy_poses(scene, options.poses);
+  report.poses = poses.size();
+
+  // The reference: every mode; for 6-DOF the product made for each pose's rotation.
+  const auto reference_start = std::chrono::steady_clock::now();
+  std::vector<QueryResult> reference;
+  {
+    const QueryVariant v = rotation ? exact_product(base, ProductUpdate::each_query, spectra.part1.rho.size()) : base;
+    auto engine = make_query_engine(ctx, spectra, v);
+    engine->set_modes(engine->max_modes());
+    report.reference_modes = engine->modes();
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      reference.push_back(engine->query(poses[i]));
+      progress("reference", i + 1, poses.size());
+    }
+  }
+  report.reference_seconds = seconds_since(reference_start);
+
+  std::vector<QueryVariant> strategies = {base};
+  if (rotation) strategies.push_back(exact_product(base, ProductUpdate::background, 0));
+  const std::vector<Pose> timing_poses = tuning_poses(scene);
+  for (const QueryVariant& timed : strategies) {
+    StrategyAccuracy s;
+    s.variant = timed;
+    s.name = variant_name(timed);
+    auto engine = make_query_engine(ctx, spectra, timed);
+    TuneOptions tune;
+    tune.repetitions = options.repetitions;
+    tune.progress = [&](std::uint64_t done, std::uint64_t total) { progress("tuning " + s.name, done, total); };
+    const TuningKey key =
+        tuning_key_for(ctx.device.info, timed, spectra, options.budget_ms, options.margin, scene.loop_rate_hz);
+    const EngineTuning tuned = tune_engine(*engine, key, timing_poses, tune, options.retune, note);
+    s.modes = tuned.result.chosen_modes;
+    s.fits = tuned.result.fits;
+    // The frame time at the chosen m', paced as the loop paces it.
+    const std::vector<double> times =
+        engine_query_timer(*engine, timing_poses, scene.loop_rate_hz)(s.modes, options.repetitions);
+    s.frame_ms_p50 = quantile(times, 0.5);
+    s.frame_ms_p99 = quantile(times, 0.99);
+
+    // Errors: the interpolated sum as timed; the exact product made for each pose.
+    std::unique_ptr<QueryEngine> measured;
+    if (timed.rotation == RotationMethod::exact_product) {
+      engine.reset();
+      measured = make_query_engine(ctx, spectra, exact_product(base, ProductUpdate::each_query, s.modes));
+      measured->set_modes(s.modes);
+      // One product at m': the query at a rotation not yet made, less a query at the same.
+      Pose turned = poses.front();
+      turned.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(1e-3, Eigen::Vector3d::UnitZ())) * turned.rotation;
+      measured->query(poses.front());
+      const auto t0 = std::chrono::steady_clock::now();
+      measured->query(turned);
+      const double with_product = seconds_since(t0);
+      const auto t1 = std::chrono::steady_clock::now();
+      measured->query(turned);
+      s.product_ms = 1e3 * std::max(0.0, with_product - seconds_since(t1));
+    } else {
+      measured = std::move(engine);
+      measured->set_modes(s.modes);
+    }
+    ErrorSums sums;
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      const QueryResult r = measured->query(poses[i]);
+      if (r.flags != query_ok || reference[i].flags != query_ok) continue;
+      sums.add(r, reference[i]);
+    }
+    s.energy_error = sums.relative(0);
+    s.force_error = sums.relative(1);
+    s.torque_error = sums.relative(2);
+    report.strategies.push_back(s);
+  }
+
+  report.loop = 0;
+  report.best = 0;
+  const auto key_error = [&](const StrategyAccuracy& s) { return base.torque ? s.torque_error : s.energy_error; };
+  for (std::size_t i = 1; i < report.strategies.size(); ++i) {
+    const StrategyAccuracy &a = report.strategies[i], &b = report.strategies[report.best];
+    if ((a.fits && !b.fits) || (a.fits == b.fits && key_error(a) < key_error(b))) report.best = i;
+  }
+  return report;
+}
+
+}  // namespace snapfit

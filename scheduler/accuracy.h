@@ -1,0 +1,67 @@
+#pragma once
+// What a frame budget buys for a scene (`snapfit accuracy`, perf/bench_accuracy): each
+// query strategy tuned for the budget on a device (scheduler/engine_tuning.h), its
+// per-frame time, and its error against a reference that is exact in rotation: every
+// mode of the exact-rotation product (engine/rotated_product_query.h), made for each
+// pose's own rotation, at poses along the scene's trajectory. The reference equals a
+// double-precision sum over the DTFT of part 2's samples (tests/test_exact_rotation.cpp)
+// and, at lattice poses, the direct sum over the meshes (tests/test_direct_reference.cpp).
+//
+// Error of a quantity x over the poses: sqrt(sum |x - x_ref|^2) / sqrt(sum |x_ref|^2).
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engine/compute_context.h"
+#include "engine/spectra.h"
+#include "scheduler/auto_tune.h"
+#include "snapfit/query.h"
+#include "snapfit/scene.h"
+
+namespace snapfit {
+
+struct AccuracyOptions {
+  double budget_ms = 1.0;
+  double margin = 0.25;    // TuneOptions::margin
+  std::size_t poses = 24;  // reference poses, evenly in time along the trajectory
+  bool retune = false;     // measure even when the tuning file matches
+  std::size_t repetitions = 400;
+  std::function<void(const std::string& stage, std::uint64_t done, std::uint64_t total)> progress;
+  std::function<void(const std::string&)> note;
+};
+
+struct StrategyAccuracy {
+  std::string name;  // variant_name(): "6dof energy force torque tricubic", ...
+  QueryVariant variant;
+  std::size_t modes = 0;  // m' tuned for the budget
+  bool fits = false;      // its p99 meets the budget with the margin
+  double frame_ms_p50 = 0, frame_ms_p99 = 0;
+  double energy_error = 0, force_error = 0, torque_error = 0;
+  // exact_product only: the time to make one product at `modes` (how far behind the
+  // current rotation the background product can be); the errors above are with the
+  // product made for each pose's rotation (a part at rest).
+  double product_ms = 0;
+};
+
+struct AccuracyReport {
+  std::size_t poses = 0;
+  std::size_t reference_modes = 0;
+  double reference_seconds = 0;
+  std::vector<StrategyAccuracy> strategies;
+  std::size_t loop = 0;  // the strategy snapfit run's loop uses (tricubic interpolation)
+  std::size_t best = 0;  // the lowest torque error (else energy error) among those that fit
+};
+
+// The poses the reference is computed at: the scene's trajectory at `count` evenly spaced
+// times (both ends included), else part 2's scene pose.
+std::vector<Pose> accuracy_poses(const Scene& scene, std::size_t count);
+
+// Tunes and measures each strategy the scene allows on ctx's device: 6-DOF scenes the
+// interpolated tricubic sum and the exact product with background updates; translation-
+// only scenes the translation lines. Throws snapfit::Error when the spectra cannot carry
+// a strategy's reference (no deconvolved spectrum for a 6-DOF scene) or the device fails.
+AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, const PairSpectra& spectra,
+                                const AccuracyOptions& options);
+
+}  // namespace snapfit
