@@ -107,7 +107,7 @@ TEST_CASE("haptic loop: an overrun is a miss, holds the last wrench and is not c
   CHECK(r.mode_changes.empty());  // one miss is not a repeat
 }
 
-TEST_CASE("haptic loop: repeated misses step m' down at once; headroom steps it back up, one level at a time") {
+TEST_CASE("haptic loop: repeated misses step m' down at once, and headroom steps it back up, one level at a time") {
   ManualClock clock;
   FixedDevice device;
   CostedEvaluator engine{&clock};

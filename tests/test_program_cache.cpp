@@ -108,7 +108,7 @@ TEST_CASE("program cache: an entry from another key at the same path is stale") 
   CHECK(f.notes[0].find("stale") != std::string::npos);
 }
 
-TEST_CASE("program cache: an unwritable cache folder is a note; the program still builds") {
+TEST_CASE("program cache: an unwritable cache folder is a note, and the program still builds") {
   CacheFixture f;
   test::write_text(f.dir.file("programs"), "a file where the folder should be");
   const BuiltProgram built = f.build(kOptions);

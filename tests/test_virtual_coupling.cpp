@@ -110,7 +110,7 @@ TEST_CASE("virtual coupling: rotations between poses take the short way and inve
   CHECK_THROWS_AS(make_coupling(1e-3, 0.05, 1e-6, NAN, 0.05, 1.0), Error);
 }
 
-TEST_CASE("device limits: wrenches are scaled to the limits keeping their direction; NaN becomes zero") {
+TEST_CASE("device limits: wrenches are scaled to the limits keeping their direction, and NaN becomes zero") {
   const DeviceLimits limits{3.0, 0.1};
   Wrench w{Vector3d(0, 4, 3), Vector3d(0.05, 0, 0)};
   const Wrench c = clamp_to_limits(w, limits);
