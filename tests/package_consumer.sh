@@ -39,4 +39,10 @@ if find "$work/prefix/include" -name '*.h' | grep -v '/snapfit/' | grep -q .; th
   echo "package_consumer: private headers were installed" >&2
   exit 1
 fi
+# Private dependencies (OpenCASCADE, Assimp, OpenCL, ...) stay out of the package's
+# requirements: a consumer needs Eigen only.
+if grep -E -l 'TK[A-Z][A-Za-z0-9]+|OpenCASCADE|opencascade|assimp|OpenCL' "$work"/prefix/lib*/cmake/snapfit/*.cmake; then
+  echo "package_consumer: the installed CMake package names a private dependency" >&2
+  exit 1
+fi
 echo "package_consumer: ok"
