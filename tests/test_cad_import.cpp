@@ -2,14 +2,11 @@
 // time (tests/cad_fixtures.h) against the procedural parts of the same geometry, the
 // file's units, solids and names, bad files, the import child, and `snapfit mesh-info`.
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <doctest/doctest.h>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <sys/wait.h>
 #include <vector>
 
 #include "io/cad_load.h"
@@ -26,36 +23,23 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr double kPi = 3.14159265358979323846;
+using test::error_of;
 
-// The default scene's parts (scenes/default.json), with `segments` for the N-gons.
-ProceduralPartSpec peg_spec(int segments = 64) {
-  return {"peg", {{"radius", 5}, {"length", 30}, {"chamfer", 0}, {"segments", segments}}, {}};
+// The default scene's parts (scenes/default.json: a peg of radius 5 and length 30, a
+// 30 mm block with a hole 20 deep and a 0.5 mm countersink), with `segments` for the N-gons.
+ProceduralPartSpec default_part(int part, int segments) {
+  const Scene scene = load_scene(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/default.json");
+  ProceduralPartSpec spec = *(part == 1 ? scene.part1 : scene.part2).procedural;
+  spec.numbers["segments"] = segments;
+  return spec;
 }
-ProceduralPartSpec block_spec(int segments = 64) {
-  return {"hole_block",
-          {{"peg_radius", 5},
-           {"clearance", 0},
-           {"hole_depth", 20},
-           {"width", 30},
-           {"height", 30},
-           {"chamfer", 0.5},
-           {"segments", segments}},
-          {}};
-}
+ProceduralPartSpec peg_spec(int segments = 64) { return default_part(2, segments); }
+ProceduralPartSpec block_spec(int segments = 64) { return default_part(1, segments); }
 
 CadImportOptions with_deflection(double deflection) {
   CadImportOptions o;
   o.linear_deflection = deflection;
   return o;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 // Largest distance from the mesh's vertices and edge midpoints to `surface`, and from
