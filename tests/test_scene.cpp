@@ -524,7 +524,7 @@ TEST_CASE("scene: mesh unit conversion") {
   CHECK_THROWS_AS(metres_per_unit("MM"), Error);
 }
 
-TEST_CASE("scene: CAD parts take their units from the file; their cad fields are checked and round-trip") {
+TEST_CASE("scene: CAD parts take their units from the file, and their cad fields are checked and round-trip") {
   TempDir dir("cad");
   write_text(dir.path / "parts" / "peg.STEP", "");  // parse_scene only needs the file to exist
   write_text(dir.path / "parts" / "block.igs", "");
