@@ -1,7 +1,11 @@
-// `snapfit mesh-info FILE`: load a mesh through Assimp and print its validation report.
+// `snapfit mesh-info FILE`: load a mesh through Assimp, or tessellate a STEP or IGES
+// file through OpenCASCADE, and print its validation report (and the CAD facts).
 #include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cli/commands.h"
+#include "io/cad_load.h"
 #include "io/mesh_load.h"
 #include "mesh/mesh_report.h"
 #include "snapfit/error.h"
@@ -9,28 +13,78 @@
 namespace snapfit::cli {
 namespace {
 
+// Points of the grid over the solid that the default deflection is tied to when neither
+// --deflection nor --spacing is given: about the shipped scenes' grids.
+constexpr int kDefaultResolution = 64;
+
 struct MeshInfoOptions {
   std::string file;
   double scale = 1.0;
   bool json = false;
+  // STEP and IGES only
+  std::string units = "mm";
+  std::string solid;
+  std::optional<double> deflection;
+  std::optional<double> spacing;
+  int resolution = kDefaultResolution;
+  double angular_deflection_deg = kDefaultAngularDeflectionDeg;
 };
+
+void print(const MeshInfoOptions& opt, const Mesh& mesh, const std::optional<CadFacts>& cad) {
+  const MeshReport report = validate_mesh(mesh);
+  if (opt.json) {
+    nlohmann::json j = nlohmann::json::parse(mesh_report_json(report));
+    if (cad) j["cad"] = nlohmann::json::parse(cad_facts_json(*cad));
+    std::cout << j.dump() << "\n";
+  } else {
+    std::cout << opt.file << "\n" << format_mesh_report(report);
+    if (cad) std::cout << format_cad_facts(*cad);
+  }
+}
 
 }  // namespace
 
 void add_mesh_info_command(CLI::App& app) {
   auto opt = std::make_shared<MeshInfoOptions>();
-  CLI::App* cmd =
-      app.add_subcommand("mesh-info", "Load a mesh (any format Assimp reads) and print a validation report");
-  cmd->add_option("file", opt->file, "Mesh file (STL, OBJ, PLY, glTF, OFF, ...)")->required();
+  CLI::App* cmd = app.add_subcommand(
+      "mesh-info", "Load a mesh (any format Assimp reads, or STEP/IGES through OpenCASCADE) and print a report");
+  cmd->add_option("file", opt->file, "Mesh file (STL, OBJ, PLY, glTF, OFF, ..., STEP, IGES)")->required();
   cmd->add_option("--scale", opt->scale, "Multiply every coordinate by this (file units -> your units)");
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
+  const char* group = "STEP and IGES files";
+  cmd->add_option("--units", opt->units, "Length unit to report in (the file's unit is converted): um mm cm m km in")
+      ->group(group);
+  cmd->add_option("--solid", opt->solid, "The solid to tessellate, for a file with several")->group(group);
+  cmd->add_option("--deflection", opt->deflection, "Linear deflection in --units (default: the grid spacing / 40)")
+      ->group(group);
+  cmd->add_option("--spacing", opt->spacing, "Grid spacing the default deflection is tied to, in --units")
+      ->group(group);
+  cmd->add_option("--resolution", opt->resolution,
+                  "Without --spacing: the spacing of a grid of this many points along the solid's longest side")
+      ->group(group);
+  cmd->add_option("--angular-deflection", opt->angular_deflection_deg, "Angular deflection in degrees")->group(group);
   cmd->callback([opt] {
-    const MeshReport report = validate_mesh(load_mesh(opt->file, opt->scale));
-    if (opt->json) {
-      std::cout << mesh_report_json(report) << "\n";
-    } else {
-      std::cout << opt->file << "\n" << format_mesh_report(report);
+    if (!is_cad_file(opt->file)) {
+      print(*opt, load_mesh(opt->file, opt->scale), std::nullopt);
+      return;
     }
+    CadImportOptions options;
+    try {
+      options.metres_per_unit = metres_per_unit(opt->units);
+    } catch (const Error& e) {
+      throw Error(std::string("--units: ") + e.what());
+    }
+    options.scale = opt->scale;
+    if (!opt->solid.empty()) options.solid = opt->solid;
+    options.linear_deflection = opt->deflection;
+    options.angular_deflection_deg = opt->angular_deflection_deg;
+    if (opt->spacing) {
+      options.grid.spacing = *opt->spacing;
+    } else {
+      options.grid.resolution = opt->resolution;  // load_cad_mesh checks it
+    }
+    const CadMesh cad = load_cad_mesh(opt->file, options);
+    print(*opt, cad.mesh, cad.facts);
   });
 }
 

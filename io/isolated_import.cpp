@@ -93,6 +93,13 @@ bool lower_limit(int resource, rlim_t soft, rlim_t hard) {
   // A crash ends the child; the parent's handlers for these (a test framework's, say)
   // are not for it.
   for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGXCPU}) ::signal(sig, SIG_DFL);
+  // The child's stdout is the parent's: whatever the work flushes there (a library's
+  // messages, or the copy of the parent's unwritten stdout buffer that fork made) would
+  // land in the parent's output (a query's JSON lines). It goes to /dev/null instead.
+  if (const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC); null >= 0) {
+    ::dup2(null, STDOUT_FILENO);
+    ::close(null);
+  }
   char tag = kTagOk;
   std::string reply;
   try {

@@ -2,11 +2,12 @@
 // Runs a piece of work in a forked child process under an address-space and a CPU-time
 // limit and returns the bytes it produced, so that a library that runs away (allocates
 // gigabytes, crashes, loops) on a malformed file cannot take the caller with it (as
-// Assimp does on some fuzzed .x and .dae files). io/mesh_load.cpp runs Assimp this way.
+// Assimp does on some fuzzed .x and .dae files). io/import_child.h runs the importers
+// (Assimp, OpenCASCADE) this way.
 //
 // The child is a fork of a process that may have other threads (TBB, OpenCL): the work
 // must not start threads or rely on locks another thread may hold. glibc's malloc is
-// safe to use after fork.
+// safe to use after fork. The child's stdout is /dev/null (its reply goes through a pipe).
 #include <cstdint>
 #include <functional>
 #include <string>

@@ -10,21 +10,16 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
-#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <new>
-#include <optional>
 #include <sstream>
-#include <system_error>
-#include <unistd.h>
 #include <utility>
 #include <vector>
 
-#include "io/isolated_import.h"
+#include "io/import_child.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -222,21 +217,10 @@ void check_x_uncompressed(const std::string& path) {
                    "') are not supported; save it as text or binary .x");
 }
 
-// Missing, not a regular file, empty or unreadable: say so before Assimp guesses.
-// Returns the file's size.
+// Missing, empty or unreadable files (check_import_file), and files Debian's Assimp 5.2
+// is known to crash or hang on: say so before Assimp guesses. Returns the file's size.
 std::uintmax_t check_input_file(const std::string& path) {
-  std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);
-  if (ec || !fs::exists(st)) {
-    if (ec && ec != std::errc::no_such_file_or_directory) fail(path, "cannot access file: " + ec.message());
-    fail(path, "file not found");
-  }
-  if (!fs::is_regular_file(st)) fail(path, "not a regular file");
-  const auto size = fs::file_size(path, ec);
-  if (ec) fail(path, "cannot read file size: " + ec.message());
-  if (size == 0) fail(path, "file is empty");
-  std::ifstream probe(path, std::ios::binary);
-  if (!probe) fail(path, "file is not readable");
+  const std::uintmax_t size = check_import_file(path);
   check_off_counts(path, size);
   check_ply_complete(path, size);
   check_x_uncompressed(path);
@@ -343,63 +327,6 @@ Mesh import_mesh(const std::string& path, double scale) {
   return mesh;
 }
 
-// The import child's reply: vertex and triangle counts (uint64), then the vertices'
-// doubles and the triangles' ints as they lie in memory (one program on both ends).
-static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double) && sizeof(Eigen::Vector3i) == 3 * sizeof(int));
-
-std::string encode_mesh(const Mesh& m) {
-  const std::uint64_t counts[2] = {m.vertices.size(), m.triangles.size()};
-  const std::size_t vb = m.vertices.size() * sizeof(Eigen::Vector3d), tb = m.triangles.size() * sizeof(Eigen::Vector3i);
-  std::string out(sizeof counts + vb + tb, '\0');
-  std::memcpy(out.data(), counts, sizeof counts);
-  if (vb > 0) std::memcpy(out.data() + sizeof counts, m.vertices.data(), vb);
-  if (tb > 0) std::memcpy(out.data() + sizeof counts + vb, m.triangles.data(), tb);
-  return out;
-}
-
-Mesh decode_mesh(const std::string& path, const std::string& bytes) {
-  std::uint64_t counts[2] = {0, 0};
-  if (bytes.size() >= sizeof counts) std::memcpy(counts, bytes.data(), sizeof counts);
-  const std::uint64_t max = bytes.size();  // bounds the counts before they are multiplied
-  if (bytes.size() < sizeof counts || counts[0] > max || counts[1] > max ||
-      bytes.size() != sizeof counts + counts[0] * sizeof(Eigen::Vector3d) + counts[1] * sizeof(Eigen::Vector3i))
-    fail(path, "cannot read mesh: malformed reply from the importer (" + std::to_string(bytes.size()) + " bytes)");
-  Mesh m;
-  m.vertices.resize(counts[0]);
-  m.triangles.resize(counts[1]);
-  const std::size_t vb = m.vertices.size() * sizeof(Eigen::Vector3d), tb = m.triangles.size() * sizeof(Eigen::Vector3i);
-  if (vb > 0) std::memcpy(static_cast<void*>(m.vertices.data()), bytes.data() + sizeof counts, vb);
-  if (tb > 0) std::memcpy(static_cast<void*>(m.triangles.data()), bytes.data() + sizeof counts + vb, tb);
-  return m;
-}
-
-// Limits of the import child. Malformed files can make Assimp allocate gigabytes from
-// a few kilobytes (fuzzed .x and .dae files); on valid files its address space grows
-// up to about 35x the file size, linearly, with a few seconds of CPU per million
-// triangles (perf/bench_mesh_import measures both; docs/stability.md has the figures).
-// Memory: 1 GiB + 64x the file size, at most half the physical memory. CPU: 60 s + 1 s
-// per MiB of file, and 3x that of wall time. SNAPFIT_IMPORT_MEMORY_MIB sets the memory
-// limit; 0 or "inprocess" imports in this process, without limits (for debugging).
-std::optional<ChildLimits> import_limits(const std::string& path, std::uintmax_t file_size) {
-  const std::uint64_t file_mib = (file_size + (1u << 20) - 1) >> 20;
-  ChildLimits limits;
-  limits.memory_mib = 1024 + 64 * file_mib;
-  const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
-  if (pages > 0 && page_size > 0)
-    limits.memory_mib =
-        std::min<std::uint64_t>(limits.memory_mib, (static_cast<std::uint64_t>(pages) * page_size >> 20) / 2);
-  limits.seconds = static_cast<unsigned>(std::min<std::uint64_t>(60 + file_mib, 1u << 30));
-  limits.wall_seconds = 3.0 * limits.seconds;  // a loaded machine, or a child that waits
-  if (const char* env = std::getenv("SNAPFIT_IMPORT_MEMORY_MIB")) {
-    const std::string v = env;
-    if (!(v == "inprocess" || (is_count(v) && v.size() <= 9)))
-      fail(path, "SNAPFIT_IMPORT_MEMORY_MIB must be a whole number of MiB, 0 or 'inprocess' (got '" + v + "')");
-    if (v == "inprocess" || std::stoull(v) == 0) return std::nullopt;
-    limits.memory_mib = std::stoull(v);
-  }
-  return limits;
-}
-
 }  // namespace
 
 Mesh load_mesh(const std::string& path, double scale) {
@@ -409,35 +336,7 @@ Mesh load_mesh(const std::string& path, double scale) {
     fail(path, msg.str());
   }
   const std::uintmax_t file_size = check_input_file(path);
-  const std::optional<ChildLimits> limits = import_limits(path, file_size);
-  if (!limits) {
-    try {
-      return import_mesh(path, scale);
-    } catch (const std::bad_alloc&) {
-      fail(path, "cannot read mesh: out of memory (std::bad_alloc)");
-    }
-  }
-
-  ChildResult r = run_in_child([&] { return encode_mesh(import_mesh(path, scale)); }, *limits);
-  switch (r.status) {
-    case ChildResult::Status::ok:
-      return decode_mesh(path, r.bytes);
-    case ChildResult::Status::error:
-      throw Error(r.bytes);  // the child's snapfit::Error, unchanged
-    case ChildResult::Status::exception:
-      fail(path, "cannot read mesh: " + r.bytes);
-    case ChildResult::Status::out_of_memory:
-      fail(path, "cannot read mesh: the importer exceeded its memory limit of " + std::to_string(limits->memory_mib) +
-                     " MiB (SNAPFIT_IMPORT_MEMORY_MIB sets it)");
-    case ChildResult::Status::crashed:
-      fail(path, "cannot read mesh: the importer crashed (signal " + std::to_string(r.signal) + ", " +
-                     strsignal(r.signal) + ")");
-    case ChildResult::Status::timed_out:
-      fail(path, "cannot read mesh: the importer took longer than " + std::to_string(limits->seconds) + " s");
-    case ChildResult::Status::bad_reply:
-      break;
-  }
-  fail(path, "cannot read mesh: the importer " + r.bytes);
+  return decode_mesh(path, run_import(path, file_size, "mesh", [&] { return encode_mesh(import_mesh(path, scale)); }));
 }
 
 }  // namespace snapfit

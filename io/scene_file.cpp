@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "io/cad_format.h"
 #include "mesh/procedural/procedural_parts.h"
 #include "snapfit/error.h"
 #include "snapfit/scene.h"
@@ -273,8 +274,25 @@ ProceduralPartSpec read_procedural(const Ctx& c, const json& v, const std::strin
   return spec;
 }
 
+CadPartSpec read_cad(const Ctx& c, const json& v, const std::string& path) {
+  check_fields(c, v, path, {"solid", "deflection", "angular_deflection_deg"});
+  CadPartSpec cad;
+  if (const json* n = find(v, "solid")) {
+    cad.solid = text(c, *n, join(path, "solid"));
+    if (cad.solid->empty()) fail(c, join(path, "solid"), "must not be empty");
+  }
+  if (const json* d = find(v, "deflection")) cad.deflection = positive(c, *d, join(path, "deflection"));
+  if (const json* a = find(v, "angular_deflection_deg")) {
+    cad.angular_deflection_deg = number(c, *a, join(path, "angular_deflection_deg"));
+    if (!(*cad.angular_deflection_deg > 0 && *cad.angular_deflection_deg <= 90))
+      fail(c, join(path, "angular_deflection_deg"),
+           "must be in (0, 90] (got " + fmt(*cad.angular_deflection_deg) + ")");
+  }
+  return cad;
+}
+
 PartSpec read_part(const Ctx& c, const json& v, const std::string& path, const std::string& units) {
-  check_fields(c, v, path, {"name", "mesh", "mesh_units", "scale", "procedural", "pose"});
+  check_fields(c, v, path, {"name", "mesh", "mesh_units", "scale", "cad", "procedural", "pose"});
   PartSpec part;
   part.name = path;  // default: "part1" / "part2"
   if (const json* n = find(v, "name")) part.name = text(c, *n, join(path, "name"));
@@ -289,13 +307,24 @@ PartSpec read_part(const Ctx& c, const json& v, const std::string& path, const s
     std::error_code ec;
     if (!fs::is_regular_file(abs, ec)) fail(c, join(path, "mesh"), "file not found: " + abs.string());
     part.mesh_path = abs.string();
+    const bool cad = is_cad_file(rel);
     std::string mesh_units = units;
-    if (const json* u = find(v, "mesh_units")) mesh_units = read_unit(c, *u, join(path, "mesh_units"));
+    if (const json* u = find(v, "mesh_units")) {
+      if (cad)
+        fail(c, join(path, "mesh_units"),
+             "STEP and IGES files declare their own length unit, which is converted to the scene's (use \"scale\" "
+             "to scale the part)");
+      mesh_units = read_unit(c, *u, join(path, "mesh_units"));
+    }
     double scale = 1.0;
     if (const json* s = find(v, "scale")) scale = positive(c, *s, join(path, "scale"));
-    part.mesh_scale = metres_per_unit(mesh_units) / metres_per_unit(units) * scale;
+    part.mesh_scale = cad ? scale : metres_per_unit(mesh_units) / metres_per_unit(units) * scale;
+    if (const json* x = find(v, "cad")) {
+      if (!cad) fail(c, join(path, "cad"), "only for STEP and IGES files (.step, .stp, .iges, .igs)");
+      part.cad = read_cad(c, *x, join(path, "cad"));
+    }
   } else {
-    for (const char* key : {"mesh_units", "scale"})
+    for (const char* key : {"mesh_units", "scale", "cad"})
       if (find(v, key)) fail(c, join(path, key), "only for mesh parts (procedural parts use the scene units)");
     part.procedural = read_procedural(c, *proc, join(path, "procedural"));
   }
@@ -498,8 +527,17 @@ ordered_json part_json(const PartSpec& part, const std::string& units, const std
       p = fs::absolute(base / p).lexically_normal();
     }
     j["mesh"] = p.string();
-    j["mesh_units"] = units;  // mesh_scale already converts file units to scene units
-    j["scale"] = part.mesh_scale;
+    if (is_cad_file(p.string())) {
+      j["scale"] = part.mesh_scale;  // the reader converts the file's own unit
+      ordered_json cad = ordered_json::object();
+      if (part.cad.solid) cad["solid"] = *part.cad.solid;
+      if (part.cad.deflection) cad["deflection"] = *part.cad.deflection;
+      if (part.cad.angular_deflection_deg) cad["angular_deflection_deg"] = *part.cad.angular_deflection_deg;
+      if (!cad.empty()) j["cad"] = cad;
+    } else {
+      j["mesh_units"] = units;  // mesh_scale already converts file units to scene units
+      j["scale"] = part.mesh_scale;
+    }
   }
   if (part.procedural) {
     ordered_json proc;

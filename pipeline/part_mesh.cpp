@@ -1,15 +1,36 @@
 #include "pipeline/part_mesh.h"
 
+#include "io/cad_load.h"
 #include "io/mesh_load.h"
 #include "mesh/procedural/procedural_parts.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
 
-Mesh build_part_mesh(const PartSpec& part) {
+PartMesh build_part_mesh(const PartSpec& part, const Scene& scene) {
+  PartMesh out;
   try {
-    if (part.mesh_path) return load_mesh(*part.mesh_path, part.mesh_scale);
-    if (part.procedural) return make_procedural_part(*part.procedural);
+    if (part.mesh_path && is_cad_file(*part.mesh_path)) {
+      CadImportOptions options;
+      options.metres_per_unit = metres_per_unit(scene.units);
+      options.scale = part.mesh_scale;
+      options.solid = part.cad.solid;
+      options.linear_deflection = part.cad.deflection;
+      if (part.cad.angular_deflection_deg) options.angular_deflection_deg = *part.cad.angular_deflection_deg;
+      options.grid = scene.grid;
+      CadMesh cad = load_cad_mesh(*part.mesh_path, options);
+      out.mesh = std::move(cad.mesh);
+      out.cad = std::move(cad.facts);
+      return out;
+    }
+    if (part.mesh_path) {
+      out.mesh = load_mesh(*part.mesh_path, part.mesh_scale);
+      return out;
+    }
+    if (part.procedural) {
+      out.mesh = make_procedural_part(*part.procedural);
+      return out;
+    }
   } catch (const Error& e) {
     throw Error("part '" + part.name + "': " + e.what());
   }

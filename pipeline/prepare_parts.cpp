@@ -9,10 +9,12 @@
 namespace snapfit {
 namespace {
 
-PreparedPart prepare(const PartSpec& spec) {
+PreparedPart prepare(const PartSpec& spec, const Scene& scene) {
   const auto start = std::chrono::steady_clock::now();
   PreparedPart part;
-  part.mesh = build_part_mesh(spec);
+  PartMesh built = build_part_mesh(spec, scene);
+  part.mesh = std::move(built.mesh);
+  part.cad = std::move(built.cad);
   part.report = validate_mesh(part.mesh);
   part.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return part;
@@ -26,14 +28,14 @@ PreparedParts prepare_parts(const Scene& scene) {
   tbb::parallel_invoke(
       [&] {
         try {
-          parts.part1 = prepare(scene.part1);
+          parts.part1 = prepare(scene.part1, scene);
         } catch (...) {
           error1 = std::current_exception();
         }
       },
       [&] {
         try {
-          parts.part2 = prepare(scene.part2);
+          parts.part2 = prepare(scene.part2, scene);
         } catch (...) {
           error2 = std::current_exception();
         }

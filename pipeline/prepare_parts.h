@@ -1,5 +1,8 @@
 #pragma once
 // Builds both parts of a scene (load or generate, then validate) in parallel on TBB.
+#include <optional>
+
+#include "io/cad_facts.h"
 #include "mesh/mesh.h"
 #include "mesh/mesh_report.h"
 #include "snapfit/scene.h"
@@ -9,7 +12,8 @@ namespace snapfit {
 struct PreparedPart {
   Mesh mesh;  // in the part's own frame, scene units
   MeshReport report;
-  double seconds = 0;  // wall time to load or generate and validate
+  std::optional<CadFacts> cad;  // STEP and IGES parts: what the import did
+  double seconds = 0;           // wall time to load or generate and validate
 };
 
 struct PreparedParts {

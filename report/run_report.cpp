@@ -36,6 +36,13 @@ nlohmann::json write_affinity_slice(const std::filesystem::path& out, int part, 
           {"affinity_png", png}};
 }
 
+// A part's mesh report, with what the CAD import did for a STEP or IGES part.
+nlohmann::json part_json(const PreparedPart& part) {
+  nlohmann::json j = nlohmann::json::parse(mesh_report_json(part.report));
+  if (part.cad) j["cad"] = nlohmann::json::parse(cad_facts_json(*part.cad));
+  return j;
+}
+
 }  // namespace
 
 std::vector<std::string> write_run_report(const std::filesystem::path& out, const RunRecord& run) {
@@ -71,8 +78,8 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
       {"driver", run.device.driver_version},
       {"loop_device", run.loop_device.name},
       {"device_check_passed", run.check.passed},
-      {"part1", nlohmann::json::parse(mesh_report_json(pair.parts.part1.report))},
-      {"part2", nlohmann::json::parse(mesh_report_json(pair.parts.part2.report))},
+      {"part1", part_json(pair.parts.part1)},
+      {"part2", part_json(pair.parts.part2)},
       {"plan", pair.plan.lines},
       {"spacing", pair.grids.spacing},
       {"fft_dims", pair.spectra.dims},

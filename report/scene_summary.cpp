@@ -16,6 +16,12 @@ void print_part(std::ostream& out, const char* role, const PartSpec& spec, const
       << (r.watertight() ? "watertight" : "NOT watertight") << ", " << r.degenerate_triangles
       << " degenerate triangles (" << std::setprecision(3) << part.seconds * 1000 << " ms)\n";
   out << std::setprecision(6);
+  if (const std::optional<CadFacts>& cad = part.cad) {
+    out << "    " << cad->format << " (length unit " << cad->file_unit << "): solid '" << cad->solid << "' of "
+        << cad->solids.size() << ", " << cad->faces << " faces, tessellated at deflection " << cad->linear_deflection
+        << " " << units << " (" << cad->deflection_source << ") and " << cad->angular_deflection_deg
+        << " deg; exact volume " << cad->exact_volume << " " << units << "^3\n";
+  }
   if (!r.watertight()) {
     out << "    warning: " << r.boundary_edges << " open edges, " << r.non_manifold_edges << " non-manifold edges, "
         << r.inconsistent_edges << " inconsistently oriented edges; the winding number still classifies points, "

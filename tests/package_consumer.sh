@@ -39,4 +39,12 @@ if find "$work/prefix/include" -name '*.h' | grep -v '/snapfit/' | grep -q .; th
   echo "package_consumer: private headers were installed" >&2
   exit 1
 fi
+# Private dependencies (OpenCASCADE, Assimp, OpenCL, ...) stay out of the package's
+# requirements: a consumer links and finds Eigen only. (IMPORTED_LINK_DEPENDENT_LIBRARIES
+# names them too, for the linker's search of the shared library's own dependencies.)
+if grep -h -E 'INTERFACE_LINK_LIBRARIES|find_dependency\(' "$work"/prefix/lib*/cmake/snapfit/*.cmake |
+  grep -E 'TK[A-Z][A-Za-z0-9]+|OpenCASCADE|opencascade|assimp|OpenCL|TBB|clFFT'; then
+  echo "package_consumer: the installed CMake package names a private dependency" >&2
+  exit 1
+fi
 echo "package_consumer: ok"

@@ -2,6 +2,7 @@
 // child (io/mesh_load.cpp): every way the child can fail is a result the
 // parent survives, and a large mesh comes back bit for bit.
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <doctest/doctest.h>
@@ -49,6 +50,20 @@ TEST_CASE("isolated import: the child's bytes and error messages come back uncha
   CHECK(r.status == Status::exception);
   CHECK(r.bytes == "vector::at");
   CHECK(no_children_left());
+}
+
+TEST_CASE("isolated import: the child's stdout is /dev/null, so nothing it flushes reaches the parent's output") {
+  const ChildResult r = run_in_child(
+      [] {
+        std::printf("from the child\n");
+        std::fflush(stdout);
+        char target[256] = {};
+        const ssize_t n = ::readlink("/proc/self/fd/1", target, sizeof target - 1);
+        return std::string(target, n > 0 ? static_cast<std::size_t>(n) : 0);
+      },
+      kSmall);
+  REQUIRE(r.status == Status::ok);
+  CHECK(r.bytes == "/dev/null");
 }
 
 TEST_CASE("isolated import: a child past its memory limit is reported, the parent goes on") {

@@ -100,6 +100,13 @@ TEST_CASE("pipeline: snapfit run, snapfit query and the library give the same wr
       REQUIRE(rows.size() > 100);
       const double gain = summary["haptic_loop"]["geometry_gain"].get<double>();
       const double torque_gain = gain * metres_per_unit(scene.units);
+      // The kernels sum in float: a pose read back from the log's 9 digits rounds their
+      // terms differently, by float epsilons of the wrench's size along the run, which
+      // is far more than a torque that cancels to nearly zero (an inserted peg's).
+      double torque_scale = 0;
+      for (const auto& r : rows)
+        torque_scale =
+            std::max(torque_scale, Eigen::Vector3d(r[col("geo_tx")], r[col("geo_ty")], r[col("geo_tz")]).norm());
       for (std::size_t i = 0; i < rows.size(); i += rows.size() / 7) {
         const auto& r = rows[i];
         REQUIRE(r[col("modes")] == double(kModes));
@@ -115,10 +122,12 @@ TEST_CASE("pipeline: snapfit run, snapfit query and the library give the same wr
         const Eigen::Vector3d f(r[col("geo_fx")], r[col("geo_fy")], r[col("geo_fz")]);
         const Eigen::Vector3d t(r[col("geo_tx")], r[col("geo_ty")], r[col("geo_tz")]);
         CHECK((gain * q.force - f).norm() <= 1e-6 * std::max(1e-9, f.norm()) + 1e-12);
-        // The kernels sum the torque about part 2's box centre c2 and add (R c2) x F: on
-        // another device's float order it agrees to round-off of |c2| |F|, not of |T|.
+        // The kernels sum the torque about part 2's box centre c2 and add (R c2) x F, in
+        // float: on another device's order it agrees to round-off of |c2| |F| and of the
+        // torque's size along the run, not of a torque that cancels at one pose.
         const double lever = pair.spectra.part2.centre.norm() * metres_per_unit(scene.units);
-        CHECK((torque_gain * q.torque - t).norm() <= 1e-6 * (t.norm() + lever * f.norm()) + 1e-15);
+        CHECK((torque_gain * q.torque - t).norm() <=
+              1e-6 * (std::max({1e-12, t.norm(), torque_scale}) + lever * f.norm()) + 1e-15);
       }
     }
     if (poses.empty()) poses.push_back(scene.part2.pose);

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstring>
 #include <doctest/doctest.h>
-#include <functional>
 #include <limits>
 #include <png.h>
 #include <string>
@@ -18,6 +17,8 @@ using namespace snapfit;
 
 namespace {
 
+using test::error_of;
+
 using Rgb = std::array<int, 3>;
 const Rgb kWhite = {255, 255, 255};
 
@@ -27,15 +28,6 @@ Rgb pixel(const SliceImage& im, int x, int y) {
 }
 
 int px(double v) { return static_cast<int>(std::lround(v)); }
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 bool near(const std::vector<double>& a, const std::vector<double>& b) {
   if (a.size() != b.size()) return false;

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <doctest/doctest.h>
 #include <filesystem>
-#include <functional>
 #include <limits>
 #include <map>
 #include <png.h>
@@ -19,6 +18,8 @@
 using namespace snapfit;
 
 namespace {
+
+using test::error_of;
 
 using Rgb = std::array<int, 3>;
 const Rgb kWhite = {255, 255, 255}, kBlue = {0, 0, 255}, kRed = {255, 0, 0}, kMagenta = {255, 0, 255};
@@ -49,15 +50,6 @@ std::vector<float> sample(const GridSpec& g, F f) {
         v[g.index(i, j, k)] = static_cast<float>(f(p.x(), p.y(), p.z()));
       }
   return v;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 // A PNG read back with libpng's own reader.

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <unistd.h>
 
@@ -89,7 +90,9 @@ bool same_part(const PartSpec& a, const PartSpec& b) {
       a.procedural.has_value() == b.procedural.has_value() &&
       (!a.procedural || (a.procedural->type == b.procedural->type && a.procedural->numbers == b.procedural->numbers &&
                          a.procedural->arrays == b.procedural->arrays));
-  return a.name == b.name && a.mesh_path == b.mesh_path && a.mesh_scale == b.mesh_scale && same_proc &&
+  const bool same_cad = a.cad.solid == b.cad.solid && a.cad.deflection == b.cad.deflection &&
+                        a.cad.angular_deflection_deg == b.cad.angular_deflection_deg;
+  return a.name == b.name && a.mesh_path == b.mesh_path && a.mesh_scale == b.mesh_scale && same_proc && same_cad &&
          same_pose(a.pose, b.pose);
 }
 // Field-by-field equality, source_path aside.
@@ -519,6 +522,75 @@ TEST_CASE("scene: mesh unit conversion") {
   CHECK_ERROR(j, "test.json: part2.scale: must be > 0");
   CHECK(metres_per_unit("km") == 1000.0);
   CHECK_THROWS_AS(metres_per_unit("MM"), Error);
+}
+
+TEST_CASE("scene: CAD parts take their units from the file, and their cad fields are checked and round-trip") {
+  TempDir dir("cad");
+  write_text(dir.path / "parts" / "peg.STEP", "");  // parse_scene only needs the file to exist
+  write_text(dir.path / "parts" / "block.igs", "");
+  write_text(dir.path / "parts" / "block.stl", "");
+  json j = base_scene();
+  j["units"] = "cm";
+  j["part2"].erase("procedural");
+  j["part2"]["mesh"] = "parts/peg.STEP";
+  j["part2"]["scale"] = 2;
+  j["part2"]["cad"] = json::parse(R"({"solid": "peg [2]", "deflection": 0.05, "angular_deflection_deg": 12.5})");
+  j["part1"].erase("procedural");
+  j["part1"]["mesh"] = "parts/block.igs";
+  const fs::path file = dir.path / "a.json";
+  write_text(file, j.dump());
+  const Scene a = load_scene(file.string());
+  CHECK(a.part2.mesh_scale == 2.0);  // "scale" alone: the reader converts the file's unit
+  CHECK(a.part2.cad.solid == std::optional<std::string>("peg [2]"));
+  CHECK(a.part2.cad.deflection == std::optional<double>(0.05));
+  CHECK(a.part2.cad.angular_deflection_deg == std::optional<double>(12.5));
+  CHECK(a.part1.mesh_scale == 1.0);
+  CHECK(!a.part1.cad.solid);
+  CHECK(!a.part1.cad.deflection);
+  const std::string text = scene_to_json(a);
+  CHECK(!contains(text, "mesh_units"));
+  write_text(dir.path / "b.json", text);
+  check_same_scene(a, load_scene((dir.path / "b.json").string()));
+
+  const std::string origin = file.string();
+  const auto error_in = [&](const json& scene) {
+    try {
+      parse_scene(scene.dump(), origin);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  json bad = j;
+  bad["part2"]["mesh_units"] = "mm";
+  CHECK(contains(error_in(bad), "a.json: part2.mesh_units: STEP and IGES files declare their own length unit"));
+  bad = j;
+  bad["part2"]["cad"]["deflection"] = -1;
+  CHECK(contains(error_in(bad), "a.json: part2.cad.deflection: must be > 0 (got -1)"));
+  bad["part2"]["cad"]["deflection"] = "fine";
+  CHECK(contains(error_in(bad), "a.json: part2.cad.deflection: expected a number, got string"));
+  bad = j;
+  bad["part2"]["cad"]["angular_deflection_deg"] = 120;
+  CHECK(contains(error_in(bad), "a.json: part2.cad.angular_deflection_deg: must be in (0, 90] (got 120)"));
+  bad["part2"]["cad"]["angular_deflection_deg"] = 0;
+  CHECK(contains(error_in(bad), "a.json: part2.cad.angular_deflection_deg: must be in (0, 90] (got 0)"));
+  bad = j;
+  bad["part2"]["cad"]["solid"] = "";
+  CHECK(contains(error_in(bad), "a.json: part2.cad.solid: must not be empty"));
+  bad["part2"]["cad"]["solid"] = 3;
+  CHECK(contains(error_in(bad), "a.json: part2.cad.solid: expected a string, got number"));
+  bad = j;
+  bad["part2"]["cad"]["deflexion"] = 0.1;
+  CHECK(contains(error_in(bad), "a.json: part2.cad.deflexion: unknown field (allowed here: solid, deflection"));
+  bad = j;
+  bad["part2"]["cad"] = 0.1;
+  CHECK(contains(error_in(bad), "a.json: part2.cad: expected an object, got number"));
+  bad = j;
+  bad["part2"]["mesh"] = "parts/block.stl";
+  CHECK(contains(error_in(bad), "a.json: part2.cad: only for STEP and IGES files"));
+  bad = base_scene();
+  bad["part2"]["cad"] = json::object();
+  CHECK(contains(error_in(bad), "a.json: part2.cad: only for mesh parts"));
 }
 
 TEST_CASE("scene: quaternion and axis-angle give the same rotation") {

@@ -1,15 +1,19 @@
 #pragma once
-// Small helpers shared by the test files: temporary folders and file bytes.
+// Small helpers shared by the test files: temporary folders, file bytes, commands and
+// error messages.
 #include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <random>
 #include <string>
 #include <sys/wait.h>
 #include <vector>
+
+#include "snapfit/error.h"
 
 namespace snapfit::test {
 
@@ -88,6 +92,16 @@ inline Command run_command(const std::string& command, bool with_stderr = true) 
   const int raw = ::pclose(p);
   c.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
   return c;
+}
+
+// The message of the snapfit::Error that `f` throws; "no error" when it throws none.
+inline std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
 }
 
 }  // namespace snapfit::test

@@ -24,10 +24,21 @@ struct ProceduralPartSpec {
   std::map<std::string, std::vector<double>> arrays;  // e.g. {"peg_radii": [3, 4, 5]}
 };
 
+// How a CAD part (a STEP or IGES mesh file) is read and tessellated; every field is
+// optional (docs/scenes.md "CAD parts" gives the defaults).
+struct CadPartSpec {
+  std::optional<std::string> solid;              // the solid to take from a file with several
+  std::optional<double> deflection;              // scene units; default the grid spacing / 40
+  std::optional<double> angular_deflection_deg;  // default 30
+};
+
 struct PartSpec {
   std::string name;
-  std::optional<std::string> mesh_path;          // absolute, or relative to the scene file's folder
-  double mesh_scale = 1.0;                       // mesh file units -> scene units, times "scale"
+  std::optional<std::string> mesh_path;  // absolute, or relative to the scene file's folder
+  // Mesh file units -> scene units, times "scale"; for STEP and IGES files "scale" alone
+  // (the file declares its units and the reader converts them).
+  double mesh_scale = 1.0;
+  CadPartSpec cad;                               // only for STEP and IGES files
   std::optional<ProceduralPartSpec> procedural;  // exactly one of mesh_path, procedural
   Pose pose;                                     // part1: world pose; part2: initial pose relative to part 1
 };
