@@ -24,12 +24,13 @@ export function uint8s(base64) {
   return bytesOf(base64);
 }
 
-// A number for people: up to `digits` significant digits, no exponent for ordinary sizes.
+// A number for people: up to `digits` significant digits, no exponent for ordinary sizes,
+// no trailing zeros (5e-5, not 5.00000e-5).
 export function formatNumber(value, digits = 4) {
   if (value === null || value === undefined || !Number.isFinite(value)) return String(value);
   if (value === 0) return '0';
   const a = Math.abs(value);
-  if (a >= 1e6 || a < 1e-4) return value.toExponential(digits - 1);
+  if (a >= 1e6 || a < 1e-4) return value.toExponential(digits - 1).replace(/\.?0+e/, 'e');
   return String(Number(value.toPrecision(digits)));
 }
 
