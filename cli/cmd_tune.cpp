@@ -13,6 +13,7 @@
 #include "pipeline/assembly_pair.h"
 #include "report/chart_spec.h"
 #include "report/haptic_report.h"
+#include "report/web_assets.h"
 #include "scheduler/engine_tuning.h"
 #include "scheduler/loop_devices.h"
 #include "snapfit/error.h"
@@ -34,6 +35,7 @@ void run_tune(const TuneCommandOptions& opt) {
   const Scene scene = load_scene(opt.scene);
   const double budget = opt.budget_ms.value_or(scene.frame_budget_ms);
   if (!(budget > 0)) throw Error("--budget: must be > 0 ms");
+  if (!opt.html.empty()) web_asset("chart_page.js");  // a build without the web report fails before measuring
   const Device device = select_device(device_spec_from(opt.device));
   std::cout << "device " << describe_device(device.info) << "\n";
   const FftLibrary fft;
