@@ -2,6 +2,7 @@
 // scene's parts and export them: VTK image data for ParaView, and a PNG slice like
 // seed 000 Fig. 2 and Fig. 5 (top row).
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -12,8 +13,10 @@
 #include "engine/descriptors.h"
 #include "io/png_export.h"
 #include "io/vti_export.h"
+#include "mesh/mesh_slice.h"
 #include "pipeline/assembly_pair.h"
 #include "report/scene_summary.h"
+#include "report/slice_figure.h"
 #include "snapfit/error.h"
 
 namespace snapfit::cli {
@@ -27,7 +30,7 @@ struct FieldsOptions {
   std::string field = "rho";
   std::string png;
   std::string vti;
-  int pixels = 4;
+  int pixels = 0;  // 0: automatic (report/slice_figure.h)
   bool no_cache = false;
 };
 
@@ -43,6 +46,20 @@ const std::vector<float>& pick_field(const DescriptorFields& f, const std::vecto
     return name == "s" ? f.skeletal_density : name == "xi" ? f.signed_distance : f.density_bound;
   }
   throw Error("--field: expected rho, s, w, xi or bound (got '" + name + "')");
+}
+
+std::string field_title(const std::string& name) {
+  if (name == "rho") return "Affinity Im(rho)";
+  if (name == "s") return "Skeletal density s";
+  if (name == "w") return "Winding number w";
+  if (name == "xi") return "Signed distance xi";
+  return "Skeletal density error bound";
+}
+
+std::string number(double v) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
 }
 
 void run_fields(const FieldsOptions& opt) {
@@ -84,13 +101,24 @@ void run_fields(const FieldsOptions& opt) {
     const ColorMap map = opt.field == "bound" || (opt.field == "rho" && f.skeletal_density.empty())
                              ? ColorMap::sequential
                              : ColorMap::diverging;
-    const SliceImage image = render_slice(grid, values.data(), axis, slice, map, std::nullopt, opt.pixels);
-    write_png(opt.png, image,
-              {{"Title", "snapfit " + opt.field + " of part " + opt.part + " at " + opt.slice},
-               {"value_min", std::to_string(image.value_min)},
-               {"value_max", std::to_string(image.value_max)}});
-    std::cout << "wrote " << opt.png << " (" << opt.field << " at " << opt.slice << ", colour range ["
-              << image.value_min << ", " << image.value_max << "])\n";
+    const char* axis_name = axis == 'x' ? "x" : axis == 'y' ? "y" : "z";
+    const double plane = grid.origin[axis - 'x'] + grid.spacing * slice;
+    SliceFigureOptions figure;
+    figure.title = field_title(opt.field) + " of part " + opt.part + " '" +
+                   (which == 1 ? scene.part1.name : scene.part2.name) + "' at " + axis_name + " = " + number(plane) +
+                   " " + scene.units;
+    figure.units = scene.units;
+    figure.value_label = opt.field;
+    figure.outline = mesh_slice_outline(mesh, axis, plane);
+    figure.pixels_per_point = opt.pixels;
+    const SliceFigure fig = render_slice_figure(grid, values.data(), axis, slice, map, figure);
+    write_png(opt.png, fig.image,
+              {{"Title", "snapfit " + figure.title},
+               {"value_min", std::to_string(fig.image.value_min)},
+               {"value_max", std::to_string(fig.image.value_max)}});
+    std::cout << "wrote " << opt.png << " (" << fig.image.width << " x " << fig.image.height << " pixels, " << opt.field
+              << " at " << axis_name << " = " << plane << ", colour range [" << fig.image.value_min << ", "
+              << fig.image.value_max << "], the part's outline in black)\n";
   }
 }
 
@@ -106,7 +134,8 @@ void add_fields_command(CLI::App& app) {
   cmd->add_option("--field", opt->field, "Field for the PNG: rho (affinity, Im), s, w, xi, bound");
   cmd->add_option("--png", opt->png, "Write the slice as a PNG image");
   cmd->add_option("--vti", opt->vti, "Write every field as VTK image data (ParaView)");
-  cmd->add_option("--pixels", opt->pixels, "Pixels per grid point in the PNG");
+  cmd->add_option("--pixels", opt->pixels, "Pixels per grid point in the PNG (default: the slice 480 pixels or more)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--device", opt->device, "OpenCL device (see `snapfit devices`)");
   cmd->add_flag("--no-cache", opt->no_cache, "Recompute even if the field cache has the fields");
   cmd->callback([opt] { run_fields(*opt); });

@@ -1,6 +1,7 @@
 // `snapfit map SCENE --rotation ...`: the energy for every translation of part 2 at
 // one rotation (a C-space slice, seed 000 Fig. 5 bottom row), as a PNG slice and/or a
 // .vti volume.
+#include <cstdio>
 #include <iostream>
 #include <sstream>
 
@@ -11,6 +12,7 @@
 #include "io/png_export.h"
 #include "io/vti_export.h"
 #include "pipeline/assembly_pair.h"
+#include "report/slice_figure.h"
 #include "snapfit/error.h"
 
 namespace snapfit::cli {
@@ -23,7 +25,7 @@ struct MapOptions {
   std::string png, vti;
   std::size_t modes = 0;
   std::string device;
-  int pixels = 3;
+  int pixels = 0;  // 0: automatic (report/slice_figure.h)
 };
 
 Eigen::Matrix3d parse_rotation(const std::string& text) {
@@ -65,12 +67,19 @@ void run_map(const MapOptions& opt) {
     // Energy: negative (fit, red would read as "hot"): show -E so fits are red, collisions blue.
     std::vector<float> score(map.energy.size());
     for (std::size_t i = 0; i < score.size(); ++i) score[i] = -map.energy[i];
-    const SliceImage image =
-        render_slice(map.grid, score.data(), axis, index, ColorMap::diverging, std::nullopt, opt.pixels);
-    write_png(opt.png, image, {{"Title", "snapfit -energy over translations at " + opt.slice}});
+    SliceFigureOptions figure;
+    char plane[48];
+    std::snprintf(plane, sizeof plane, "%.4g", map.grid.origin[axis - 'x'] + map.grid.spacing * index);
+    figure.title = "-E over translations of part 2 at " + std::string(1, axis) + " = " + plane + " " + scene.units +
+                   (opt.rotation.empty() ? std::string() : ", rotation " + opt.rotation);
+    figure.units = scene.units;
+    figure.value_label = "-E (red: fit)";
+    figure.pixels_per_point = opt.pixels;
+    const SliceFigure fig = render_slice_figure(map.grid, score.data(), axis, index, ColorMap::diverging, figure);
+    write_png(opt.png, fig.image, {{"Title", "snapfit " + figure.title}});
     std::cout << "wrote " << opt.png << " (-E at " << opt.slice
-              << ": red = fit, blue = collision or separation; range [" << image.value_min << ", " << image.value_max
-              << "], magenta = aliased)\n";
+              << ": red = fit, blue = collision or separation; range [" << fig.image.value_min << ", "
+              << fig.image.value_max << "], magenta = aliased)\n";
   }
 }
 
@@ -85,7 +94,8 @@ void add_map_command(CLI::App& app) {
   cmd->add_option("--png", opt->png, "Write a slice as a PNG");
   cmd->add_option("--vti", opt->vti, "Write the whole map as VTK image data");
   cmd->add_option("--modes", opt->modes, "Low-pass: keep about this many modes (default: all)");
-  cmd->add_option("--pixels", opt->pixels, "Pixels per translation step in the PNG");
+  cmd->add_option("--pixels", opt->pixels, "Pixels per translation step in the PNG (default: 480 pixels or more)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--device", opt->device, "OpenCL device (see `snapfit devices`)");
   cmd->callback([opt] { run_map(*opt); });
 }

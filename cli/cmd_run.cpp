@@ -18,6 +18,7 @@
 #include "report/haptic_report.h"
 #include "report/run_report.h"
 #include "report/scene_summary.h"
+#include "report/web_assets.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/loop_devices.h"
 #include "snapfit/error.h"
@@ -169,6 +170,8 @@ void run_main_job(const RunOptions& opt) {
   std::cout << "done in " << seconds_since(start) << " s: " << (out / written.front()).string();
   for (std::size_t i = 1; i < written.size(); ++i) std::cout << ", " << written[i];
   std::cout << "\n";
+  if (!web_pages_available())
+    note("no report.html: this snapfit was built with -DSNAPFIT_WEB_REPORT=OFF (no node/npm at build time)");
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // `snapfit tune SCENE [--budget MS]`: measures per-query time against m' on the chosen
 // device for the scene's query variant (scheduler/auto_tune.h), prints the table, saves
-// the tuning file that `snapfit run` reuses, and writes a chart of the sweep.
+// the tuning file that `snapfit run` reuses, and writes a page with a chart of the sweep.
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -11,7 +11,9 @@
 #include "engine/device.h"
 #include "engine/query_engine.h"
 #include "pipeline/assembly_pair.h"
+#include "report/chart_spec.h"
 #include "report/haptic_report.h"
+#include "report/web_assets.h"
 #include "scheduler/engine_tuning.h"
 #include "scheduler/loop_devices.h"
 #include "snapfit/error.h"
@@ -26,13 +28,14 @@ struct TuneCommandOptions {
   double margin = 0.25;
   std::size_t repetitions = 400;
   std::string interpolation = "tricubic";
-  std::string png;
+  std::string html;
 };
 
 void run_tune(const TuneCommandOptions& opt) {
   const Scene scene = load_scene(opt.scene);
   const double budget = opt.budget_ms.value_or(scene.frame_budget_ms);
   if (!(budget > 0)) throw Error("--budget: must be > 0 ms");
+  if (!opt.html.empty()) web_asset("chart_page.js");  // a build without the web report fails before measuring
   const Device device = select_device(device_spec_from(opt.device));
   std::cout << "device " << describe_device(device.info) << "\n";
   const FftLibrary fft;
@@ -54,9 +57,12 @@ void run_tune(const TuneCommandOptions& opt) {
   const EngineTuning tuned =
       tune_engine(*engine, key, poses, tune, true, [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; });
   std::cout << tuning_table(tuned.result) << "saved to " << tuned.path << "\n";
-  if (!opt.png.empty()) {
-    write_chart_png(opt.png, tuning_chart(tuned.result, device.info.name));
-    std::cout << "chart " << opt.png << "\n";
+  if (!opt.html.empty()) {
+    write_chart_page(opt.html, "snapfit tune: " + scene.name,
+                     {"Scene " + scene.source_path + ", device " + device.info.name + ", " + variant_name(variant) +
+                      ", measured " + tuned.result.created},
+                     {tuning_chart(tuned.result, device.info.name)});
+    std::cout << "chart page " << opt.html << "\n";
   }
 }
 
@@ -73,7 +79,7 @@ void add_tune_command(CLI::App& app) {
   cmd->add_option("--repetitions", opt->repetitions, "Timed queries per m' level")->check(CLI::PositiveNumber);
   cmd->add_option("--interpolation", opt->interpolation, "trilinear or tricubic (what `snapfit run` uses: tricubic)");
   cmd->add_option("--device", opt->device, "OpenCL device (see `snapfit devices`)");
-  cmd->add_option("--png", opt->png, "Write a chart of the sweep");
+  cmd->add_option("--html", opt->html, "Write a self-contained page with a chart of the sweep");
   cmd->callback([opt] { run_tune(*opt); });
 }
 

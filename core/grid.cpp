@@ -1,5 +1,6 @@
 #include "core/grid.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -83,6 +84,30 @@ std::vector<long long> brick_point_order(const GridSpec& grid, int lanes) {
               order.push_back(inside ? static_cast<long long>(grid.index(i, j, k)) : -1);
             }
   return order;
+}
+
+}  // namespace snapfit
+
+namespace snapfit {
+
+double sample_trilinear(const GridSpec& grid, const float* values, const Eigen::Vector3d& p, double outside) {
+  const Eigen::Vector3d u = (p - grid.origin) / grid.spacing;
+  int base[3];
+  double f[3];
+  for (int a = 0; a < 3; ++a) {
+    const int n = grid.dims[a];
+    if (!(u[a] >= 0.0 && u[a] <= n - 1)) return outside;
+    base[a] = std::min(static_cast<int>(u[a]), std::max(n - 2, 0));
+    f[a] = n > 1 ? u[a] - base[a] : 0.0;
+  }
+  double sum = 0;
+  for (int c = 0; c < 8; ++c) {
+    const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
+    const double w = (di ? f[0] : 1 - f[0]) * (dj ? f[1] : 1 - f[1]) * (dk ? f[2] : 1 - f[2]);
+    if (w == 0) continue;
+    sum += w * values[grid.index(base[0] + di, base[1] + dj, base[2] + dk)];
+  }
+  return sum;
 }
 
 }  // namespace snapfit

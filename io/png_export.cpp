@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <png.h>
@@ -175,14 +176,7 @@ SliceImage render_slice(const GridSpec& grid, const float* values, char axis, in
   for (int row = 0; row < h; ++row)
     for (int col = 0; col < w; ++col) {
       const double x = slice[static_cast<std::size_t>(row) * w + col];
-      Rgb c;
-      if (std::isnan(x)) {
-        c = kMagenta;
-      } else if (map == ColorMap::diverging) {
-        c = diverging(limit > 0 ? std::clamp(x / limit, -1.0, 1.0) : (x > 0 ? 1.0 : x < 0 ? -1.0 : 0.0));
-      } else {
-        c = sequential(hi > lo ? (x - lo) / (hi - lo) : (x > hi ? 1.0 : 0.0));
-      }
+      const Rgb c = map_color(map, x, image.value_min, image.value_max);
       for (int dy = 0; dy < scale; ++dy) {
         unsigned char* p = image.rgb.data() + 3 * ((static_cast<std::size_t>(row) * scale + dy) * image.width +
                                                    static_cast<std::size_t>(col) * scale);
@@ -192,22 +186,37 @@ SliceImage render_slice(const GridSpec& grid, const float* values, char axis, in
   return image;
 }
 
-void write_png(const std::string& path, const SliceImage& image,
-               const std::vector<std::pair<std::string, std::string>>& text) {
+std::array<unsigned char, 3> map_color(ColorMap map, double value, double value_min, double value_max) {
+  if (std::isnan(value)) return kMagenta;
+  if (map == ColorMap::diverging) {
+    const double limit = value_max;
+    return diverging(limit > 0 ? std::clamp(value / limit, -1.0, 1.0) : (value > 0 ? 1.0 : value < 0 ? -1.0 : 0.0));
+  }
+  const double lo = value_min, hi = value_max;
+  return sequential(hi > lo ? (value - lo) / (hi - lo) : (value > hi ? 1.0 : 0.0));
+}
+
+namespace {
+
+// Checks `image` and `text` (naming `who` in errors), then calls `encode` with the job
+// that encode_png reads; the job's strings live until `encode` returns.
+void with_png_job(const std::string& who, const SliceImage& image,
+                  const std::vector<std::pair<std::string, std::string>>& text,
+                  const std::function<void(PngJob&)>& encode) {
   if (image.width < 1 || image.height < 1 || image.width > kMaxSide || image.height > kMaxSide)
-    throw Error(path + ": cannot write PNG: image size " + std::to_string(image.width) + " x " +
+    throw Error(who + ": cannot write PNG: image size " + std::to_string(image.width) + " x " +
                 std::to_string(image.height) + " is not within 1.." + std::to_string(kMaxSide));
   const std::size_t bytes = 3 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
   if (image.rgb.size() != bytes)
-    throw Error(path + ": cannot write PNG: " + std::to_string(image.rgb.size()) + " bytes of RGB for a " +
+    throw Error(who + ": cannot write PNG: " + std::to_string(image.rgb.size()) + " bytes of RGB for a " +
                 std::to_string(image.width) + " x " + std::to_string(image.height) + " image, which needs " +
                 std::to_string(bytes));
   // libpng wants mutable C strings: copies that outlive encode_png.
   std::vector<std::string> keys, texts;
   for (const auto& [key, value] : text) {
-    check_keyword(path, key);
+    check_keyword(who, key);
     if (value.find('\0') != std::string::npos)
-      throw Error(path + ": cannot write PNG: text for '" + key + "' contains a NUL byte");
+      throw Error(who + ": cannot write PNG: text for '" + key + "' contains a NUL byte");
     keys.push_back(key);
     texts.push_back(value);
   }
@@ -223,13 +232,42 @@ void write_png(const std::string& path, const SliceImage& image,
   job.image = &image;
   job.text = chunks.data();
   job.text_count = static_cast<int>(chunks.size());
-  write_file_atomically(path, [&job](std::FILE* f) {
-    errno = 0;
-    if (encode_png(f, &job)) return std::string();
-    std::string problem = job.error;
-    if (errno != 0) problem += std::string(" (") + std::strerror(errno) + ")";
-    return problem;
+  encode(job);
+}
+
+// encode_png into `f`: "" or the reason it failed.
+std::string encode_png_status(std::FILE* f, PngJob& job) {
+  errno = 0;
+  if (encode_png(f, &job)) return std::string();
+  std::string problem = job.error;
+  if (errno != 0) problem += std::string(" (") + std::strerror(errno) + ")";
+  return problem;
+}
+
+}  // namespace
+
+void write_png(const std::string& path, const SliceImage& image,
+               const std::vector<std::pair<std::string, std::string>>& text) {
+  with_png_job(path, image, text, [&](PngJob& job) {
+    write_file_atomically(path, [&job](std::FILE* f) { return encode_png_status(f, job); });
   });
+}
+
+std::vector<unsigned char> png_bytes(const SliceImage& image,
+                                     const std::vector<std::pair<std::string, std::string>>& text) {
+  std::vector<unsigned char> out;
+  with_png_job("png_bytes", image, text, [&](PngJob& job) {
+    char* buffer = nullptr;
+    std::size_t size = 0;
+    std::FILE* f = open_memstream(&buffer, &size);
+    if (f == nullptr) throw Error(std::string("png_bytes: cannot open a memory stream: ") + std::strerror(errno));
+    const std::string problem = encode_png_status(f, job);
+    std::fclose(f);  // sets buffer and size
+    if (problem.empty()) out.assign(buffer, buffer + size);
+    std::free(buffer);
+    if (!problem.empty()) throw Error("png_bytes: cannot encode PNG: " + problem);
+  });
+  return out;
 }
 
 int slice_index_for(const GridSpec& grid, char axis, double coordinate) {

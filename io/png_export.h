@@ -8,6 +8,7 @@
 //   axis 'y' (j = index): column = i, row = nz-1-k   (x right, z up; width nx, height nz)
 //   axis 'x' (i = index): column = j, row = nz-1-k   (y right, z up; width ny, height nz)
 // Each grid point becomes a scale x scale block of pixels.
+#include <array>
 #include <optional>
 #include <string>
 #include <utility>
@@ -45,12 +46,21 @@ struct SliceImage {
 SliceImage render_slice(const GridSpec& grid, const float* values, char axis, int index, ColorMap map,
                         std::optional<double> symmetric_limit = std::nullopt, int scale = 1);
 
+// The colour `map` gives `value` on a slice whose colour range is [value_min, value_max]
+// (as render_slice reports it: diverging [-limit, +limit], sequential [min, max]).
+std::array<unsigned char, 3> map_color(ColorMap map, double value, double value_min, double value_max);
+
 // Writes `image` as an 8-bit RGB PNG with one tEXt chunk per (keyword, text) pair
 // (keywords 1-79 Latin-1 characters, e.g. "Title", "Comment", "value_min"), through
 // "<path>.tmp.<pid>" renamed onto `path`. Throws snapfit::Error naming `path` for a
 // malformed image or keyword and for I/O failures; no file is left behind then.
 void write_png(const std::string& path, const SliceImage& image,
                const std::vector<std::pair<std::string, std::string>>& text = {});
+
+// The same PNG as write_png, in memory (e.g. to inline in a page). Throws snapfit::Error
+// for a malformed image or keyword.
+std::vector<unsigned char> png_bytes(const SliceImage& image,
+                                     const std::vector<std::pair<std::string, std::string>>& text = {});
 
 // The grid index along `axis` nearest to world coordinate `coordinate`. Throws
 // snapfit::Error when it lies outside the grid ("z=12.5 is outside the grid, which

@@ -12,6 +12,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "core/markup_escape.h"
 #include "io/atomic_write.h"
 #include "snapfit/error.h"
 
@@ -19,33 +20,6 @@ namespace snapfit {
 namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem) { throw Error(path + ": " + problem); }
-
-// Attribute values: names may hold any character, the XML must stay well formed.
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 std::string number(double x) {
   char buf[40];
@@ -117,12 +91,12 @@ void write_vti(const std::string& path, const GridSpec& grid, const std::vector<
   std::string active;
   for (const GridField& f : fields)
     if (f.components == 1) {
-      active += " Scalars=\"" + xml_escape(f.name) + "\"";
+      active += " Scalars=\"" + escape_markup(f.name) + "\"";
       break;
     }
   for (const GridField& f : fields)
     if (f.components == 3) {
-      active += " Vectors=\"" + xml_escape(f.name) + "\"";
+      active += " Vectors=\"" + escape_markup(f.name) + "\"";
       break;
     }
 
@@ -136,7 +110,7 @@ void write_vti(const std::string& path, const GridSpec& grid, const std::vector<
   std::vector<std::uint64_t> bytes(fields.size());
   for (std::size_t f = 0; f < fields.size(); ++f) {
     bytes[f] = static_cast<std::uint64_t>(grid.count()) * static_cast<std::uint64_t>(fields[f].components) * 4u;
-    xml += "        <DataArray type=\"Float32\" Name=\"" + xml_escape(fields[f].name) + "\" NumberOfComponents=\"" +
+    xml += "        <DataArray type=\"Float32\" Name=\"" + escape_markup(fields[f].name) + "\" NumberOfComponents=\"" +
            std::to_string(fields[f].components) + "\" format=\"appended\" offset=\"" + std::to_string(offset) +
            "\"/>\n";
     offset += 8 + bytes[f];

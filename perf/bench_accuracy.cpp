@@ -29,7 +29,7 @@
 #include "engine/reference_query.h"
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
-#include "report/plot.h"
+#include "report/chart_spec.h"
 #include "scheduler/accuracy.h"
 #include "scheduler/engine_tuning.h"
 #include "scheduler/trajectory.h"
@@ -272,18 +272,16 @@ int main(int argc, char** argv) try {
   const std::array<std::pair<const char*, double Row::*>, 3> quantities = {
       {{"energy", &Row::err_energy}, {"force", &Row::err_force}, {"torque", &Row::err_torque}}};
   nlohmann::json fronts;
+  std::vector<Chart> charts;
   for (const auto& [name, err] : quantities) {
     if (std::string(name) == "torque" && !torque) continue;
-    Chart c{std::string("Relative ") + name + " error against time per query (" + device.info.name + ")",
-            "ms per query (p50)",
-            std::string("relative ") + name + " error",
-            true,
-            true,
-            {},
-            {},
-            {}};
+    Chart c;
+    c.title = std::string("Relative ") + name + " error against time per query (" + device.info.name + ")";
+    c.x_label = "ms per query (p50)";
+    c.y_label = std::string("relative ") + name + " error";
+    c.log_x = c.log_y = true;
     for (double os : oversamplings)
-      for (const char* scheme : {"trilinear", "tricubic"})
+      for (const char* scheme : {"trilinear", "tricubic", "exact-product"})
         for (const char* precision : {"float", "double"}) {
           Series s{std::string(scheme) + " " + precision + " x" + oversampling_label(os),
                    {},
@@ -295,7 +293,7 @@ int main(int argc, char** argv) try {
           if (!s.x.empty()) c.series.push_back(s);
         }
     Series front{"Pareto front", {}, {}, Series::Style::line};
-    front.color = {0, 0, 0};
+    front.color = "#000000";
     nlohmann::json jf = nlohmann::json::array();
     for (const Row* r : pareto(rows, err)) {
       if (!(r->*err > 0)) continue;
@@ -314,8 +312,7 @@ int main(int argc, char** argv) try {
           r.modes == tuned.result.chosen_modes)
         c.markers.push_back(Marker{r.ms, r.*err, "auto-tuner, 1 ms budget"});
     c.hlines.push_back(HLine{1e-2, "1%"});
-    c.width = 1000, c.height = 650;
-    write_chart_png((fs::path(out_dir) / (std::string("error_") + name + ".png")).string(), c);
+    charts.push_back(c);
   }
   // What the budget buys (snapfit accuracy): each strategy tuned for it and measured.
   AccuracyOptions at_options;
@@ -357,8 +354,9 @@ int main(int argc, char** argv) try {
                                  {"pareto", fronts},
                                  {"load_average", {{"start", load_start}, {"end", bench::read_loadavg()}}}};
   std::ofstream(fs::path(out_dir) / "accuracy.json") << report.dump(2) << "\n";
-  std::cout << "wrote " << out_dir << "/accuracy.csv, accuracy.json, error_energy.png, error_force.png"
-            << (torque ? ", error_torque.png" : "") << "\n";
+  const std::string page = bench::write_charts(out_dir, "bench_accuracy: error against time per query",
+                                               bench::command_line(argc, argv), charts);
+  std::cout << "wrote " << out_dir << "/accuracy.csv, accuracy.json and " << page << "\n";
   return 0;
 } catch (const std::exception& e) {
   std::cerr << "bench_accuracy: error: " << e.what() << "\n";

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iomanip>
@@ -15,6 +16,8 @@
 #include <string>
 #include <unistd.h>
 
+#include "report/chart_spec.h"
+#include "report/web_assets.h"
 #include "snapfit/error.h"
 
 namespace snapfit::bench {
@@ -188,5 +191,17 @@ inline std::string padr(const std::string& s, std::size_t w) {
 }
 // A finite number as JSON, anything else as null (JSON has no NaN or Inf).
 inline nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// DIR/charts.html: the benchmark's charts on one self-contained page (report/chart_spec.h),
+// with the command, the date and the load average above them. Returns what was written, or
+// why nothing was (a build with -DSNAPFIT_WEB_REPORT=OFF); perf/run_benchmarks.sh turns
+// the page into charts.png with headless chromium where it can.
+inline std::string write_charts(const std::filesystem::path& dir, const std::string& title, const std::string& command,
+                                const std::vector<Chart>& charts) {
+  if (!web_pages_available()) return "no charts.html (this build has -DSNAPFIT_WEB_REPORT=OFF)";
+  write_chart_page((dir / "charts.html").string(), title,
+                   {"command: " + command, "date: " + now_iso() + ", load average " + read_loadavg()}, charts);
+  return (dir / "charts.html").string();
+}
 
 }  // namespace snapfit::bench

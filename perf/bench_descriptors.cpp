@@ -17,9 +17,9 @@
 //   tolerance   tolerance 0.2, 0.1, 0.05 at a medium size
 // --only takes a comma-separated list of those names (default: all). --quick runs
 // small sizes only (well under a minute). Output: tables on stdout, DIR/descriptors.csv
-// and DIR/descriptors.json (default DIR results/bench_descriptors), and, when report/plot.h
-// is available, log-log charts DIR/time_vs_m.png and DIR/time_vs_n.png (--plots-only
-// redraws them from an existing DIR/descriptors.json without measuring).
+// and DIR/descriptors.json (default DIR results/bench_descriptors), and DIR/charts.html
+// with log-log charts of time against m and against n (--plots-only redraws it from an
+// existing DIR/descriptors.json without measuring).
 //
 // Grids: the part's box grown by PADDING on every side (pipeline/part_fields.h part_grid)
 // at the spacing that gives the wanted number of points, then shifted by less than half
@@ -50,19 +50,15 @@
 #include <vector>
 
 #include "core/grid.h"
+#include "core/progress.h"
 #include "engine/compute_context.h"
 #include "engine/descriptors.h"
 #include "engine/device.h"
 #include "mesh/mesh.h"
+#include "mesh/procedural/procedural_parts.h"
 #include "perf/bench_common.h"
 #include "pipeline/part_fields.h"
 #include "snapfit/error.h"
-#if __has_include("report/plot.h")
-#include "report/plot.h"
-#define SNAPFIT_BENCH_PLOTS 1
-#endif
-#include "core/progress.h"
-#include "mesh/procedural/procedural_parts.h"
 #include "snapfit/scene.h"
 
 namespace {
@@ -519,10 +515,9 @@ using snapfit::bench::now_iso;
 
 // ---------------------------------------------------------------- charts
 
-// Log-log charts of the m sweep and the n sweep from the JSON rows: DIR/time_vs_m.png
-// and DIR/time_vs_n.png. Returns a line saying what was written.
-std::string write_plots(const std::filesystem::path& dir, const nlohmann::json& rows) {
-#ifdef SNAPFIT_BENCH_PLOTS
+// Log-log charts of the m sweep and the n sweep from the JSON rows, on DIR/charts.html.
+// Returns a line saying what was written.
+std::string write_plots(const std::filesystem::path& dir, const nlohmann::json& rows, const std::string& command) {
   struct Pass {
     const char* key;
     const char* label;
@@ -553,31 +548,25 @@ std::string write_plots(const std::filesystem::path& dir, const nlohmann::json& 
     }
     return c;
   };
-  std::string made;
+  std::vector<snapfit::Chart> charts;
   auto title_value = [&](const std::string& case_name, const char* key) -> std::string {
     for (const auto& r : rows)
       if (r.value("case", "") == case_name)
         return r.at(key).is_string() ? r.at(key).get<std::string>() : r.at(key).dump();
     return "?";
   };
-  for (const auto& [case_name, x_key, file, title, x_label] : std::vector<std::array<std::string, 5>>{
-           {"m_sweep", "m", "time_vs_m.png",
+  for (const auto& [case_name, x_key, title, x_label] : std::vector<std::array<std::string, 4>>{
+           {"m_sweep", "m",
             "descriptors: time vs grid points m (three_peg_base, n = " + title_value("m_sweep", "n_triangles") + ")",
             "grid points m"},
-           {"n_sweep", "n_triangles", "time_vs_n.png",
+           {"n_sweep", "n_triangles",
             "descriptors: time vs triangles n (three_peg_base, m = " + title_value("n_sweep", "dims") + ")",
             "triangles n"}}) {
     snapfit::Chart c = chart_for(case_name, x_key, title, x_label);
-    if (c.series.empty()) continue;
-    snapfit::write_chart_png((dir / file).string(), c);
-    made += (made.empty() ? "" : ", ") + (dir / file).string();
+    if (!c.series.empty()) charts.push_back(std::move(c));
   }
-  return made.empty() ? "plots: none (no m or n sweep in this run)" : "plots: " + made;
-#else
-  (void)dir;
-  (void)rows;
-  return "plots: skipped (report/plot.h is not available in this build)";
-#endif
+  if (charts.empty()) return "plots: none (no m or n sweep in this run)";
+  return "plots: " + snapfit::bench::write_charts(dir, "bench_descriptors: time against m and n", command, charts);
 }
 
 // ---------------------------------------------------------------- the run
@@ -593,7 +582,7 @@ int run(const Args& args) {
     } catch (const std::exception& e) {
       throw snapfit::Error(path.string() + ": " + e.what());
     }
-    std::cout << write_plots(args.out, j.at("rows")) << "\n";
+    std::cout << write_plots(args.out, j.at("rows"), j.value("command_line", std::string("bench_descriptors"))) << "\n";
     return 0;
   }
   const auto wall_start = std::chrono::steady_clock::now();
@@ -827,7 +816,7 @@ int run(const Args& args) {
   std::cout << "\nwrote " << (dir / "descriptors.csv").string() << " and " << (dir / "descriptors.json").string()
             << " (" << fixed(j["wall_seconds"].get<double>(), 1) << " s in all; load average " << fixed(load_start)
             << " -> " << fixed(load_average()) << ")\n"
-            << write_plots(dir, j["rows"]) << "\n";
+            << write_plots(dir, j["rows"], j.value("command_line", std::string("bench_descriptors"))) << "\n";
   return 0;
 }
 

@@ -45,8 +45,8 @@
 // meanwhile (/proc/stat); a row during which they used more than 0.25 cores is measured
 // again after 15 s, up to 2 times (240 s of waiting per run at most), keeping the quietest
 // attempt (not in --quick).
-// Output in DIR (default results/bench_fft): fft.csv, maps.csv, fft.json and PNG charts
-// fft_time.png, fft_gflops.png, maps.png; a table on stdout and a one-line verdict (the
+// Output in DIR (default results/bench_fft): fft.csv, maps.csv, fft.json and charts.html
+// (time, throughput and maps per second against size); a table on stdout and a one-line verdict (the
 // fastest library per size and direction, and per map size), computed from the figures.
 #include <CL/opencl.hpp>
 #include <fftw3.h>
@@ -96,7 +96,6 @@
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/part_fields.h"
-#include "report/plot.h"
 #include "snapfit/error.h"
 #include "snapfit/scene.h"
 
@@ -739,9 +738,8 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
     f << j.dump(2) << "\n";
     if (!f) throw snapfit::Error((dir / "fft.json").string() + ": cannot write");
   }
-  (void)args;
-
   const std::vector<std::string> libs = {"clfft", "vkfft", "fftw"};
+  std::vector<snapfit::Chart> charts;
   for (const bool gflops : {false, true}) {
     snapfit::Chart c;
     c.title = gflops ? "3D C2C FFT throughput (5 n log2 n / p50)" : "3D C2C FFT time per transform (p50)";
@@ -760,7 +758,7 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
           }
         if (!s.x.empty()) c.series.push_back(s);
       }
-    snapfit::write_chart_png((dir / (gflops ? "fft_gflops.png" : "fft_time.png")).string(), c);
+    charts.push_back(c);
   }
   {
     snapfit::Chart c;
@@ -775,8 +773,9 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
         if (r.library == lib) s.x.push_back(double(count_of(r.dims))), s.y.push_back(r.rotations_per_s);
       if (!s.x.empty()) c.series.push_back(s);
     }
-    snapfit::write_chart_png((dir / "maps.png").string(), c);
+    charts.push_back(c);
   }
+  snapfit::bench::write_charts(dir, "bench_fft: 3D FFT libraries and full maps", args.command_line, charts);
 }
 
 // ---------------------------------------------------------------- the run
@@ -944,8 +943,7 @@ int run(const Args& args) {
   std::cout << "\nload average at end: " << load_end << " (start: " << load_start << "), total " << fixed(total_s, 0)
             << " s; " << g_quiet.retries << " rows re-measured after waiting " << fixed(g_quiet.waited_s, 0)
             << " s for other processes\nwrote " << (dir / "fft.csv").string()
-            << ", maps.csv, fft.json, fft_time.png, fft_gflops.png, "
-            << "maps.png\nverdict: " << verdict.str() << "\n";
+            << ", maps.csv, fft.json, charts.html\nverdict: " << verdict.str() << "\n";
   return 0;
 }
 

@@ -25,7 +25,7 @@
 #include "engine/query_engine.h"
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
-#include "report/plot.h"
+#include "report/chart_spec.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/engine_tuning.h"
 #include "scheduler/trajectory.h"
@@ -196,8 +196,9 @@ int main(int argc, char** argv) try {
   Chart hist = histogram_chart("Haptic loop frame time, " + std::to_string(loop.frames) +
                                    " frames, m' = " + std::to_string(tuned.result.chosen_modes),
                                "frame time (ms)", loop.frame_ms, 80, true);
-  write_chart_png((fs::path(out_dir) / "frame_times.png").string(), hist);
-  std::cout << "wrote " << out_dir << "/haptic_loop.json and frame_times.png\n";
+  const std::string page =
+      bench::write_charts(out_dir, "bench_haptic_loop: frame times", bench::command_line(argc, argv), {hist});
+  std::cout << "wrote " << out_dir << "/haptic_loop.json and " << page << "\n";
   return 0;
 } catch (const std::exception& e) {
   std::cerr << "bench_haptic_loop: error: " << e.what() << "\n";

@@ -45,8 +45,7 @@
 // Output in DIR (default results/bench_peers): peers.csv (per level), agreement.csv (per
 // level, m' and tau), poses.csv (per pose at the first level: pose, FCL verdict and
 // distance, snapfit energy per m'), peers.json (everything, with device, load averages,
-// command line, date) and PNG charts query_time.png (log-log), build_time.png,
-// agreement.png.
+// command line, date) and charts.html (query time log-log, build time, agreement).
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -80,7 +79,6 @@
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/part_fields.h"
-#include "report/plot.h"
 #include "scheduler/trajectory.h"
 #include "snapfit/error.h"
 #include "snapfit/query.h"
@@ -729,6 +727,7 @@ int run(const Args& args) {
   }
 
   // ---- charts
+  std::vector<snapfit::Chart> charts;
   {
     snapfit::Chart c;
     c.title = "query time vs triangles: FCL vs snapfit (same poses)";
@@ -753,7 +752,7 @@ int run(const Args& args) {
           return std::numeric_limits<double>::quiet_NaN();
         });
     c.hlines.push_back({1000.0, "1 ms"});
-    snapfit::write_chart_png((dir / "query_time.png").string(), c);
+    charts.push_back(c);
   }
   {
     snapfit::Chart c;
@@ -769,7 +768,7 @@ int run(const Args& args) {
       if (!R.fields_cached) b.x.push_back(double(R.tri1 + R.tri2)), b.y.push_back(R.fields_s + R.spectra_s);
     }
     c.series = {a, b};
-    snapfit::write_chart_png((dir / "build_time.png").string(), c);
+    charts.push_back(c);
   }
   {
     snapfit::Chart c;
@@ -785,12 +784,12 @@ int run(const Args& args) {
           s.x.push_back(double(a.modes)), s.y.push_back(100.0 * a.fraction());
       c.series.push_back(s);
     }
-    snapfit::write_chart_png((dir / "agreement.png").string(), c);
+    charts.push_back(c);
   }
+  snapfit::bench::write_charts(dir, "bench_peers: FCL and snapfit", args.command_line, charts);
   std::cout << "\nload average at end: " << load_end << " (start: " << load_start << "), total " << fixed(total_s, 0)
             << " s; other processes kept " << fixed(others_run, 2) << " cores busy on average\nwrote "
-            << (dir / "peers.csv").string() << ", agreement.csv, poses.csv, peers.json, query_time.png, "
-            << "build_time.png, agreement.png\n";
+            << (dir / "peers.csv").string() << ", agreement.csv, poses.csv, peers.json, charts.html\n";
   return 0;
 }
 

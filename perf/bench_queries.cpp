@@ -44,7 +44,7 @@
 //                driver's dispatch to worker threads (0.02-0.07 ms per launch here).
 // Output in DIR (default results/bench_queries): queries.csv, throughput.csv,
 // queries.json (everything, with device, driver, load averages, command line, date) and
-// PNG charts: latency_<variant>.png, latency_p99_all.png, throughput.png, roofline.png.
+// charts.html: latency per variant, p99 of all variants, throughput, roofline.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -73,7 +73,6 @@
 #include "engine/query_engine.h"
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
-#include "report/plot.h"
 #include "snapfit/error.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
@@ -1323,7 +1322,7 @@ int run(const Args& args) {
   }
 
   // ---- charts
-  std::vector<std::string> charts;
+  std::vector<snapfit::Chart> charts;
   const std::string dev_short = info.name.substr(0, 40);
   for (const auto& spec : specs) {
     snapfit::Chart c;
@@ -1344,9 +1343,7 @@ int run(const Args& args) {
     c.series = {p50, p99};
     c.hlines.push_back({1000.0, "1 ms"});
     if (spec.variant.translation_only) c.markers.push_back({4096.0, 1000.0, "seed 000 K20c 1 kHz (published)"});
-    const std::string file = "latency_" + spec.key + ".png";
-    snapfit::write_chart_png((dir / file).string(), c);
-    charts.push_back(file);
+    charts.push_back(c);
   }
   {
     snapfit::Chart c;
@@ -1363,8 +1360,7 @@ int run(const Args& args) {
     }
     c.hlines.push_back({1000.0, "1 ms"});
     c.markers.push_back({4096.0, 1000.0, "seed 000 K20c (published)"});
-    snapfit::write_chart_png((dir / "latency_p99_all.png").string(), c);
-    charts.push_back("latency_p99_all.png");
+    charts.push_back(c);
   }
   if (!args.latency_only) {
     snapfit::Chart c;
@@ -1382,8 +1378,7 @@ int run(const Args& args) {
         if (!s.x.empty()) c.series.push_back(s);
       }
     c.hlines.push_back({1000.0, "1 kHz"});
-    snapfit::write_chart_png((dir / "throughput.png").string(), c);
-    charts.push_back("throughput.png");
+    charts.push_back(c);
   }
   if (!args.latency_only) {
     snapfit::Chart c;
@@ -1409,12 +1404,11 @@ int run(const Args& args) {
     }
     c.series.push_back(single);
     c.series.push_back(batched);
-    snapfit::write_chart_png((dir / "roofline.png").string(), c);
-    charts.push_back("roofline.png");
+    charts.push_back(c);
   }
-  std::cout << "wrote " << (dir / "queries.csv").string() << ", throughput.csv, queries.json and";
-  for (const auto& c : charts) std::cout << " " << c;
-  std::cout << "\n";
+  const std::string page =
+      snapfit::bench::write_charts(dir, "bench_queries: latency and throughput", args.command_line, charts);
+  std::cout << "wrote " << (dir / "queries.csv").string() << ", throughput.csv, queries.json and " << page << "\n";
   return 0;
 }
 

@@ -6,9 +6,11 @@
 #
 # Full mode is for a quiet machine (about 20 minutes on 2 cores); --quick runs each
 # benchmark's small mode (CI runs it once to prove everything runs; timings are not
-# checked). Each benchmark writes CSV, JSON and PNG into DIR/<name>/ and its console
-# output into DIR/<name>.log; DIR/index.md lists what ran, how long it took and the
-# load average before and after.
+# checked). Each benchmark writes CSV, JSON and a self-contained charts.html into
+# DIR/<name>/ and its console output into DIR/<name>.log; with chromium and
+# report/web/node_modules present, each charts.html is also shot as charts.png (headless
+# chromium). DIR/index.md lists what ran, how long it took and the load average before
+# and after.
 set -euo pipefail
 
 quick=0
@@ -24,7 +26,7 @@ while [ $# -gt 0 ]; do
     --build=*) build="${1#--build=}" ;;
     --only) only="$2"; shift ;;
     --only=*) only="${1#--only=}" ;;
-    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
     *) echo "run_benchmarks.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -52,6 +54,7 @@ if [ ! -f "$built_list" ]; then
   exit 2
 fi
 failed=0
+ran=()
 for b in "${benches[@]}"; do
   if [ -n "$only" ] && [[ ",$only," != *",$b,"* ]]; then continue; fi
   exe="$build/perf/$b"
@@ -72,9 +75,22 @@ for b in "${benches[@]}"; do
   echo "== $b ${args[*]}"
   start=$(date +%s%N)
   if "$exe" "${args[@]}" > >(tee "$out/$b.log") 2>&1; then status=ok; else status="FAILED ($?)"; failed=1; fi
+  ran+=("$b")
   seconds=$(awk -v a="$start" -v b="$(date +%s%N)" 'BEGIN { printf "%.1f", (b - a) / 1e9 }')
   load_after=$(cut -d' ' -f1-3 /proc/loadavg)
   printf '| %s | %s | %s | %s | %s | [%s/](%s/) |\n' "$b" "$status" "$seconds" "$load_before" "$load_after" "$b" "$b" >> "$index"
 done
+# Pictures of the chart pages, for docs: one chromium for all of them.
+pages=()
+for b in "${ran[@]}"; do
+  [ -f "$out/$b/charts.html" ] && pages+=("$out/$b/charts.html" "$out/$b/charts.png")
+done
+web="$(dirname "$0")/../report/web"
+if ((${#pages[@]})) && [ -x "${SNAPFIT_CHROMIUM:-/usr/bin/chromium}" ] && [ -d "$web/node_modules" ]; then
+  if node "$web/screenshot.mjs" "${pages[@]}"; then echo "charts.png: one per charts.html"; else
+    echo "run_benchmarks.sh: the screenshots of the chart pages failed" >&2; failed=1; fi
+else
+  echo "run_benchmarks.sh: no charts.png (needs chromium and report/web/node_modules)" >&2
+fi
 echo "wrote $index"
 exit $failed

@@ -6,7 +6,7 @@
 
 #include "core/quantile.h"
 #include "io/atomic_write.h"
-#include "report/plot.h"
+#include "report/chart_spec.h"
 
 namespace snapfit {
 namespace {
@@ -31,8 +31,6 @@ std::string loop_csv(const LoopReport& loop) {
   return csv.str();
 }
 
-Series line(const std::string& label) { return Series{label, {}, {}, Series::Style::line}; }
-
 }  // namespace
 
 std::string tuning_table(const TuningResult& t) {
@@ -54,20 +52,18 @@ std::string tuning_table(const TuningResult& t) {
 
 Chart tuning_chart(const TuningResult& t, const std::string& device_name) {
   Series p50{"p50", {}, {}, Series::Style::line_points}, p99{"p99", {}, {}, Series::Style::line_points},
-      model = line("cost model (p99 fit)");
+      model{"cost model (p99 fit)", {}, {}, Series::Style::line, ""};
   for (const TimingPoint& p : t.points) {
     p50.x.push_back(p.modes), p50.y.push_back(p.p50_ms);
     p99.x.push_back(p.modes), p99.y.push_back(p.p99_ms);
     model.x.push_back(p.modes), model.y.push_back(std::max(1e-3, t.model.predict_ms(p.modes)));
   }
-  Chart c{"Per-query time against m' on " + device_name,
-          "m' (modes)",
-          "ms per query",
-          true,
-          true,
-          {p50, p99, model},
-          {},
-          {}};
+  Chart c;
+  c.title = "Per-query time against m' on " + device_name;
+  c.x_label = "m' (modes)";
+  c.y_label = "ms per query";
+  c.log_x = c.log_y = true;
+  c.series = {p50, p99, model};
   c.hlines.push_back(HLine{t.budget_ms, "budget"});
   c.hlines.push_back(HLine{t.target_ms(), "target (margin)"});
   for (const TimingPoint& p : t.points)
@@ -77,46 +73,10 @@ Chart tuning_chart(const TuningResult& t, const std::string& device_name) {
   return c;
 }
 
-nlohmann::json write_haptic_report(const std::filesystem::path& out, const Scene& scene, const SessionResult& run,
+nlohmann::json write_haptic_report(const std::filesystem::path& out, const SessionResult& run,
                                    const TuningResult& tuning) {
   const LoopReport& loop = run.loop;
   write_text_file((out / "loop.csv").string(), loop_csv(loop));
-
-  Chart hist = histogram_chart(
-      "Frame time, " + std::to_string(loop.frames) + " frames at " + std::to_string(int(loop.rate_hz)) + " Hz",
-      "frame time (ms)", loop.frame_ms, 60, true);
-  hist.hlines.clear();
-  write_chart_png((out / "frame_times.png").string(), hist);
-
-  Series energy = line("energy"), force = line("|geometric force| (N)"), sent = line("|force to device| (N)"),
-         torque = line("|geometric torque| (N m)"), position = line("position error (" + scene.units + ")"),
-         angle = line("angle error (deg)");
-  // One point in 10 keeps the charts light; the CSV has every frame.
-  for (std::size_t i = 0; i < loop.log.size(); i += 10) {
-    const FrameRecord& f = loop.log[i];
-    energy.x.push_back(f.time_s), energy.y.push_back(f.energy);
-    force.x.push_back(f.time_s), force.y.push_back(f.geometric.force.norm());
-    sent.x.push_back(f.time_s), sent.y.push_back(f.sent.force.norm());
-    torque.x.push_back(f.time_s), torque.y.push_back(f.geometric.torque.norm());
-    const PoseError e = pose_error(f.part, run.target);
-    position.x.push_back(f.time_s), position.y.push_back(e.position);
-    angle.x.push_back(f.time_s), angle.y.push_back(e.angle_deg);
-  }
-  write_chart_png((out / "energy.png").string(), Chart{"Geometric energy at the part's pose (" + scene.name + ")",
-                                                       "time (s)",
-                                                       "energy",
-                                                       false,
-                                                       false,
-                                                       {energy},
-                                                       {},
-                                                       {}});
-  Chart ft{"Force and torque in the haptic loop", "time (s)", "magnitude", false, false, {force, sent}, {}, {}};
-  if (scene.outputs.torque) ft.series.push_back(torque);
-  write_chart_png((out / "force_torque.png").string(), ft);
-  Chart pe{"Pose error against the assembled pose", "time (s)", "error", false, false, {position, angle}, {}, {}};
-  pe.hlines.push_back(HLine{run.position_tolerance, "position tolerance"});
-  write_chart_png((out / "pose_error.png").string(), pe);
-  write_chart_png((out / "tuning.png").string(), tuning_chart(tuning, "this device"));
 
   nlohmann::json changes = nlohmann::json::array();
   for (const ModeChange& c : loop.mode_changes)

@@ -1,30 +1,49 @@
 #include "report/run_report.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_write.h"
 #include "io/mesh_export.h"
-#include "io/png_export.h"
 #include "mesh/mesh_report.h"
+#include "mesh/mesh_slice.h"
 #include "report/haptic_report.h"
+#include "report/run_page.h"
+#include "report/slice_figure.h"
+#include "report/web_assets.h"
 #include "scheduler/tuning_file.h"
 
 namespace snapfit {
 namespace {
 
-// A slice of the part's affinity through y = 0 of its own frame, and its summary.
-nlohmann::json write_affinity_slice(const std::filesystem::path& out, int part, const PartFieldsResult& result,
-                                    std::vector<std::string>& written) {
+// A figure of the part's affinity through y = 0 of its own frame, with its outline; the
+// PNG is written and kept for the page.
+nlohmann::json write_affinity_figure(const std::filesystem::path& out, const Scene& scene, int part, const Mesh& mesh,
+                                     const PartFieldsResult& result, std::vector<PageFigure>& figures,
+                                     std::vector<std::string>& written) {
   const DescriptorFields& f = result.fields;
   const std::vector<float> rho = affinity_imaginary(f);
-  const int slice =
-      slice_index_for(f.grid, 'y', std::clamp(0.0, f.grid.origin.y(), f.grid.point(0, f.grid.dims.y() - 1, 0).y()));
-  const ColorMap map = f.skeletal_density.empty() ? ColorMap::sequential : ColorMap::diverging;
+  const double y = std::clamp(0.0, f.grid.origin.y(), f.grid.point(0, f.grid.dims.y() - 1, 0).y());
+  const int slice = slice_index_for(f.grid, 'y', y);
+  const double plane = f.grid.point(0, slice, 0).y();
+  const bool indicator = f.skeletal_density.empty();
+  const std::string name = part == 1 ? scene.part1.name : scene.part2.name;
+  SliceFigureOptions options;
+  char at[48];
+  std::snprintf(at, sizeof at, "%.4g", plane);
+  options.title =
+      "Affinity Im(rho) of part " + std::to_string(part) + " '" + name + "' at y = " + at + " " + scene.units;
+  options.units = scene.units;
+  options.value_label = indicator ? "Im(rho): indicator" : "Im(rho)";
+  options.outline = mesh_slice_outline(mesh, 'y', plane);
+  const SliceFigure fig = render_slice_figure(f.grid, rho.data(), 'y', slice,
+                                              indicator ? ColorMap::sequential : ColorMap::diverging, options);
   const std::string png = "part" + std::to_string(part) + "_affinity_y0.png";
-  write_png((out / png).string(), render_slice(f.grid, rho.data(), 'y', slice, map, std::nullopt, 4),
-            {{"Title", "snapfit affinity Im(rho) of part " + std::to_string(part) + " at y=0"}});
+  const std::vector<std::pair<std::string, std::string>> text = {{"Title", "snapfit " + options.title}};
+  write_png((out / png).string(), fig.image, text);
   written.push_back(png);
+  figures.push_back({options.title + " (" + png + "; the part's outline in black)", png_bytes(fig.image, text)});
   double max_bound = 0;
   for (float b : f.density_bound) max_bound = std::max(max_bound, static_cast<double>(b));
   return {{"part", part},
@@ -55,20 +74,25 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
     write_stl(pair.part(part).mesh, (out / stl).string());
     written.push_back(stl);
   }
+  std::vector<PageFigure> figures;
   nlohmann::json fields = nlohmann::json::array();
-  for (int part = 1; part <= 2; ++part) fields.push_back(write_affinity_slice(out, part, pair.fields(part), written));
+  for (int part = 1; part <= 2; ++part)
+    fields.push_back(
+        write_affinity_figure(out, scene, part, pair.part(part).mesh, pair.fields(part), figures, written));
 
   nlohmann::json tuning = nlohmann::json::parse(tuning_to_json(run.tuning));
   tuning["key"] = run.tuning_key;
   nlohmann::json loop = nullptr;
   if (run.session) {
-    loop = write_haptic_report(out, scene, *run.session, run.tuning);
-    for (const char* f : {"loop.csv", "frame_times.png", "energy.png", "force_torque.png", "pose_error.png"})
-      written.push_back(f);
-  } else {
-    write_chart_png((out / "tuning.png").string(), tuning_chart(run.tuning, run.loop_device.name));
+    loop = write_haptic_report(out, *run.session, run.tuning);
+    written.push_back("loop.csv");
   }
-  written.push_back("tuning.png");
+  nlohmann::json report_html = nullptr;
+  if (web_pages_available()) {
+    write_run_page((out / "report.html").string(), run, figures);
+    written.push_back("report.html");
+    report_html = "report.html";
+  }
 
   const nlohmann::json summary = {
       {"scene", scene.name},
@@ -86,6 +110,7 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
       {"fields", fields},
       {"tuning", tuning},
       {"haptic_loop", loop},
+      {"report_html", report_html},
       {"seconds", run.seconds},
   };
   write_text_file((out / "summary.json").string(), summary.dump(2) + "\n");

@@ -229,3 +229,30 @@ TEST_CASE("grid: point(index) inverts index(i, j, k)") {
       for (int i = 0; i < 5; ++i) ok = ok && grid.point(grid.index(i, j, k)) == grid.point(i, j, k);
   CHECK(ok);
 }
+
+TEST_CASE("grid: sample_trilinear reproduces trilinear functions and is `outside` beyond the grid") {
+  GridSpec g;
+  g.origin = Vector3d(-1, 2, 0.5);
+  g.spacing = 0.25;
+  g.dims = Eigen::Vector3i(9, 5, 7);
+  // f = a + bx + cy + dz + e xyz is trilinear on every cell, so interpolation is exact.
+  auto f = [](const Vector3d& p) { return 1.5 + 2 * p.x() - 3 * p.y() + 0.5 * p.z() + 0.75 * p.x() * p.y() * p.z(); };
+  std::vector<float> values(g.count());
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = static_cast<float>(f(g.point(i)));
+  const Vector3d hi = g.point(8, 4, 6);
+  for (int n = 0; n < 200; ++n) {
+    const Vector3d t(std::fmod(0.6180339 * n, 1.0), std::fmod(0.7548776 * n, 1.0), std::fmod(0.5698403 * n, 1.0));
+    const Vector3d p = g.origin + t.cwiseProduct(hi - g.origin);
+    CHECK(sample_trilinear(g, values.data(), p, -7) == doctest::Approx(f(p)).epsilon(1e-5));
+  }
+  CHECK(sample_trilinear(g, values.data(), hi, -7) == doctest::Approx(f(hi)).epsilon(1e-6));  // the far corner
+  CHECK(sample_trilinear(g, values.data(), g.origin - Vector3d(1e-9, 0, 0), -7) == -7);
+  CHECK(sample_trilinear(g, values.data(), hi + Vector3d(0, 0, 1e-9), -7) == -7);
+  CHECK(sample_trilinear(g, values.data(), Vector3d(std::nan(""), 2, 1), -7) == -7);
+  // One point along an axis: exact on its plane.
+  GridSpec flat = g;
+  flat.dims = Eigen::Vector3i(9, 5, 1);
+  CHECK(sample_trilinear(flat, values.data(), Vector3d(0, 2.5, 0.5), -7) ==
+        doctest::Approx(f({0, 2.5, 0.5})).epsilon(1e-5));
+  CHECK(sample_trilinear(flat, values.data(), Vector3d(0, 2.5, 0.6), -7) == -7);
+}

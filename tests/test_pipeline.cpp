@@ -1,7 +1,7 @@
 // One pipeline (pipeline/assembly_pair.h): for every shipped scene, `snapfit run` (its
 // loop log), `snapfit query` (its JSON lines) and the library give the same energy,
-// force and torque at the same pose and m'. The CLI runs as a user runs it, with the
-// test's cache folder, so it reuses the fields and spectra the library computed.
+// force and torque at the same pose and m'; report.html carries the same frames as loop.csv. The CLI runs as a user
+// runs it, with the test's cache folder, so it reuses the fields and spectra the library computed.
 #include <doctest/doctest.h>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +11,9 @@
 
 #include "engine/query_engine.h"
 #include "pipeline/assembly_pair.h"
+#include "report/loop_display.h"
+#include "report/run_page.h"
+#include "report/web_assets.h"
 #include "tests/test_engine_support.h"
 
 namespace snapfit {
@@ -56,6 +59,61 @@ std::string pose_argument(const Pose& p, Pose& parsed) {
 
 Eigen::Vector3d vec3(const nlohmann::json& j) { return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()}; }
 
+// A float32 of the page against loop.csv's value (9 significant digits): equal to float
+// rounding.
+bool same_float(float page, double csv) { return std::abs(page - csv) <= 1e-6 * std::abs(csv) + 1e-30; }
+
+// report.html's data block: the summary as summary.json has it, and the playback and
+// time series at the frames loop.csv has (float32 in the page).
+void check_report_page(const fs::path& run_dir, const nlohmann::json& summary,
+                       const std::vector<std::vector<double>>& rows, const std::vector<std::string>& header) {
+  if (!web_pages_available()) {
+    CHECK(summary["report_html"].is_null());
+    return;
+  }
+  CHECK(summary["report_html"] == "report.html");
+  std::ifstream in(run_dir / "report.html");
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string open = "<script id=\"snapfit-data\" type=\"application/json\">";
+  const std::size_t at = html.find(open);
+  REQUIRE(at != std::string::npos);
+  const std::size_t end = html.find("</script>", at);
+  const nlohmann::json data = nlohmann::json::parse(html.substr(at + open.size(), end - at - open.size()));
+  CHECK(data["summary"]["scene"] == summary["scene"]);
+  CHECK(data["summary"]["modes"] == kModes);
+  CHECK(data["parts"].size() == 2);
+  if (rows.empty()) {
+    CHECK(data["playback"].is_null());
+    return;
+  }
+  CHECK(data["summary"]["misses"] == summary["haptic_loop"]["misses"]);
+  CHECK(data["summary"]["assembled"] == summary["haptic_loop"]["assembled"]);
+  const nlohmann::json& pb = data["playback"];
+  REQUIRE(pb["frames_total"] == rows.size());
+  auto col = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  const std::vector<std::size_t> frames = evenly_spaced_frames(rows.size(), RunPageLimits{}.playback_frames);
+  const std::vector<float> time = test::decode_float32_base64(pb["time"].get<std::string>());
+  const std::vector<float> position = test::decode_float32_base64(pb["position"].get<std::string>());
+  const std::vector<float> force = test::decode_float32_base64(pb["force"].get<std::string>());
+  REQUIRE(time.size() == frames.size());
+  REQUIRE(position.size() == 3 * frames.size());
+  for (std::size_t k = 0; k < frames.size(); k += 97) {
+    const auto& r = rows[frames[k]];
+    CHECK(same_float(time[k], r[col("time_s")]));
+    CHECK(same_float(position[3 * k + 2], r[col("part_z")]));
+    CHECK(same_float(force[3 * k], r[col("sent_fx")]));
+  }
+  // The energy chart: an envelope whose extremes are those of the CSV's energy column.
+  const nlohmann::json& energy_chart = data["timeline"]["charts"][0];
+  const std::vector<float> e = test::decode_float32_base64(energy_chart["series"][0]["y"].get<std::string>());
+  double lo = rows[0][col("energy")], hi = lo;
+  for (const auto& r : rows) lo = std::min(lo, r[col("energy")]), hi = std::max(hi, r[col("energy")]);
+  CHECK(same_float(*std::min_element(e.begin(), e.end()), lo));
+  CHECK(same_float(*std::max_element(e.begin(), e.end()), hi));
+}
+
 }  // namespace
 
 TEST_CASE("pipeline: snapfit run, snapfit query and the library give the same wrench on every shipped scene") {
@@ -89,9 +147,11 @@ TEST_CASE("pipeline: snapfit run, snapfit query and the library give the same wr
     const nlohmann::json summary = nlohmann::json::parse(summary_file);
     CHECK(summary["fft_dims"] == nlohmann::json(pair.spectra.dims));
     std::vector<Pose> poses;
+    if (scene.trajectory.keyframes.empty()) check_report_page(run_dir, summary, {}, {});
     if (!scene.trajectory.keyframes.empty()) {
       std::vector<std::string> h;
       const auto rows = read_csv(run_dir / "loop.csv", h);
+      check_report_page(run_dir, summary, rows, h);
       auto col = [&](const std::string& name) {
         const auto it = std::find(h.begin(), h.end(), name);
         REQUIRE(it != h.end());

@@ -220,23 +220,25 @@ TEST_CASE("png slice: each grid point is a scale x scale block") {
 TEST_CASE("png slice: bad axis, index, limit and scale throw") {
   const GridSpec g = small_grid();
   const std::vector<float> v(g.count(), 1.0f);
-  CHECK(error_of([&] { render_slice(g, v.data(), 'w', 0, ColorMap::diverging); }).find("axis must be") !=
+  CHECK(test::error_of([&] { render_slice(g, v.data(), 'w', 0, ColorMap::diverging); }).find("axis must be") !=
         std::string::npos);
-  CHECK(error_of([&] { render_slice(g, v.data(), 'z', 3, ColorMap::diverging); }).find("outside the grid") !=
+  CHECK(test::error_of([&] { render_slice(g, v.data(), 'z', 3, ColorMap::diverging); }).find("outside the grid") !=
         std::string::npos);
-  CHECK(error_of([&] { render_slice(g, v.data(), 'x', -1, ColorMap::diverging); }).find("outside the grid") !=
+  CHECK(test::error_of([&] { render_slice(g, v.data(), 'x', -1, ColorMap::diverging); }).find("outside the grid") !=
         std::string::npos);
-  CHECK(error_of([&] { render_slice(g, v.data(), 'x', 5, ColorMap::diverging); }).find("outside the grid") !=
+  CHECK(test::error_of([&] { render_slice(g, v.data(), 'x', 5, ColorMap::diverging); }).find("outside the grid") !=
         std::string::npos);
   CHECK_NOTHROW(render_slice(g, v.data(), 'x', 4, ColorMap::diverging));
-  CHECK(error_of([&] { render_slice(g, nullptr, 'z', 0, ColorMap::diverging); }).find("null") != std::string::npos);
-  CHECK(error_of([&] { render_slice(g, v.data(), 'z', 0, ColorMap::diverging, 0.0); }).find("limit") !=
+  CHECK(test::error_of([&] { render_slice(g, nullptr, 'z', 0, ColorMap::diverging); }).find("null") !=
         std::string::npos);
-  CHECK(error_of([&] { render_slice(g, v.data(), 'z', 0, ColorMap::diverging, std::nullopt, 0); }).find("scale") !=
+  CHECK(test::error_of([&] { render_slice(g, v.data(), 'z', 0, ColorMap::diverging, 0.0); }).find("limit") !=
         std::string::npos);
+  CHECK(test::error_of([&] {
+          render_slice(g, v.data(), 'z', 0, ColorMap::diverging, std::nullopt, 0);
+        }).find("scale") != std::string::npos);
   GridSpec empty = g;
   empty.dims.y() = 0;
-  CHECK(error_of([&] { render_slice(empty, v.data(), 'z', 0, ColorMap::diverging); }).find("empty grid") !=
+  CHECK(test::error_of([&] { render_slice(empty, v.data(), 'z', 0, ColorMap::diverging); }).find("empty grid") !=
         std::string::npos);
 }
 
@@ -268,6 +270,12 @@ TEST_CASE("png write: read back with libpng, pixels and tEXt chunks") {
   CHECK(r.other_text == 0);
   CHECK(r.text.size() == text.size());
   for (const auto& [key, value] : text) CHECK(r.text[key] == value);
+
+  // The same PNG in memory, byte for byte.
+  const std::vector<char> file = test::read_bytes(path);
+  const std::vector<unsigned char> memory = png_bytes(im, text);
+  CHECK(std::vector<unsigned char>(file.begin(), file.end()) == memory);
+  CHECK_THROWS_AS(png_bytes(SliceImage{}), Error);
 }
 
 TEST_CASE("png write: malformed images, bad keywords and unwritable paths throw naming the path") {
@@ -277,18 +285,20 @@ TEST_CASE("png write: malformed images, bad keywords and unwritable paths throw 
   im.width = 2;
   im.height = 2;
   im.rgb.assign(11, 0);
-  std::string m = error_of([&] { write_png(path, im); });
+  std::string m = test::error_of([&] { write_png(path, im); });
   CHECK(m.find(path) != std::string::npos);
   CHECK(m.find("bytes of RGB") != std::string::npos);
   im.rgb.assign(12, 0);
-  CHECK(error_of([&] { write_png(path, im, {{"", "x"}}); }).find("keyword") != std::string::npos);
-  CHECK(error_of([&] { write_png(path, im, {{std::string(80, 'k'), "x"}}); }).find("keyword") != std::string::npos);
-  CHECK(error_of([&] { write_png(path, im, {{" lead", "x"}}); }).find("keyword") != std::string::npos);
-  CHECK(error_of([&] { write_png(path, im, {{"k", std::string("a\0b", 3)}}); }).find("NUL") != std::string::npos);
+  CHECK(test::error_of([&] { write_png(path, im, {{"", "x"}}); }).find("keyword") != std::string::npos);
+  CHECK(test::error_of([&] {
+          write_png(path, im, {{std::string(80, 'k'), "x"}});
+        }).find("keyword") != std::string::npos);
+  CHECK(test::error_of([&] { write_png(path, im, {{" lead", "x"}}); }).find("keyword") != std::string::npos);
+  CHECK(test::error_of([&] { write_png(path, im, {{"k", std::string("a\0b", 3)}}); }).find("NUL") != std::string::npos);
   SliceImage empty;
-  CHECK(error_of([&] { write_png(path, empty); }).find("image size") != std::string::npos);
+  CHECK(test::error_of([&] { write_png(path, empty); }).find("image size") != std::string::npos);
   const std::string nowhere = dir.file("missing/x.png");
-  m = error_of([&] { write_png(nowhere, im); });
+  m = test::error_of([&] { write_png(nowhere, im); });
   CHECK(m.find(nowhere) != std::string::npos);
   CHECK(std::filesystem::is_empty(dir.path));
 }
@@ -305,8 +315,10 @@ TEST_CASE("png slice_index_for: nearest index inside, errors outside") {
   CHECK(slice_index_for(g, 'y', 2.74) == 1);
   CHECK(slice_index_for(g, 'z', 10.0) == 20);
   CHECK(slice_index_for(g, 'z', 0.1 + 0.2) == 1);
-  CHECK(error_of([&] { slice_index_for(g, 'z', 12.5); }) == "z=12.5 is outside the grid, which spans z in [0, 10]");
-  CHECK(error_of([&] { slice_index_for(g, 'x', -1.01); }) == "x=-1.01 is outside the grid, which spans x in [-1, 1]");
-  CHECK(error_of([&] { slice_index_for(g, 'y', std::nan("")); }).find("outside the grid") != std::string::npos);
-  CHECK(error_of([&] { slice_index_for(g, 'q', 0.0); }).find("axis must be") != std::string::npos);
+  CHECK(test::error_of([&] { slice_index_for(g, 'z', 12.5); }) ==
+        "z=12.5 is outside the grid, which spans z in [0, 10]");
+  CHECK(test::error_of([&] { slice_index_for(g, 'x', -1.01); }) ==
+        "x=-1.01 is outside the grid, which spans x in [-1, 1]");
+  CHECK(test::error_of([&] { slice_index_for(g, 'y', std::nan("")); }).find("outside the grid") != std::string::npos);
+  CHECK(test::error_of([&] { slice_index_for(g, 'q', 0.0); }).find("axis must be") != std::string::npos);
 }

@@ -1,9 +1,10 @@
 #pragma once
-// Small helpers shared by the test files: temporary folders, file bytes, commands and
-// error messages.
+// Small helpers shared by the test files: temporary folders, file bytes, commands, the
+// message of an expected error, base64.
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -94,7 +95,44 @@ inline Command run_command(const std::string& command, bool with_stderr = true) 
   return c;
 }
 
-// The message of the snapfit::Error that `f` throws; "no error" when it throws none.
+// Decodes RFC 4648 base64 (padding ends it): the reference for report/page_encoding.h.
+inline std::vector<unsigned char> decode_base64(const std::string& text) {
+  std::vector<unsigned char> out;
+  unsigned value = 0;
+  int bits = 0;
+  for (char c : text) {
+    int v;
+    if (c >= 'A' && c <= 'Z')
+      v = c - 'A';
+    else if (c >= 'a' && c <= 'z')
+      v = c - 'a' + 26;
+    else if (c >= '0' && c <= '9')
+      v = c - '0' + 52;
+    else if (c == '+')
+      v = 62;
+    else if (c == '/')
+      v = 63;
+    else
+      break;
+    value = (value << 6) | unsigned(v);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<unsigned char>((value >> bits) & 255));
+    }
+  }
+  return out;
+}
+
+// Base64 of little-endian float32 values (report/page_encoding.h) as floats.
+inline std::vector<float> decode_float32_base64(const std::string& text) {
+  const std::vector<unsigned char> bytes = decode_base64(text);
+  std::vector<float> out(bytes.size() / 4);
+  for (std::size_t i = 0; i < out.size(); ++i) std::memcpy(&out[i], bytes.data() + 4 * i, 4);
+  return out;
+}
+
+// The message of the snapfit::Error that `f` throws, or "no error".
 inline std::string error_of(const std::function<void()>& f) {
   try {
     f();
