@@ -48,16 +48,6 @@ struct Row {
   std::size_t flagged = 0;  // poses the engine refused (outside the alias-free box): no error figure
 };
 
-struct ErrorSums {
-  double d[3] = {0, 0, 0}, r[3] = {0, 0, 0};
-  void add(const QueryResult& x, const QueryResult& ref) {
-    d[0] += std::pow(x.energy - ref.energy, 2), r[0] += ref.energy * ref.energy;
-    d[1] += (x.force - ref.force).squaredNorm(), r[1] += ref.force.squaredNorm();
-    d[2] += (x.torque - ref.torque).squaredNorm(), r[2] += ref.torque.squaredNorm();
-  }
-  double rel(int i) const { return r[i] > 0 ? std::sqrt(d[i] / r[i]) : 0; }
-};
-
 // Points not dominated in (time, error): the lower-left envelope, by increasing time.
 std::vector<const Row*> pareto(const std::vector<Row>& rows, double Row::*err) {
   std::vector<const Row*> sorted;
@@ -195,7 +185,7 @@ int main(int argc, char** argv) try {
         engine->set_modes(m);
         // float: the device kernel.
         Row f{os, scheme_name, "float", m};
-        ErrorSums fe;
+        RelativeErrors fe;
         for (std::size_t i = 0; i < poses.size(); ++i) {
           const QueryResult r = engine->query(poses[i]);
           if (r.flags)
@@ -213,7 +203,7 @@ int main(int argc, char** argv) try {
           times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         }
         f.ms = quantile(times, 0.5);
-        f.err_energy = fe.rel(0), f.err_force = fe.rel(1), f.err_torque = fe.rel(2);
+        f.err_energy = fe.relative(0), f.err_force = fe.relative(1), f.err_torque = fe.relative(2);
         if (!f.flagged) rows.push_back(f);
         if (exact) {
           std::printf("os %.1f %-13s m' %7zu  float %8.3f ms  E %.2e F %.2e T %.2e\n", os, scheme_name.c_str(), m, f.ms,
@@ -222,7 +212,7 @@ int main(int argc, char** argv) try {
         }
         // double: the host reference evaluator at the same m' (skipped where it is slow).
         Row d{os, scheme_name, "double", m};
-        ErrorSums de;
+        RelativeErrors de;
         std::vector<double> dtimes;
         ReferenceOptions o = ref_options;
         o.interpolation = scheme;
@@ -236,7 +226,7 @@ int main(int argc, char** argv) try {
           dtimes.push_back(1e3 * r.seconds);
         }
         d.ms = quantile(dtimes, 0.5);
-        d.err_energy = de.rel(0), d.err_force = de.rel(1), d.err_torque = de.rel(2);
+        d.err_energy = de.relative(0), d.err_force = de.relative(1), d.err_torque = de.relative(2);
         if (!d.flagged) rows.push_back(d);
         if (f.flagged)
           flagged_settings.push_back(

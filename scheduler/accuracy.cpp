@@ -12,16 +12,6 @@
 namespace snapfit {
 namespace {
 
-struct ErrorSums {
-  double d[3] = {0, 0, 0}, r[3] = {0, 0, 0};
-  void add(const QueryResult& x, const QueryResult& ref) {
-    d[0] += std::pow(x.energy - ref.energy, 2), r[0] += ref.energy * ref.energy;
-    d[1] += (x.force - ref.force).squaredNorm(), r[1] += ref.force.squaredNorm();
-    d[2] += (x.torque - ref.torque).squaredNorm(), r[2] += ref.torque.squaredNorm();
-  }
-  double relative(int i) const { return r[i] > 0 ? std::sqrt(d[i] / r[i]) : 0; }
-};
-
 QueryVariant exact_product(const QueryVariant& base, ProductUpdate update, std::size_t product_modes) {
   QueryVariant v = base;
   v.rotation = RotationMethod::exact_product;
@@ -35,6 +25,14 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 }  // namespace
+
+void RelativeErrors::add(const QueryResult& x, const QueryResult& ref) {
+  d[0] += std::pow(x.energy - ref.energy, 2), r[0] += ref.energy * ref.energy;
+  d[1] += (x.force - ref.force).squaredNorm(), r[1] += ref.force.squaredNorm();
+  d[2] += (x.torque - ref.torque).squaredNorm(), r[2] += ref.torque.squaredNorm();
+}
+
+double RelativeErrors::relative(int i) const { return r[i] > 0 ? std::sqrt(d[i] / r[i]) : 0; }
 
 std::vector<Pose> accuracy_poses(const Scene& scene, std::size_t count) {
   const auto& k = scene.trajectory.keyframes;
@@ -127,7 +125,7 @@ AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, c
       measured = std::move(engine);
       measured->set_modes(s.modes);
     }
-    ErrorSums sums;
+    RelativeErrors sums;
     for (std::size_t i = 0; i < poses.size(); ++i) {
       const QueryResult r = measured->query(poses[i]);
       if (r.flags != query_ok || reference[i].flags != query_ok) continue;

@@ -21,6 +21,13 @@
 
 namespace snapfit {
 
+// The error measure above, accumulated pose by pose: relative(0) energy, 1 force, 2 torque.
+struct RelativeErrors {
+  double d[3] = {0, 0, 0}, r[3] = {0, 0, 0};
+  void add(const QueryResult& x, const QueryResult& ref);
+  double relative(int i) const;
+};
+
 struct AccuracyOptions {
   double budget_ms = 1.0;
   double margin = 0.25;    // TuneOptions::margin
