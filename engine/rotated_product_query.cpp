@@ -11,6 +11,7 @@
 #include <mutex>
 #include <thread>
 
+#include "engine/line_kernel.h"
 #include "engine/mode_order.h"
 #include "engine/query_launch.h"
 #include "engine/rotated_product.h"
@@ -19,23 +20,6 @@
 
 namespace snapfit {
 namespace {
-
-// Arguments of the rotated_lines kernel (kernels/pose_query.cl), in order.
-enum RotatedLinesArg : cl_uint {
-  kWeights = 0,    // global float8*: the product box
-  kLines,          // global int4*: the selected lines (engine/translation_lines.h LineRecord)
-  kExtras,         // global int4*: (box node, (kx, ky), (kz, code), 0)
-  kExtraCount,     // int
-  kFolded,         // int
-  kPose,           // float16 (s0-s2: dtheta)
-  kPoses,          // global float16*
-  kPoseCount,      // int
-  kLineCount,      // int
-  kGroupsPerPose,  // int
-  kTableHalf,      // int
-  kPartials,       // global float*
-  kInvLength,      // float4: 1 / L
-};
 
 // The product modes by default: enough for every m' a CPU frame can sum (the product
 // itself costs time in proportion to m' only).
@@ -91,16 +75,17 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
     product_ = std::make_unique<RotatedProduct>(ctx, spectra, lines_, cache);
     std::string options = " -D TRANSLATION_ONLY -D ROTATED_LINES";
     if (variant.force || variant.torque) options += " -D FORCE";  // the torque needs F (R c2 x F)
-    launch_ = std::make_unique<QueryLaunch>(ctx, spectra, variant, reach_.back(), "rotated_lines", options,
-                                            SharedQueryArgs{kPose, kPoses, kPoseCount, kGroupsPerPose, kPartials},
-                                            cache, static_cast<const QueryHooks*>(this));
+    launch_ = std::make_unique<QueryLaunch>(
+        ctx, spectra, variant, reach_.back(), "rotated_lines", options,
+        SharedQueryArgs{kLinePose, kLinePoses, kLinePoseCount, kLineGroupsPerPose, kLinePartials}, cache,
+        static_cast<const QueryHooks*>(this));
     try {
       cl::Kernel& k = launch_->kernel();
       for (Slot& slot : slots_) slot.box = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, product_->box_bytes());
       extras_ = cl::Buffer(ctx.context, CL_MEM_READ_ONLY, sizeof(cl_int4) * (kMaxUnpairedExtras + 1));
-      k.setArg(kExtras, extras_);
+      k.setArg(kLineExtras, extras_);
       const Eigen::Vector3d inv = spectra.length.cwiseInverse();
-      k.setArg(kInvLength, cl_float4{{float(inv.x()), float(inv.y()), float(inv.z()), 0.0f}});
+      k.setArg(kLineInvLength, cl_float4{{float(inv.x()), float(inv.y()), float(inv.z()), 0.0f}});
       if (variant.product_update == ProductUpdate::background)
         worker_queue_ = cl::CommandQueue(ctx.context, ctx.device.device, 0);
     } catch (const cl::Error& e) {
@@ -192,17 +177,7 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
   void select(std::size_t modes) {
     select_lines(lines_, modes, selection_);
     try {
-      cl::Kernel& k = launch_->kernel();
-      cl::CommandQueue& queue = launch_->queue();
-      const std::size_t n = std::max<std::size_t>(selection_.lines.size(), 1);
-      if (n > line_capacity_) {
-        line_capacity_ = std::max(n + n / 4, std::size_t(64));
-        records_ = cl::Buffer(launch_->context(), CL_MEM_READ_ONLY, sizeof(LineRecord) * line_capacity_);
-        k.setArg(kLines, records_);
-      }
-      if (!selection_.lines.empty())
-        queue.enqueueWriteBuffer(records_, CL_TRUE, 0, sizeof(LineRecord) * selection_.lines.size(),
-                                 selection_.lines.data());
+      upload_line_selection(*launch_, selection_, reach_[modes - 1], records_, line_capacity_);
       // The extras as box nodes (the product holds their values).
       std::array<cl_int4, kMaxUnpairedExtras + 1> extras{};
       for (std::size_t e = 0; e < selection_.extras.size(); ++e) {
@@ -213,11 +188,8 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
         extras[e] = cl_int4{{static_cast<cl_int>(box_node(lines_, kxy[0], kxy[1], kzc[0])), x.kxy, x.kzc, 0}};
       }
       if (!selection_.extras.empty())
-        queue.enqueueWriteBuffer(extras_, CL_TRUE, 0, sizeof(cl_int4) * selection_.extras.size(), extras.data());
-      k.setArg(kExtraCount, static_cast<cl_int>(selection_.extras.size()));
-      k.setArg(kFolded, static_cast<cl_int>(selection_.folded ? 1 : 0));
-      k.setArg(kLineCount, static_cast<cl_int>(selection_.lines.size()));
-      k.setArg(kTableHalf, static_cast<cl_int>(reach_[modes - 1]));
+        launch_->queue().enqueueWriteBuffer(extras_, CL_TRUE, 0, sizeof(cl_int4) * selection_.extras.size(),
+                                            extras.data());
     } catch (const cl::Error& e) {
       throw Error("cannot change m' on " + launch_->device_name() + ": " + e.what() + " (error " +
                   std::to_string(e.err()) + ")");
@@ -252,7 +224,7 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
   void use_slot(int index) {
     current_ = &slots_[index];
     try {
-      launch_->kernel().setArg(kWeights, current_->box);
+      launch_->kernel().setArg(kLineWeights, current_->box);
     } catch (const cl::Error& e) {
       throw Error("pose query failed on " + launch_->device_name() + ": " + e.what());
     }

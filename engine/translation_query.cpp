@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "engine/line_kernel.h"
 #include "engine/mode_order.h"
 #include "engine/query_launch.h"
 #include "engine/translation_lines.h"
@@ -9,23 +10,6 @@
 
 namespace snapfit {
 namespace {
-
-// Arguments of the translation_lines kernel (kernels/pose_query.cl), in order.
-enum TranslationLinesArg : cl_uint {
-  kWeights = 0,    // global float2*: W_k in the dense box of x-lines
-  kLines,          // global int4*: the selected lines (engine/translation_lines.h LineRecord)
-  kExtras,         // global float4*: the extra single terms (ExtraMode)
-  kExtraCount,     // int
-  kFolded,         // int: 1 when the lines are one half of the box (a real correlation)
-  kPose,           // float16
-  kPoses,          // global float16*
-  kPoseCount,      // int
-  kLineCount,      // int
-  kGroupsPerPose,  // int
-  kTableHalf,      // int
-  kPartials,       // global float*
-  kInvLength,      // float4: 1 / L
-};
 
 class TranslationQuery final : public QueryEngine {
  public:
@@ -38,19 +22,19 @@ class TranslationQuery final : public QueryEngine {
     lines_ = build_translation_lines(spectra, order, variant.fold_conjugate_pairs);
     std::string options = " -D TRANSLATION_ONLY";
     if (variant.force) options += " -D FORCE";
-    launch_ =
-        std::make_unique<QueryLaunch>(ctx, spectra, variant, reach_.back(), "translation_lines", options,
-                                      SharedQueryArgs{kPose, kPoses, kPoseCount, kGroupsPerPose, kPartials}, cache);
+    launch_ = std::make_unique<QueryLaunch>(
+        ctx, spectra, variant, reach_.back(), "translation_lines", options,
+        SharedQueryArgs{kLinePose, kLinePoses, kLinePoseCount, kLineGroupsPerPose, kLinePartials}, cache);
     try {
       const auto& box = lines_.weights;
       weights_ = cl::Buffer(launch_->context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * box.size(),
                             const_cast<Complex*>(box.data()));
       extras_ = cl::Buffer(launch_->context(), CL_MEM_READ_ONLY, sizeof(ExtraMode) * (kMaxUnpairedExtras + 1));
       cl::Kernel& k = launch_->kernel();
-      k.setArg(kWeights, weights_);
-      k.setArg(kExtras, extras_);
+      k.setArg(kLineWeights, weights_);
+      k.setArg(kLineExtras, extras_);
       const Eigen::Vector3d inv = spectra.length.cwiseInverse();
-      k.setArg(kInvLength, cl_float4{{float(inv.x()), float(inv.y()), float(inv.z()), 0.0f}});
+      k.setArg(kLineInvLength, cl_float4{{float(inv.x()), float(inv.y()), float(inv.z()), 0.0f}});
     } catch (const cl::Error& e) {
       throw Error("cannot set up translation queries on " + launch_->device_name() + ": " + e.what() + " (error " +
                   std::to_string(e.err()) + ")");
@@ -84,25 +68,10 @@ class TranslationQuery final : public QueryEngine {
   void select(std::size_t modes) {
     select_lines(lines_, modes, selection_);
     try {
-      cl::Kernel& k = launch_->kernel();
-      const std::size_t n = std::max<std::size_t>(selection_.lines.size(), 1);
-      if (n > line_capacity_) {
-        line_capacity_ = std::max(n + n / 4, std::size_t(64));
-        records_ = cl::Buffer(launch_->context(), CL_MEM_READ_ONLY, sizeof(LineRecord) * line_capacity_);
-        k.setArg(kLines, records_);
-      }
-      // Blocking: the host vectors change with the next set_modes.
-      cl::CommandQueue& queue = launch_->queue();
-      if (!selection_.lines.empty())
-        queue.enqueueWriteBuffer(records_, CL_TRUE, 0, sizeof(LineRecord) * selection_.lines.size(),
-                                 selection_.lines.data());
+      upload_line_selection(*launch_, selection_, reach_[modes - 1], records_, line_capacity_);
       if (!selection_.extras.empty())
-        queue.enqueueWriteBuffer(extras_, CL_TRUE, 0, sizeof(ExtraMode) * selection_.extras.size(),
-                                 selection_.extras.data());
-      k.setArg(kExtraCount, static_cast<cl_int>(selection_.extras.size()));
-      k.setArg(kFolded, static_cast<cl_int>(selection_.folded ? 1 : 0));
-      k.setArg(kLineCount, static_cast<cl_int>(selection_.lines.size()));
-      k.setArg(kTableHalf, static_cast<cl_int>(reach_[modes - 1]));
+        launch_->queue().enqueueWriteBuffer(extras_, CL_TRUE, 0, sizeof(ExtraMode) * selection_.extras.size(),
+                                            selection_.extras.data());
     } catch (const cl::Error& e) {
       throw Error("cannot change m' on " + launch_->device_name() + ": " + e.what() + " (error " +
                   std::to_string(e.err()) + ")");
