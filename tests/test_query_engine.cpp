@@ -1,7 +1,8 @@
 // The query engine's real-time path (engine/query_engine.h): after set_modes, a query
 // makes no heap allocation. Counted with a replaced global operator new around 1,000
-// queries on the shipped peg-and-hole parts, 6-DOF (tricubic, with torque) and
-// translation-only, single poses and batches no larger than an earlier one.
+// queries on the shipped peg-and-hole parts, 6-DOF (tricubic, with torque),
+// translation-only and the exact product (background), single poses and batches no
+// larger than an earlier one.
 #include <atomic>
 #include <cstdlib>
 #include <doctest/doctest.h>
@@ -103,6 +104,30 @@ TEST_CASE("query engine: no heap allocation per query after set_modes, 6-DOF and
       CHECK(std::isfinite(sum));
     }
   }
+}
+
+TEST_CASE("query engine: no heap allocation per query on the exact product's frame path, the part turning") {
+  const Scene scene = test::small_peg_hole_scene();
+  const AssemblyPair pair = test::build_small_pair(scene);
+  QueryVariant variant = query_variant_for(scene, Interpolation::tricubic);
+  variant.rotation = RotationMethod::exact_product;
+  variant.product_update = ProductUpdate::background;  // the worker thread's own allocations are not counted
+  auto engine = make_query_engine(test::test_context(), pair.spectra, variant, test::test_program_cache());
+  engine->set_modes(4096);
+  const Pose assembled = *scene.assembled_pose;
+  engine->query(assembled);  // the first product
+  double sum = 0;
+  CountAllocations count;
+  for (int i = 0; i < 1000; ++i) {
+    Pose pose = assembled;
+    pose.translation.z() += 0.002 * i;
+    pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(1e-4 * i, Eigen::Vector3d::UnitX())) * assembled.rotation;
+    const QueryResult r = engine->query(pose);
+    REQUIRE(r.flags == query_ok);
+    sum += r.energy;
+  }
+  CHECK(count.count() == 0);
+  CHECK(std::isfinite(sum));
 }
 
 }  // namespace snapfit
