@@ -107,7 +107,8 @@ __attribute__((always_inline)) inline Sample sample_cube(__global const CUBE_T* 
 #endif
 
 // The work-group's sums of the 8 outputs (Re f, Im f, F, T) into out[0..7]: a tree
-// reduction in `scratch` (8 * WG_SIZE floats of local memory).
+// reduction in `scratch` (8 * WG_SIZE floats of local memory); the first work-items write
+// them out, each output once, however few items the group has.
 inline void reduce_partials(__local float* scratch, const int lid, const float2 f, const float3 force,
                             const float3 torque, __global float* out) {
   scratch[8 * lid + 0] = f.x;
@@ -124,7 +125,7 @@ inline void reduce_partials(__local float* scratch, const int lid, const float2 
       for (int j = 0; j < 8; ++j) scratch[8 * lid + j] += scratch[8 * (lid + stride) + j];
     barrier(CLK_LOCAL_MEM_FENCE);
   }
-  if (lid < 8) out[lid] = scratch[lid];
+  for (int j = lid; j < 8; j += WG_SIZE) out[j] = scratch[j];
 }
 
 // One mode's term (seed 000 eq. 10-12) added to the sums f, force, torque.

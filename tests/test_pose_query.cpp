@@ -755,6 +755,40 @@ TEST_CASE("pose query: query_batch equals a loop of query") {
   }
 }
 
+TEST_CASE("pose query: results do not depend on the launch shape, down to one work-item per group") {
+  // Work-groups of 1 to 256 items and 1 to 16 groups per pose (the engine's environment
+  // overrides, engine/query_launch.h) against the device's own shape: the same sums in
+  // another order. A group of fewer than 8 items once wrote only its first outputs (the
+  // exact-rotation lines share that reduction: tests/oclgrind covers them).
+  const std::vector<Pose> poses = random_poses(6, 5);
+  Pose along;
+  along.translation = Vector3d(0.1, -0.2, 0.15);
+  const std::vector<std::pair<QueryVariant, std::vector<Pose>>> cases = {
+      {variant(Interpolation::tricubic, true, true), poses},
+      {variant(Interpolation::trilinear, true, false, true), {along}}};
+  for (const auto& [v, at] : cases) {
+    auto results = [&](const char* wg, const char* groups) {
+      test::EnvScope w("SNAPFIT_QUERY_WG", wg), g("SNAPFIT_QUERY_GROUPS", groups);
+      auto engine = make_query_engine(context(), spectra(1.5), v, cache_config());
+      engine->set_modes(3000);
+      return engine->query_batch(at);
+    };
+    const std::vector<QueryResult> own = results(nullptr, nullptr);
+    for (const auto& [wg, groups] : std::vector<std::pair<const char*, const char*>>{
+             {"1", "3"}, {"2", "1"}, {"4", "16"}, {"8", "2"}, {"256", "5"}}) {
+      const std::vector<QueryResult> other = results(wg, groups);
+      for (std::size_t n = 0; n < at.size(); ++n) {
+        CAPTURE(wg);
+        CAPTURE(groups);
+        CAPTURE(n);
+        CHECK(std::abs(other[n].score - own[n].score) <= 1e-5 * std::abs(own[n].score));
+        CHECK((other[n].force - own[n].force).norm() <= 1e-5 * own[n].force.norm());
+        CHECK((other[n].torque - own[n].torque).norm() <= 1e-5 * std::max(own[n].torque.norm(), 1e-30));
+      }
+    }
+  }
+}
+
 // ============================================================================ 6. modes
 
 TEST_CASE("pose query: set_modes clamps and results report m'") {
