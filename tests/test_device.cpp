@@ -130,6 +130,14 @@ TEST_CASE("device self-check: every device computes the reference sum, in float 
   }
 }
 
+TEST_CASE("device self-check: a smaller sum passes too, and fewer than 2 points are refused") {
+  const ComputeContext ctx = make_compute_context(select_device(""));
+  ProgramCacheConfig no_cache;
+  const DeviceCheckResult small = run_device_check(ctx, false, no_cache, 20 * 256);
+  CHECK_MESSAGE(small.passed, "relative error " << small.relative_error << " > " << small.tolerance);
+  CHECK_THROWS_WITH_AS(run_device_check(ctx, false, no_cache, 1), doctest::Contains("at least 2 points"), Error);
+}
+
 TEST_CASE("device: PoCL's basic driver runs kernels in the caller's thread, its pthread driver does not") {
   snapfit::DeviceInfo d;
   d.platform_name = "Portable Computing Language";
