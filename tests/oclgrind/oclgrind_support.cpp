@@ -11,13 +11,14 @@ Device oclgrind_device() {
   for (const Device& d : enumerate_devices())
     if (d.info.is_simulator() && d.info.platform_name == "Oclgrind") return d;
   throw Error(
-      "Oclgrind is not an OpenCL platform here: `bash .ci/setup` installs the Debian package oclgrind and registers "
-      "its ICD (/etc/OpenCL/vendors/oclgrind.icd)");
+      "Oclgrind is not an OpenCL platform here: install the Debian package oclgrind (`bash .ci/setup`) and run with "
+      "OCL_ICD_VENDORS=build/oclgrind-vendors, as CTest does (docs/portability.md)");
 }
 
 OclgrindSession::OclgrindSession(const OclgrindChecks& checks) : checks_(checks), log_path_(dir_.file("oclgrind.log")) {
   const Device device = oclgrind_device();
-  // Oclgrind's plugins read these when the context is made; the context keeps them.
+  // Oclgrind's plugins read these when the context is made and keep them (OCLGRIND_CHECK_API
+  // only adds stderr copies of the API errors the context's callback receives anyway).
   EnvScope log("OCLGRIND_LOG", log_path_.c_str());
   EnvScope races("OCLGRIND_DATA_RACES", "1");
   EnvScope uninitialized("OCLGRIND_UNINITIALIZED", checks.uninitialized ? "1" : nullptr);
@@ -36,7 +37,7 @@ OclgrindSession::OclgrindSession(const OclgrindChecks& checks) : checks_(checks)
 }
 
 const std::vector<UninitializedDefect>& uninitialized_check_defects() {
-  // Found in the LLVM IR Oclgrind builds (OCLGRIND_DUMP_SPIR=1) of every variant.
+  // Found in the LLVM IR Oclgrind builds (OCLGRIND_DUMP_SPIR=1) for the engine's stages.
   static const std::vector<UninitializedDefect> defects = [] {
     const std::string shuffle =
         "a shufflevector with undef mask lanes: the plugin crashes with SIGSEGV "

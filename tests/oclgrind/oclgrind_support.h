@@ -18,7 +18,7 @@
 namespace snapfit::test {
 
 // Oclgrind's device from the OpenCL platforms; throws snapfit::Error naming the fix when
-// its ICD is not registered.
+// the loader does not list it.
 Device oclgrind_device();
 
 struct OclgrindChecks {
