@@ -41,6 +41,9 @@ std::string device_list(const std::vector<DeviceInfo>& devices) {
   return out.empty() ? " (none)" : out;
 }
 
+// Oclgrind (an OpenCL device simulator) reports CPU, GPU and accelerator at once.
+bool is_oclgrind_platform(const std::string& platform_name) { return lower(platform_name) == "oclgrind"; }
+
 }  // namespace
 
 bool DeviceInfo::is_pocl() const {
@@ -78,7 +81,8 @@ std::vector<Device> enumerate_devices() {
       info.platform_version = trimmed(platforms[p].getInfo<CL_PLATFORM_VERSION>());
       info.name = trimmed(devices[d].getInfo<CL_DEVICE_NAME>());
       info.vendor = trimmed(devices[d].getInfo<CL_DEVICE_VENDOR>());
-      info.type = type_name(devices[d].getInfo<CL_DEVICE_TYPE>());
+      info.type =
+          is_oclgrind_platform(info.platform_name) ? "simulator" : type_name(devices[d].getInfo<CL_DEVICE_TYPE>());
       info.device_version = trimmed(devices[d].getInfo<CL_DEVICE_VERSION>());
       info.driver_version = trimmed(devices[d].getInfo<CL_DRIVER_VERSION>());
       info.compute_units = devices[d].getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
@@ -106,6 +110,8 @@ std::size_t select_device_index(const std::vector<DeviceInfo>& devices, const st
       if (devices[i].is_pocl() && devices[i].type == "cpu") return i;
     for (std::size_t i = 0; i < devices.size(); ++i)
       if (devices[i].type == "cpu") return i;
+    for (std::size_t i = 0; i < devices.size(); ++i)
+      if (!devices[i].is_simulator()) return i;
     return 0;
   }
   if (is_unsigned_integer(spec)) {
@@ -122,7 +128,7 @@ std::size_t select_device_index(const std::vector<DeviceInfo>& devices, const st
       if (devices[i].platform_index == p && devices[i].device_index == d) return i;
     throw Error("device " + spec + " (platform:device) does not exist; devices are:" + device_list(devices));
   }
-  if (spec == "cpu" || spec == "gpu" || spec == "accelerator") {
+  if (spec == "cpu" || spec == "gpu" || spec == "accelerator" || spec == "simulator") {
     for (std::size_t i = 0; i < devices.size(); ++i)
       if (devices[i].type == spec) return i;
     throw Error("no " + spec + " device; devices are:" + device_list(devices));

@@ -17,7 +17,9 @@ struct DeviceInfo {
   std::string platform_version;
   std::string name;
   std::string vendor;
-  std::string type;  // "cpu", "gpu", "accelerator" or "other"
+  // "cpu", "gpu", "accelerator", "simulator" (Oclgrind, which claims every type but
+  // interprets kernels one work-item at a time: for checks, never picked unless named) or "other"
+  std::string type;
   std::string device_version;
   std::string driver_version;
   unsigned compute_units = 0;
@@ -27,6 +29,7 @@ struct DeviceInfo {
   std::size_t max_work_group_size = 0;
   bool fp64 = false;
   bool is_pocl() const;
+  bool is_simulator() const { return type == "simulator"; }
   // The runtime runs kernels in the thread that waits for them, with no worker threads
   // to wake (PoCL's "basic" driver).
   bool runs_in_caller_thread() const;
@@ -48,10 +51,11 @@ void expose_pocl_caller_thread_driver();
 std::vector<Device> enumerate_devices();
 
 // Picks a device by spec:
-//   ""               the default: PoCL's CPU device if present, else the first CPU, else device 0
+//   ""               the default: PoCL's CPU device if present, else the first CPU, else the
+//                    first device that is not a simulator, else device 0
 //   "N"              the N-th device in enumeration order
 //   "P:D"            device D of platform P
-//   "cpu" | "gpu" | "accelerator"   the first device of that type
+//   "cpu" | "gpu" | "accelerator" | "simulator"   the first device of that type
 //   anything else    the first device whose platform, name or vendor contains it (case-insensitive)
 // Returns the index into `devices`; throws snapfit::Error listing the devices when none matches.
 std::size_t select_device_index(const std::vector<DeviceInfo>& devices, const std::string& spec);

@@ -10,9 +10,8 @@ namespace snapfit {
 namespace {
 
 template <typename Real>
-DeviceCheckResult check(const ComputeContext& ctx, const ProgramCacheConfig& cache) {
+DeviceCheckResult check(const ComputeContext& ctx, const ProgramCacheConfig& cache, const int n) {
   constexpr bool is_double = sizeof(Real) == 8;
-  const int n = 100000;
   // Largest power-of-two work-group size the device allows, at most 256.
   std::size_t wg = 1;
   while (wg * 2 <= std::min<std::size_t>(256, ctx.device.info.max_work_group_size)) wg *= 2;
@@ -70,10 +69,12 @@ DeviceCheckResult check(const ComputeContext& ctx, const ProgramCacheConfig& cac
 
 }  // namespace
 
-DeviceCheckResult run_device_check(const ComputeContext& ctx, bool use_double, const ProgramCacheConfig& cache) {
-  if (!use_double) return check<float>(ctx, cache);
+DeviceCheckResult run_device_check(const ComputeContext& ctx, bool use_double, const ProgramCacheConfig& cache,
+                                   int points) {
+  if (points < 2) throw Error("the device check needs at least 2 points (got " + std::to_string(points) + ")");
+  if (!use_double) return check<float>(ctx, cache, points);
   if (!ctx.device.info.fp64) throw Error("device " + ctx.device.info.name + " has no double precision (cl_khr_fp64)");
-  return check<double>(ctx, cache);
+  return check<double>(ctx, cache, points);
 }
 
 }  // namespace snapfit

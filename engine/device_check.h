@@ -18,7 +18,9 @@ struct DeviceCheckResult {
 };
 
 // `use_double` requires fp64 (throws snapfit::Error naming the device otherwise).
+// `points`: work-items, each one term of the sum (fewer for a simulator, which runs them
+// one at a time).
 DeviceCheckResult run_device_check(const ComputeContext& ctx, bool use_double,
-                                   const ProgramCacheConfig& cache = default_program_cache());
+                                   const ProgramCacheConfig& cache = default_program_cache(), int points = 100000);
 
 }  // namespace snapfit

@@ -30,6 +30,11 @@ LoopDevices tune_loop_devices(const ComputeContext& ctx, const Scene& scene, con
   if (options.other_devices)
     for (const Device& other : enumerate_devices()) {
       if (other.info.index == ctx.device.info.index) continue;
+      if (other.info.is_simulator()) {
+        // Oclgrind interprets kernels for checks; it could never hold a haptic frame.
+        if (options.note) options.note("device " + other.info.name + " is a simulator; left out of the loop choice");
+        continue;
+      }
       try {
         const ComputeContext other_ctx = make_compute_context(other);
         if (!run_device_check(other_ctx, false).passed) {

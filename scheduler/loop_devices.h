@@ -1,9 +1,9 @@
 #pragma once
 // Which device runs the haptic loop: the chosen device, tuned for the scene's frame
 // budget (scheduler/engine_tuning.h), and, when the user did not name one, every other
-// OpenCL device that passes its self-check, each tuned the same way; the loop then runs
-// on the pick of scheduler/device_choice.h loop_device. The others are left for
-// background work.
+// OpenCL device that passes its self-check (simulators such as Oclgrind excepted), each
+// tuned the same way; the loop then runs on the pick of scheduler/device_choice.h
+// loop_device. The others are left for background work.
 #include <functional>
 #include <memory>
 #include <string>

@@ -49,6 +49,25 @@ TEST_CASE("device selection: the default is PoCL's CPU device, wherever it is li
   CHECK(select_device_index({pocl_two[0]}, "") == 0);  // basic alone is still PoCL's CPU device
 }
 
+TEST_CASE("device selection: a simulator (Oclgrind) is chosen only when named or alone") {
+  // Oclgrind claims CPU, GPU and accelerator at once: enumeration calls it a simulator,
+  // which the default and the other type specs pass over, wherever it is listed.
+  std::vector<DeviceInfo> devices = three_devices();
+  for (DeviceInfo& d : devices) ++d.index, ++d.platform_index;
+  devices.insert(devices.begin(), fake(0, 0, 0, "Oclgrind", "Oclgrind Simulator", "simulator"));
+  CHECK(devices[0].is_simulator());
+  CHECK(!devices[1].is_simulator());
+  CHECK(select_device_index(devices, "") == 3);
+  CHECK(select_device_index(devices, "gpu") == 1);
+  CHECK(select_device_index(devices, "cpu") == 2);
+  CHECK(select_device_index(devices, "oclgrind") == 0);
+  CHECK(select_device_index(devices, "simulator") == 0);
+  const std::vector<DeviceInfo> simulator_and_gpu = {devices[0], devices[1]};
+  CHECK(select_device_index(simulator_and_gpu, "") == 1);  // not a CPU, but not a simulator
+  CHECK(select_device_index({devices[0]}, "") == 0);       // alone: the only device there is
+  CHECK_THROWS_WITH_AS(select_device_index({devices[0]}, "gpu"), doctest::Contains("no gpu device"), Error);
+}
+
 TEST_CASE("device selection: by index, platform:device, type and name substring") {
   const auto devices = three_devices();
   CHECK(select_device_index(devices, "1") == 1);
@@ -109,6 +128,14 @@ TEST_CASE("device self-check: every device computes the reference sum, in float 
       CHECK_THROWS_AS(run_device_check(ctx, true, no_cache), Error);
     }
   }
+}
+
+TEST_CASE("device self-check: a smaller sum passes too, and fewer than 2 points are refused") {
+  const ComputeContext ctx = make_compute_context(select_device(""));
+  ProgramCacheConfig no_cache;
+  const DeviceCheckResult small = run_device_check(ctx, false, no_cache, 20 * 256);
+  CHECK_MESSAGE(small.passed, "relative error " << small.relative_error << " > " << small.tolerance);
+  CHECK_THROWS_WITH_AS(run_device_check(ctx, false, no_cache, 1), doctest::Contains("at least 2 points"), Error);
 }
 
 TEST_CASE("device: PoCL's basic driver runs kernels in the caller's thread, its pthread driver does not") {
