@@ -12,6 +12,7 @@
 #include "cli/parse_options.h"
 #include "core/progress.h"
 #include "pipeline/assembly_pair.h"
+#include "report/accuracy_json.h"
 #include "scheduler/accuracy.h"
 #include "scheduler/loop_devices.h"
 #include "snapfit/error.h"
@@ -28,19 +29,6 @@ struct AccuracyCommandOptions {
   std::size_t repetitions = 400;
   bool retune = false;
 };
-
-nlohmann::json strategy_json(const StrategyAccuracy& s) {
-  nlohmann::json j = {{"strategy", s.name},
-                      {"modes", s.modes},
-                      {"fits_budget", s.fits},
-                      {"frame_ms_p50", s.frame_ms_p50},
-                      {"frame_ms_p99", s.frame_ms_p99},
-                      {"energy_error", s.energy_error},
-                      {"force_error", s.force_error}};
-  j["torque_error"] = s.variant.torque ? nlohmann::json(s.torque_error) : nlohmann::json(nullptr);
-  if (s.variant.rotation == RotationMethod::exact_product) j["product_ms"] = s.product_ms;
-  return j;
-}
 
 void run_accuracy(const AccuracyCommandOptions& opt) {
   const Scene scene = load_scene(opt.scene);
@@ -81,7 +69,7 @@ void run_accuracy(const AccuracyCommandOptions& opt) {
   const AccuracyReport report = measure_accuracy(loop_ctx, scene, pair.spectra, options);
 
   const StrategyAccuracy& loop = report.strategies[report.loop];
-  nlohmann::json j = strategy_json(loop);
+  nlohmann::json j = strategy_accuracy_json(loop);
   j["scene"] = opt.scene;
   j["device"] = loop_ctx.device.info.name;
   j["budget_ms"] = budget;
@@ -94,7 +82,7 @@ void run_accuracy(const AccuracyCommandOptions& opt) {
                     {"seconds", report.reference_seconds}};
   j["error_definition"] = "sqrt(sum |x - x_ref|^2) / sqrt(sum |x_ref|^2) over the poses";
   nlohmann::json all = nlohmann::json::array();
-  for (const StrategyAccuracy& s : report.strategies) all.push_back(strategy_json(s));
+  for (const StrategyAccuracy& s : report.strategies) all.push_back(strategy_accuracy_json(s));
   j["strategies"] = all;
   j["lowest_error_within_budget"] = report.strategies[report.best].name;
   std::cout << j.dump() << std::endl;

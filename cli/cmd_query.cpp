@@ -58,16 +58,19 @@ nlohmann::json result_json(const Pose& pose, const QueryResult& r) {
   if (r.flags & query_outside_grid) flags.push_back("outside_grid");
   if (r.flags & query_bad_pose) flags.push_back("bad_pose");
   const Eigen::AngleAxisd aa(pose.rotation);
-  return {{"position", {pose.translation.x(), pose.translation.y(), pose.translation.z()}},
-          {"rotation_axis", {aa.axis().x(), aa.axis().y(), aa.axis().z()}},
-          {"rotation_deg", aa.angle() * 180.0 / M_PI},
-          {"energy", r.energy},
-          {"force", {r.force.x(), r.force.y(), r.force.z()}},
-          {"torque", {r.torque.x(), r.torque.y(), r.torque.z()}},
-          {"score", {r.score.real(), r.score.imag()}},
-          {"flags", flags},
-          {"modes", r.modes},
-          {"time_ms", r.seconds * 1e3}};
+  return {
+      {"position", {pose.translation.x(), pose.translation.y(), pose.translation.z()}},
+      {"rotation_axis", {aa.axis().x(), aa.axis().y(), aa.axis().z()}},
+      {"rotation_deg", aa.angle() * 180.0 / M_PI},
+      {"energy", r.energy},
+      {"force", {r.force.x(), r.force.y(), r.force.z()}},
+      {"torque", {r.torque.x(), r.torque.y(), r.torque.z()}},
+      {"score", {r.score.real(), r.score.imag()}},
+      {"error_estimate",
+       {{"energy", r.error_estimate.energy}, {"force", r.error_estimate.force}, {"torque", r.error_estimate.torque}}},
+      {"flags", flags},
+      {"modes", r.modes},
+      {"time_ms", r.seconds * 1e3}};
 }
 
 void run_query(const QueryOptions& opt) {

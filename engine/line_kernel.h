@@ -13,7 +13,7 @@ namespace snapfit {
 
 enum LineKernelArg : cl_uint {
   kLineWeights = 0,    // global: the dense box of x-lines (float2 W_k, or float8 W0_k, D_k)
-  kLineRecords,        // global int4*: the selected lines (LineRecord)
+  kLineRecords,        // global int8*: the selected lines (LineRecord)
   kLineExtras,         // global: the extra single terms
   kLineExtraCount,     // int
   kLineFolded,         // int: 1 when the lines are one half of the box (a real correlation)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "engine/error_estimate.h"
 #include "engine/kernel_sources.h"
 #include "snapfit/error.h"
 
@@ -61,7 +62,8 @@ QueryLaunch::QueryLaunch(const ComputeContext& ctx, const PairSpectra& spectra, 
   work_per_group_ = std::max<std::size_t>(1, env_size("SNAPFIT_QUERY_MODES_PER_GROUP", wg_));
   // Phase tables for |k| <= reach (+ 8 for the translation lines' last chunk) on every
   // axis, and the reduction scratch, in local memory.
-  const std::size_t local_bytes = 3 * (2 * std::size_t(reach) + 17) * sizeof(Complex) + 8 * sizeof(float) * wg_;
+  const std::size_t local_bytes =
+      3 * (2 * std::size_t(reach) + 17) * sizeof(Complex) + kSumsPerGroup * sizeof(float) * wg_;
   if (local_bytes > info.local_memory_bytes) {
     const auto& d = spectra.dims;
     throw Error("FFT grid of " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]) +
@@ -88,10 +90,10 @@ void QueryLaunch::reserve(std::size_t poses) {
   if (poses <= pose_capacity_) return;
   pose_capacity_ = std::max(poses, 2 * pose_capacity_);
   poses_ = cl::Buffer(ctx_.context, CL_MEM_READ_ONLY, sizeof(cl_float16) * pose_capacity_);
-  partials_ = cl::Buffer(ctx_.context, CL_MEM_WRITE_ONLY, sizeof(float) * 8 * pose_capacity_ * max_groups_);
+  partials_ = cl::Buffer(ctx_.context, CL_MEM_WRITE_ONLY, sizeof(float) * kSumsPerGroup * pose_capacity_ * max_groups_);
   kernel_.setArg(args_.poses, poses_);
   kernel_.setArg(args_.partials, partials_);
-  partial_host_.resize(8 * pose_capacity_ * max_groups_);
+  partial_host_.resize(kSumsPerGroup * pose_capacity_ * max_groups_);
   packed_.resize(pose_capacity_);
   rotations_.resize(pose_capacity_);
   slot_.resize(pose_capacity_);
@@ -137,12 +139,19 @@ void QueryLaunch::evaluate(const Pose* poses, std::size_t count, QueryResult* re
       kernel_.setArg(args_.pose_count, static_cast<cl_int>(sent));
       const std::size_t groups = groups_per_pose_ * sent;
       queue_.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(groups * wg_), cl::NDRange(wg_));
-      queue_.enqueueReadBuffer(partials_, CL_TRUE, 0, sizeof(float) * 8 * groups, partial_host_.data());
+      queue_.enqueueReadBuffer(partials_, CL_TRUE, 0, sizeof(float) * kSumsPerGroup * groups, partial_host_.data());
       for (std::size_t s = 0; s < sent; ++s) {
-        double sums[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+        // The total, band (m'/4, m'/2] and band (m'/2, m'], each 8 sums.
+        double sums[kSumsPerGroup] = {};
         for (std::size_t g = 0; g < groups_per_pose_; ++g)
-          for (int j = 0; j < 8; ++j) sums[j] += partial_host_[8 * (s * groups_per_pose_ + g) + j];
-        hooks_->finish(sums, rotations_[s], variant_, results[slot_[s]]);
+          for (std::size_t j = 0; j < kSumsPerGroup; ++j)
+            sums[j] += partial_host_[kSumsPerGroup * (s * groups_per_pose_ + g) + j];
+        QueryResult& result = results[slot_[s]];
+        QueryResult band_a, band_b;
+        hooks_->finish(sums, rotations_[s], variant_, result);
+        hooks_->finish(sums + 8, rotations_[s], variant_, band_a);
+        hooks_->finish(sums + 16, rotations_[s], variant_, band_b);
+        result.error_estimate = estimate_error(band_a, band_b);
       }
     }
   } catch (const cl::Error& e) {

@@ -34,8 +34,13 @@ struct PoseFrame {
   std::uint32_t place(const Pose& pose, bool identity_only, Eigen::Matrix3d& R, cl_float16& packed) const;
 };
 
-// The per-pose sums a kernel returns, added over its work-groups (kernels/pose_query.cl:
-// Re f, Im f, F, T in part 2's frame), into a result: E = -Re f, F, and T rotated by R.
+// The sums a kernel's work-group returns (kernels/pose_query.cl SUMS_PER_GROUP): the 8
+// outputs (Re f, Im f, F, T in part 2's frame) of the total, then of the bands
+// (m'/4, m'/2] and (m'/2, m'] for the error estimate (engine/error_estimate.h).
+constexpr std::size_t kSumsPerGroup = 24;
+
+// The per-pose sums of one of them, added over the work-groups, into a result: E = -Re f,
+// F, and T rotated by R.
 void fill_result(const double sums[8], const Eigen::Matrix3d& R, const QueryVariant& variant, QueryResult& result);
 
 // What a strategy adds to the shared launch (all optional): how a placed pose becomes the
@@ -57,7 +62,7 @@ struct SharedQueryArgs {
   cl_uint poses;            // global float16*: the poses of a batch
   cl_uint pose_count;       // int
   cl_uint groups_per_pose;  // int
-  cl_uint partials;         // global float*: 8 sums per work-group
+  cl_uint partials;         // global float*: kSumsPerGroup sums per work-group
 };
 
 class QueryLaunch {

@@ -29,6 +29,7 @@ enum PoseQueryArg : cl_uint {
   kPartials,       // global float*
   kInvLength,      // float4: 1 / L
   kExtraMode,      // float4: the first mode of a pair that m' cuts (weight 0 otherwise)
+  kBandStarts,     // int2: the first records beyond m'/4 and m'/2 (the error estimate's bands)
 };
 
 cl_float4 xyz(const Eigen::Vector3d& v) { return cl_float4{{float(v.x()), float(v.y()), float(v.z()), 0.0f}}; }
@@ -124,13 +125,18 @@ class SixDofQuery final : public QueryEngine, private QueryHooks {
     mode_count_ = modes;
     // The records that hold the first m' modes: all of records [0, n), and when m' cuts a
     // pair, the pair's first mode alone as the extra mode.
-    record_count_ = static_cast<std::size_t>(std::upper_bound(record_modes_.begin(), record_modes_.end(), mode_count_) -
-                                             record_modes_.begin());
+    const auto records_within = [&](std::size_t m) {
+      return static_cast<std::size_t>(std::upper_bound(record_modes_.begin(), record_modes_.end(), m) -
+                                      record_modes_.begin());
+    };
+    record_count_ = records_within(mode_count_);
     const std::size_t held = record_count_ == 0 ? 0 : record_modes_[record_count_ - 1];
     cut_pair_ = held < mode_count_;
     try {
       cl::Kernel& k = launch_->kernel();
       k.setArg(kRecordCount, static_cast<cl_int>(record_count_));
+      k.setArg(kBandStarts, cl_int2{{static_cast<cl_int>(records_within(mode_count_ / 4)),
+                                     static_cast<cl_int>(records_within(mode_count_ / 2))}});
       k.setArg(kExtraMode, cut_pair_ ? first_of_record_[record_count_] : cl_float4{});
       k.setArg(kTableHalf, static_cast<cl_int>(reach_[mode_count_ - 1]));
     } catch (const cl::Error& e) {

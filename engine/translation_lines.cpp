@@ -176,15 +176,24 @@ void select_lines(const TranslationLines& t, std::size_t modes, LineSelection& o
       static_cast<std::size_t>(std::lower_bound(set.first_key.begin(), set.first_key.end(), m) - set.first_key.begin());
   out.lines.resize(n);
   out.nodes = 0;
-  for (std::size_t j = 0; j < n; ++j) {
-    const Key* keys = set.keys.data();
+  const Key* keys = set.keys.data();
+  // Line j's retained kx below key `limit`: [-left, right - 1], empty as [0, -1].
+  const auto interval = [&](std::size_t j, Key limit, std::int32_t& a, std::int32_t& b) {
     const std::size_t right = static_cast<std::size_t>(
-        std::lower_bound(keys + set.right_begin[j], keys + set.left_begin[j], m) - (keys + set.right_begin[j]));
+        std::lower_bound(keys + set.right_begin[j], keys + set.left_begin[j], limit) - (keys + set.right_begin[j]));
     const std::size_t left = static_cast<std::size_t>(
-        std::lower_bound(keys + set.left_begin[j], keys + set.right_begin[j + 1], m) - (keys + set.left_begin[j]));
-    out.lines[j] =
-        LineRecord{set.row0[j], set.kykz[j], -static_cast<std::int32_t>(left), static_cast<std::int32_t>(right) - 1};
-    out.nodes += left + right;
+        std::lower_bound(keys + set.left_begin[j], keys + set.right_begin[j + 1], limit) - (keys + set.left_begin[j]));
+    a = right + left == 0 ? 0 : -static_cast<std::int32_t>(left);
+    b = right + left == 0 ? -1 : static_cast<std::int32_t>(right) - 1;
+    return left + right;
+  };
+  for (std::size_t j = 0; j < n; ++j) {
+    LineRecord& r = out.lines[j];
+    r.row0 = set.row0[j];
+    r.kykz = set.kykz[j];
+    out.nodes += interval(j, m, r.xa, r.xb);
+    interval(j, m / 2, r.ha, r.hb);
+    interval(j, m / 4, r.qa, r.qb);
   }
   out.extras.clear();
   if (!out.folded) return;

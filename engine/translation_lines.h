@@ -29,11 +29,13 @@
 
 namespace snapfit {
 
-// One line of the current selection, as the kernel reads it (int4): the index in the
-// weight box of the line's node kx = 0, (ky, kz) as two 16-bit halves (ky low), and the
-// interval [xa, xb] of retained kx.
+// One line of the current selection, as the kernel reads it (int8): the index in the
+// weight box of the line's node kx = 0, (ky, kz) as two 16-bit halves (ky low), the
+// interval [xa, xb] of retained kx, and within it the intervals of the modes among the
+// first m'/2 ([ha, hb]) and m'/4 ([qa, qb]), for the band sums of the error estimate.
+// An empty interval is [0, -1] (every non-empty one holds kx = 0).
 struct LineRecord {
-  std::int32_t row0 = 0, kykz = 0, xa = 0, xb = -1;
+  std::int32_t row0 = 0, kykz = 0, xa = 0, xb = -1, ha = 0, hb = -1, qa = 0, qb = -1;
 };
 
 // One extra mode (float4): W_k, (kx, ky) and (kz, weight code) as 16-bit halves; code 1:

@@ -12,7 +12,10 @@
 //          (include/snapfit/query.h), Re[W_k e^{i phi} (grad S2(w') x w')] in part 2's frame
 //          (the host adds R c2 x F for the rotating box centre), so E, F, T are consistent
 //   translation only: W_k already holds S1(w_k) S2(-w_k) dw, term = W_k e^{i phi}.
-// Partial sums per group (8 floats): Re f, Im f, F (3), T in part 2's frame (3).
+// Partial sums per group (24 floats, SUMS_PER_GROUP): the 8 outputs Re f, Im f, F (3),
+// T in part 2's frame (3) over every retained mode, then the same 8 over the two octave
+// bands just below the cut, modes (m'/4, m'/2] and (m'/2, m'] (from which the host
+// estimates the truncation error, engine/error_estimate.h).
 //
 // The pose (float16): s0-s8 R row-major, s9-sb tau_a / L_a rounded to float ("hi"),
 // sc-se the rest tau_a / L_a - hi ("lo"). A single query passes it as the argument
@@ -106,26 +109,56 @@ __attribute__((always_inline)) inline Sample sample_cube(__global const CUBE_T* 
 }
 #endif
 
-// The work-group's sums of the 8 outputs (Re f, Im f, F, T) into out[0..7]: a tree
-// reduction in `scratch` (8 * WG_SIZE floats of local memory); the first work-items write
-// them out, each output once, however few items the group has.
-inline void reduce_partials(__local float* scratch, const int lid, const float2 f, const float3 force,
-                            const float3 torque, __global float* out) {
-  scratch[8 * lid + 0] = f.x;
-  scratch[8 * lid + 1] = f.y;
-  scratch[8 * lid + 2] = force.x;
-  scratch[8 * lid + 3] = force.y;
-  scratch[8 * lid + 4] = force.z;
-  scratch[8 * lid + 5] = torque.x;
-  scratch[8 * lid + 6] = torque.y;
-  scratch[8 * lid + 7] = torque.z;
+// The 8 outputs of one sum (Re f, Im f, F, T), for a total and for each band.
+typedef struct {
+  float2 f;
+  float3 force, torque;
+} Sums;
+
+#define SUMS_PER_GROUP 24
+
+inline Sums zero_sums() {
+  Sums s;
+  s.f = (float2)(0.0f);
+  s.force = s.torque = (float3)(0.0f);
+  return s;
+}
+
+inline void add_sums(Sums* a, const Sums b) {
+  a->f += b.f;
+  a->force += b.force;
+  a->torque += b.torque;
+}
+
+inline void put_sums(float* v, const Sums s) {
+  v[0] = s.f.x;
+  v[1] = s.f.y;
+  v[2] = s.force.x;
+  v[3] = s.force.y;
+  v[4] = s.force.z;
+  v[5] = s.torque.x;
+  v[6] = s.torque.y;
+  v[7] = s.torque.z;
+}
+
+// The work-group's sums of (total, band (m'/4, m'/2], band (m'/2, m']) into
+// out[0..23]: a tree reduction in `scratch` (24 * WG_SIZE floats of local memory); the
+// first work-items write them out, each value once, however few items the group has.
+inline void reduce_partials(__local float* scratch, const int lid, const Sums total, const Sums band_a,
+                            const Sums band_b, __global float* out) {
+  float v[SUMS_PER_GROUP];
+  put_sums(v, total);
+  put_sums(v + 8, band_a);
+  put_sums(v + 16, band_b);
+  for (int j = 0; j < SUMS_PER_GROUP; ++j) scratch[SUMS_PER_GROUP * lid + j] = v[j];
   barrier(CLK_LOCAL_MEM_FENCE);
   for (int stride = WG_SIZE / 2; stride > 0; stride >>= 1) {
     if (lid < stride)
-      for (int j = 0; j < 8; ++j) scratch[8 * lid + j] += scratch[8 * (lid + stride) + j];
+      for (int j = 0; j < SUMS_PER_GROUP; ++j)
+        scratch[SUMS_PER_GROUP * lid + j] += scratch[SUMS_PER_GROUP * (lid + stride) + j];
     barrier(CLK_LOCAL_MEM_FENCE);
   }
-  for (int j = lid; j < 8; j += WG_SIZE) out[j] = scratch[j];
+  for (int j = lid; j < SUMS_PER_GROUP; j += WG_SIZE) out[j] = scratch[j];
 }
 
 // One mode's term (seed 000 eq. 10-12) added to the sums f, force, torque.
@@ -133,7 +166,7 @@ __attribute__((always_inline)) inline void add_mode(const float4 mode, const flo
                                                     __local const float2* ty, __local const float2* tz,
                                                     __global const CUBE_T* cube, const int4 cube_dims,
                                                     const int4 offset, const float4 length, const float4 inv_length,
-                                                    const float4 cube_scale, float2* f, float3* force, float3* torque) {
+                                                    const float4 cube_scale, Sums* sums) {
   const short2 kxy = as_short2(mode.z), kzf = as_short2(mode.w);
   const int3 k = (int3)(kxy.x, kxy.y, kzf.x);
   const float3 w = convert_float3(k) * inv_length.xyz;  // w_k = k / L
@@ -149,21 +182,40 @@ __attribute__((always_inline)) inline void add_mode(const float4 mode, const flo
                gz = s.gz * (cube_scale.x * length.z);
   const float2 e = term;  // W_k e^{i phi}
   const float ex = cmul(e, gx).x, ey = cmul(e, gy).x, ez = cmul(e, gz).x;
-  *torque += (float3)(ey * wp.z - ez * wp.y, ez * wp.x - ex * wp.z, ex * wp.y - ey * wp.x);
+  sums->torque += (float3)(ey * wp.z - ez * wp.y, ez * wp.x - ex * wp.z, ex * wp.y - ey * wp.x);
 #endif
   term = cmul(term, s.v * cube_scale.x);
 #endif
-  *f += kzf.y ? (float2)(term.x, 0.0f) : term;
+  sums->f += kzf.y ? (float2)(term.x, 0.0f) : term;
 #ifdef FORCE
-  *force += -TWO_PI * term.y * w;  // Re(2 pi i w term)
+  sums->force += -TWO_PI * term.y * w;  // Re(2 pi i w term)
 #endif
 }
+
+// Adds records m, m + stride, ... below `end` to `sums` (two per iteration into separate
+// sums: independent work for the core to overlap) and leaves m at the first index >= end.
+#define ADD_MODE_RECORD(record, sums) \
+  add_mode(record, P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, sums)
+#define ADD_MODE(index, sums) ADD_MODE_RECORD(modes[index], sums)
+#define SUM_RECORDS(m, end, stride, sums)       \
+  {                                             \
+    Sums other = zero_sums();                   \
+    for (; m + stride < end; m += 2 * stride) { \
+      ADD_MODE(m, &sums);                       \
+      ADD_MODE(m + stride, &other);             \
+    }                                           \
+    if (m < end) {                              \
+      ADD_MODE(m, &sums);                       \
+      m += stride;                              \
+    }                                           \
+    add_sums(&sums, other);                     \
+  }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void pose_query(
     __global const float4* modes, __global const CUBE_T* cube, const int4 cube_dims, const int4 offset,
     const float4 length, const float4 cube_scale, const float16 pose_arg, __global const float16* poses,
     const int pose_count, const int mode_count, const int groups_per_pose, const int table_half,
-    __global float* partials, const float4 inv_length, const float4 extra_mode) {
+    __global float* partials, const float4 inv_length, const float4 extra_mode, const int2 band_starts) {
   const int group = get_group_id(0);
   const int pose = group / groups_per_pose;
   const int slice = group % groups_per_pose;
@@ -183,37 +235,64 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void pose_query(
   }
   barrier(CLK_LOCAL_MEM_FENCE);
 
-  // Two modes per iteration into separate sums: independent work for the core to overlap.
-  float2 f = (float2)(0.0f), f1 = (float2)(0.0f);
-  float3 force = (float3)(0.0f), torque = (float3)(0.0f), force1 = (float3)(0.0f), torque1 = (float3)(0.0f);
+  // Records [0, band_starts.x) hold the modes up to m'/4, [band_starts.x, band_starts.y)
+  // those up to m'/2, the rest up to m' (with the cut pair's extra mode).
+  Sums core = zero_sums(), band_a = zero_sums(), band_b = zero_sums();
   const int stride = groups_per_pose * WG_SIZE;
   int m = slice * WG_SIZE + lid;
-  for (; m + stride < mode_count; m += 2 * stride) {
-    add_mode(modes[m], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f, &force, &torque);
-    add_mode(modes[m + stride], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f1, &force1,
-             &torque1);
-  }
-  if (m < mode_count)
-    add_mode(modes[m], P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f, &force, &torque);
-  if (slice == 0 && lid == 0)
-    add_mode(extra_mode, P, tx, ty, tz, cube, cube_dims, offset, length, inv_length, cube_scale, &f1, &force1,
-             &torque1);
-  f += f1;
-  force += force1;
-  torque += torque1;
+  SUM_RECORDS(m, band_starts.x, stride, core);
+  SUM_RECORDS(m, band_starts.y, stride, band_a);
+  SUM_RECORDS(m, mode_count, stride, band_b);
+  if (slice == 0 && lid == 0) ADD_MODE_RECORD(extra_mode, &band_b);
+  add_sums(&core, band_a);
+  add_sums(&core, band_b);
 
-  // Work-group reduction of the 8 sums.
-  __local float scratch[8 * WG_SIZE];
-  reduce_partials(scratch, lid, f, force, torque, partials + 8 * group);
+  __local float scratch[SUMS_PER_GROUP * WG_SIZE];
+  reduce_partials(scratch, lid, core, band_a, band_b, partials + SUMS_PER_GROUP * group);
 }
 
 #ifdef TRANSLATION_ONLY
+// (s, s_x) of a line over kx in [lo, hi] (empty when hi < lo): the 8-wide complex dot
+// products of W with the x table, masked past hi.
+inline float4 line_segment(__global const float* row, __local const float2* tx, const int lo, const int hi) {
+  const float8 lane = (float8)(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f);
+  const float last = (float)hi;
+  float8 sr = (float8)(0.0f), si = (float8)(0.0f), sxr = (float8)(0.0f), sxi = (float8)(0.0f);
+  for (int x = lo; x <= hi; x += 8) {
+    const float16 w = vload16(0, row + 2 * x);
+    const float16 t = vload16(0, (__local const float*)(tx + x));
+    const float8 kx = (float8)((float)x) + lane;
+    const int8 keep = kx <= (float8)(last);
+    const float8 pr = select((float8)(0.0f), w.even * t.even - w.odd * t.odd, keep);
+    const float8 pim = select((float8)(0.0f), w.even * t.odd + w.odd * t.even, keep);
+    sr += pr;
+    si += pim;
+    sxr += kx * pr;
+    sxi += kx * pim;
+  }
+  const float4 r4 = sr.lo + sr.hi, i4 = si.lo + si.hi, xr4 = sxr.lo + sxr.hi, xi4 = sxi.lo + sxi.hi;
+  return (float4)(r4.x + r4.y + r4.z + r4.w, i4.x + i4.y + i4.z + i4.w, xr4.x + xr4.y + xr4.z + xr4.w,
+                  xi4.x + xi4.y + xi4.z + xi4.w);
+}
+
+// A line's (s, s_x) times p = ty[ky] tz[kz] into f and F.
+inline void add_line(Sums* sums, const float4 seg, const float2 p, const short2 kyz, const float real_weight,
+                     const int folded, const float4 inv_length) {
+  const float2 term = real_weight * cmul(seg.xy, p);
+  sums->f += (float2)(term.x, folded ? 0.0f : term.y);
+#ifdef FORCE
+  sums->force += -TWO_PI * (float3)(real_weight * cmul(seg.zw, p).y, (float)kyz.x * term.y, (float)kyz.y * term.y) *
+                 inv_length.xyz;
+#endif
+}
+
 // Translation only (seed 000 section 3.3; R = I): f(t) = sum_k W_k e^{2 pi i w_k.tau} with
 // W_k = S1(w_k) S2(-w_k) dw, stored in a dense box of x-lines (kx fastest; rows padded
 // by 8 nodes). engine/translation_lines.h picks, for the current m', the lines that
 // hold retained modes and on each the interval [xa, xb] of retained kx (|w| grows with
 // |kx| along a line, so that is one interval): `lines` holds (index of the line's kx = 0
-// node, (ky, kz) as two shorts, xa, xb). Per line the phase factors, e^{i phi} =
+// node, (ky, kz) as two shorts, xa, xb, then the nested intervals of the modes up to m'/2
+// and m'/4, for the band sums). Per line the phase factors, e^{i phi} =
 // tx[kx] (ty[ky] tz[kz]) (docs/design.md, separable per axis), so the line is a contiguous,
 // 8-wide complex dot product of W with the x table:
 //   s = sum_kx W tx[kx],  s_x = sum_kx kx W tx[kx];  f += s p,  p = ty[ky] tz[kz],
@@ -225,7 +304,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void pose_query(
 // that m' cuts), code 2 weighs -1 in the real outputs and +1 in Im f (a node without a
 // partner, which the folded lines counted twice).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void translation_lines(
-    __global const float2* W, __global const int4* lines, __global const float4* extras, const int extra_count,
+    __global const float2* W, __global const int8* lines, __global const float4* extras, const int extra_count,
     const int folded, const float16 pose_arg, __global const float16* poses, const int pose_count, const int line_count,
     const int groups_per_pose, const int table_half, __global float* partials, const float4 inv_length) {
   const int group = get_group_id(0);
@@ -252,37 +331,19 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void translation_l
   barrier(CLK_LOCAL_MEM_FENCE);
 
   const float real_weight = folded ? 2.0f : 1.0f;
-  const float8 lane = (float8)(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f);
-  float2 f = (float2)(0.0f);
-  float3 force = (float3)(0.0f);
+  Sums core = zero_sums(), band_a = zero_sums(), band_b = zero_sums();
   for (int l = slice * WG_SIZE + lid; l < line_count; l += groups_per_pose * WG_SIZE) {
-    const int4 line = lines[l];
-    const short2 kyz = as_short2(line.y);
-    __global const float* row = (__global const float*)(W + line.x);
-    const float xb = (float)line.w;
-    float8 sr = (float8)(0.0f), si = (float8)(0.0f), sxr = (float8)(0.0f), sxi = (float8)(0.0f);
-    for (int x = line.z; x <= line.w; x += 8) {
-      const float16 w = vload16(0, row + 2 * x);
-      const float16 t = vload16(0, (__local const float*)(tx + x));
-      const float8 kx = (float8)((float)x) + lane;
-      const int8 keep = kx <= (float8)(xb);
-      const float8 pr = select((float8)(0.0f), w.even * t.even - w.odd * t.odd, keep);
-      const float8 pim = select((float8)(0.0f), w.even * t.odd + w.odd * t.even, keep);
-      sr += pr;
-      si += pim;
-      sxr += kx * pr;
-      sxi += kx * pim;
-    }
-    const float4 r4 = sr.lo + sr.hi, i4 = si.lo + si.hi, xr4 = sxr.lo + sxr.hi, xi4 = sxi.lo + sxi.hi;
-    const float2 s = (float2)(r4.x + r4.y + r4.z + r4.w, i4.x + i4.y + i4.z + i4.w);
-    const float2 sx = (float2)(xr4.x + xr4.y + xr4.z + xr4.w, xi4.x + xi4.y + xi4.z + xi4.w);
+    const int8 line = lines[l];
+    const short2 kyz = as_short2(line.s1);
+    __global const float* row = (__global const float*)(W + line.s0);
     const float2 p = cmul(ty[kyz.x], tz[kyz.y]);
-    const float2 term = real_weight * cmul(s, p);
-    f += (float2)(term.x, folded ? 0.0f : term.y);
-#ifdef FORCE
-    force +=
-        -TWO_PI * (float3)(real_weight * cmul(sx, p).y, (float)kyz.x * term.y, (float)kyz.y * term.y) * inv_length.xyz;
-#endif
+    // The interval [xa, xb] as the core [qa, qb] (modes up to m'/4), band a around it
+    // (up to m'/2: [ha, qa - 1] and [qb + 1, hb]) and band b outside that.
+    add_line(&core, line_segment(row, tx, line.s6, line.s7), p, kyz, real_weight, folded, inv_length);
+    add_line(&band_a, line_segment(row, tx, line.s4, line.s6 - 1) + line_segment(row, tx, line.s7 + 1, line.s5), p, kyz,
+             real_weight, folded, inv_length);
+    add_line(&band_b, line_segment(row, tx, line.s2, line.s4 - 1) + line_segment(row, tx, line.s5 + 1, line.s3), p, kyz,
+             real_weight, folded, inv_length);
   }
   if (slice == 0 && lid == 0) {
     for (int e = 0; e < extra_count; ++e) {
@@ -290,19 +351,66 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void translation_l
       const short2 kxy = as_short2(mode.z), kzc = as_short2(mode.w);
       const float2 term = cmul(mode.xy, cmul(tx[kxy.x], cmul(ty[kxy.y], tz[kzc.x])));
       const float real = kzc.y == 1 ? 1.0f : -1.0f;
-      f += (float2)(real * term.x, term.y);
+      Sums* to = kzc.y == 1 ? &band_b : &core;  // code 1: the pair m' cuts
+      to->f += (float2)(real * term.x, term.y);
 #ifdef FORCE
-      force += -TWO_PI * real * term.y * convert_float3((int3)(kxy.x, kxy.y, kzc.x)) * inv_length.xyz;
+      to->force += -TWO_PI * real * term.y * convert_float3((int3)(kxy.x, kxy.y, kzc.x)) * inv_length.xyz;
 #endif
     }
   }
+  add_sums(&core, band_a);
+  add_sums(&core, band_b);
 
-  __local float scratch[8 * WG_SIZE];
-  reduce_partials(scratch, lid, f, force, (float3)(0.0f), partials + 8 * group);
+  __local float scratch[SUMS_PER_GROUP * WG_SIZE];
+  reduce_partials(scratch, lid, core, band_a, band_b, partials + SUMS_PER_GROUP * group);
 }
 #endif
 
 #ifdef ROTATED_LINES
+// A line's sums over kx in [lo, hi] (empty when hi < lo): s = sum W_k t, s_x = sum kx W_k t,
+// and d_a = sum D_a,k t, with W_k = W0_k + dtheta . D_k and t = tx[kx].
+typedef struct {
+  float2 s, sx, d0, d1, d2;
+} RotatedSegment;
+
+inline RotatedSegment rotated_segment(__global const float8* row, __local const float2* tx, const float3 dtheta,
+                                      const int lo, const int hi) {
+  RotatedSegment r;
+  r.s = r.sx = r.d0 = r.d1 = r.d2 = (float2)(0.0f);
+  for (int x = lo; x <= hi; ++x) {
+    const float8 node = row[x];
+    const float2 t = tx[x];
+    const float2 wk = node.s01 + dtheta.x * node.s23 + dtheta.y * node.s45 + dtheta.z * node.s67;
+    const float2 term = cmul(wk, t);
+    r.s += term;
+    r.sx += (float)x * term;
+    r.d0 += cmul(node.s23, t);
+    r.d1 += cmul(node.s45, t);
+    r.d2 += cmul(node.s67, t);
+  }
+  return r;
+}
+
+inline void add_rotated_segments(RotatedSegment* a, const RotatedSegment b) {
+  a->s += b.s;
+  a->sx += b.sx;
+  a->d0 += b.d0;
+  a->d1 += b.d1;
+  a->d2 += b.d2;
+}
+
+// A line's segment sums times p = ty[ky] tz[kz] into f, F and the rotation sums.
+inline void add_rotated_line(Sums* sums, const RotatedSegment r, const float2 p, const short2 kyz,
+                             const float real_weight, const int folded, const float4 inv_length) {
+  const float2 term = real_weight * cmul(r.s, p);
+  sums->f += (float2)(term.x, folded ? 0.0f : term.y);
+#ifdef FORCE
+  sums->force +=
+      -TWO_PI * (float3)(real_weight * cmul(r.sx, p).y, (float)kyz.x * term.y, (float)kyz.y * term.y) * inv_length.xyz;
+#endif
+  sums->torque += real_weight * (float3)(cmul(r.d0, p).x, cmul(r.d1, p).x, cmul(r.d2, p).x);
+}
+
 // The x-lines of a product spectrum made for part 2 turned by R0 (kernels/rotated_product.cl,
 // engine/rotated_product.h), at a pose R = exp([dtheta]x) R0 (docs/design.md "Exact
 // rotation"): each box node holds float8 (W0, D_x, D_y, D_z), and the term is
@@ -313,7 +421,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void translation_l
 // kernels, with the last three the rotation sums Re sum_k D_k e^{i phi} (from which the
 // host makes the torque). The pose's s0-s2 hold dtheta (R itself enters only through tau).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void rotated_lines(
-    __global const float8* W, __global const int4* lines, __global const int4* extras, const int extra_count,
+    __global const float8* W, __global const int8* lines, __global const int4* extras, const int extra_count,
     const int folded, const float16 pose_arg, __global const float16* poses, const int pose_count, const int line_count,
     const int groups_per_pose, const int table_half, __global float* partials, const float4 inv_length) {
   const int group = get_group_id(0);
@@ -336,32 +444,21 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void rotated_lines
   barrier(CLK_LOCAL_MEM_FENCE);
 
   const float real_weight = folded ? 2.0f : 1.0f;
-  float2 f = (float2)(0.0f);
-  float3 force = (float3)(0.0f), rotation = (float3)(0.0f);
+  Sums core = zero_sums(), band_a = zero_sums(), band_b = zero_sums();
   for (int l = slice * WG_SIZE + lid; l < line_count; l += groups_per_pose * WG_SIZE) {
-    const int4 line = lines[l];
-    const short2 kyz = as_short2(line.y);
-    __global const float8* row = W + line.x;
-    float2 s = (float2)(0.0f), sx = (float2)(0.0f), d0 = (float2)(0.0f), d1 = (float2)(0.0f), d2 = (float2)(0.0f);
-    for (int x = line.z; x <= line.w; ++x) {
-      const float8 node = row[x];
-      const float2 t = tx[x];
-      const float2 wk = node.s01 + dtheta.x * node.s23 + dtheta.y * node.s45 + dtheta.z * node.s67;
-      const float2 term = cmul(wk, t);
-      s += term;
-      sx += (float)x * term;
-      d0 += cmul(node.s23, t);
-      d1 += cmul(node.s45, t);
-      d2 += cmul(node.s67, t);
-    }
+    const int8 line = lines[l];
+    const short2 kyz = as_short2(line.s1);
+    __global const float8* row = W + line.s0;
     const float2 p = cmul(ty[kyz.x], tz[kyz.y]);
-    const float2 term = real_weight * cmul(s, p);
-    f += (float2)(term.x, folded ? 0.0f : term.y);
-#ifdef FORCE
-    force +=
-        -TWO_PI * (float3)(real_weight * cmul(sx, p).y, (float)kyz.x * term.y, (float)kyz.y * term.y) * inv_length.xyz;
-#endif
-    rotation += real_weight * (float3)(cmul(d0, p).x, cmul(d1, p).x, cmul(d2, p).x);
+    // Core, band a and band b as in translation_lines.
+    RotatedSegment a = rotated_segment(row, tx, dtheta, line.s4, line.s6 - 1),
+                   b = rotated_segment(row, tx, dtheta, line.s2, line.s4 - 1);
+    add_rotated_segments(&a, rotated_segment(row, tx, dtheta, line.s7 + 1, line.s5));
+    add_rotated_segments(&b, rotated_segment(row, tx, dtheta, line.s5 + 1, line.s3));
+    add_rotated_line(&core, rotated_segment(row, tx, dtheta, line.s6, line.s7), p, kyz, real_weight, folded,
+                     inv_length);
+    add_rotated_line(&band_a, a, p, kyz, real_weight, folded, inv_length);
+    add_rotated_line(&band_b, b, p, kyz, real_weight, folded, inv_length);
   }
   if (slice == 0 && lid == 0) {
     for (int e = 0; e < extra_count; ++e) {
@@ -372,15 +469,18 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void rotated_lines
       const float2 wk = node.s01 + dtheta.x * node.s23 + dtheta.y * node.s45 + dtheta.z * node.s67;
       const float2 term = cmul(wk, phase);
       const float real = kzc.y == 1 ? 1.0f : -1.0f;
-      f += (float2)(real * term.x, term.y);
+      Sums* to = kzc.y == 1 ? &band_b : &core;  // code 1: the pair m' cuts
+      to->f += (float2)(real * term.x, term.y);
 #ifdef FORCE
-      force += -TWO_PI * real * term.y * convert_float3((int3)(kxy.x, kxy.y, kzc.x)) * inv_length.xyz;
+      to->force += -TWO_PI * real * term.y * convert_float3((int3)(kxy.x, kxy.y, kzc.x)) * inv_length.xyz;
 #endif
-      rotation += real * (float3)(cmul(node.s23, phase).x, cmul(node.s45, phase).x, cmul(node.s67, phase).x);
+      to->torque += real * (float3)(cmul(node.s23, phase).x, cmul(node.s45, phase).x, cmul(node.s67, phase).x);
     }
   }
+  add_sums(&core, band_a);
+  add_sums(&core, band_b);
 
-  __local float scratch[8 * WG_SIZE];
-  reduce_partials(scratch, lid, f, force, rotation, partials + 8 * group);
+  __local float scratch[SUMS_PER_GROUP * WG_SIZE];
+  reduce_partials(scratch, lid, core, band_a, band_b, partials + SUMS_PER_GROUP * group);
 }
 #endif

@@ -29,6 +29,7 @@
 #include "engine/reference_query.h"
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
+#include "report/accuracy_json.h"
 #include "report/chart_spec.h"
 #include "scheduler/accuracy.h"
 #include "scheduler/engine_tuning.h"
@@ -317,15 +318,10 @@ int main(int argc, char** argv) try {
     std::printf("  %-50s m' %7zu  p50 %.3f ms  p99 %.3f ms  E %.2e F %.2e T %.2e%s\n", a.name.c_str(), a.modes,
                 a.frame_ms_p50, a.frame_ms_p99, a.energy_error, a.force_error, a.torque_error,
                 a.fits ? "" : "  (does not fit)");
-    at_budget.push_back({{"strategy", a.name},
-                         {"modes", a.modes},
-                         {"fits_budget", a.fits},
-                         {"frame_ms_p50", a.frame_ms_p50},
-                         {"frame_ms_p99", a.frame_ms_p99},
-                         {"energy_error", a.energy_error},
-                         {"force_error", a.force_error},
-                         {"torque_error", a.torque_error},
-                         {"product_ms", a.product_ms}});
+    std::printf("  %-50s estimate covers E %.0f%% F %.0f%% T %.0f%% of poses, median estimate / error %.2g %.2g %.2g\n",
+                "", 100 * a.estimate_coverage[0], 100 * a.estimate_coverage[1], 100 * a.estimate_coverage[2],
+                a.estimate_ratio_median[0], a.estimate_ratio_median[1], a.estimate_ratio_median[2]);
+    at_budget.push_back(strategy_accuracy_json(a));
   }
   const nlohmann::json report = {{"command", bench::command_line(argc, argv)},
                                  {"date", bench::now_iso()},

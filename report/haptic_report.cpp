@@ -16,7 +16,7 @@ std::string loop_csv(const LoopReport& loop) {
   csv.precision(9);
   csv << "time_s,frame_ms,missed,modes,flags,device_x,device_y,device_z,part_x,part_y,part_z,part_qw,part_qx,"
          "part_qy,part_qz,energy,geo_fx,geo_fy,geo_fz,geo_tx,geo_ty,geo_tz,sent_fx,sent_fy,sent_fz,sent_tx,"
-         "sent_ty,sent_tz\n";
+         "sent_ty,sent_tz,energy_error_est,geo_force_error_est,geo_torque_error_est\n";
   for (const FrameRecord& f : loop.log) {
     const Eigen::Vector3d& d = f.device.translation;
     const Eigen::Vector3d& p = f.part.translation;
@@ -26,7 +26,7 @@ std::string loop_csv(const LoopReport& loop) {
         << q.y() << ',' << q.z() << ',' << f.energy;
     for (const Eigen::Vector3d* v : {&f.geometric.force, &f.geometric.torque, &f.sent.force, &f.sent.torque})
       csv << ',' << v->x() << ',' << v->y() << ',' << v->z();
-    csv << '\n';
+    csv << ',' << f.geometric_error.energy << ',' << f.geometric_error.force << ',' << f.geometric_error.torque << '\n';
   }
   return csv.str();
 }
@@ -81,6 +81,14 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
   nlohmann::json changes = nlohmann::json::array();
   for (const ModeChange& c : loop.mode_changes)
     changes.push_back({{"time_s", c.time_s}, {"frame", c.frame}, {"from", c.from}, {"to", c.to}, {"reason", c.reason}});
+  // The engine's per-frame error estimate of the geometric wrench (include/snapfit/query.h).
+  std::vector<double> force_error, torque_error;
+  for (const FrameRecord& f : loop.log)
+    if (f.flags == 0) force_error.push_back(f.geometric_error.force), torque_error.push_back(f.geometric_error.torque);
+  const auto spread = [](const std::vector<double>& v) -> nlohmann::json {
+    if (v.empty()) return nullptr;
+    return {{"p50", quantile(v, 0.5)}, {"p95", quantile(v, 0.95)}, {"max", quantile(v, 1.0)}};
+  };
   const auto& fp = run.loop.final_part.pose;
   return {{"rate_hz", loop.rate_hz},
           {"measured_rate_hz", loop.measured_rate_hz},
@@ -102,6 +110,7 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
             {"p99", quantile(loop.frame_ms, 0.99)},
             {"max", quantile(loop.frame_ms, 1.0)}}},
           {"modes", {{"tuned", tuning.chosen_modes}, {"final", loop.final_modes}, {"changes", changes}}},
+          {"geometric_error_estimate", {{"force_n", spread(force_error)}, {"torque_nm", spread(torque_error)}}},
           {"geometry_gain", run.geometry_gain},
           {"force_scale", run.force_scale},
           {"coupling",

@@ -126,10 +126,25 @@ AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, c
       measured->set_modes(s.modes);
     }
     RelativeErrors sums;
+    std::vector<double> ratios[3];
+    std::size_t covered[3] = {0, 0, 0}, compared = 0;
     for (std::size_t i = 0; i < poses.size(); ++i) {
       const QueryResult r = measured->query(poses[i]);
-      if (r.flags != query_ok || reference[i].flags != query_ok) continue;
-      sums.add(r, reference[i]);
+      const QueryResult& ref = reference[i];
+      if (r.flags != query_ok || ref.flags != query_ok) continue;
+      sums.add(r, ref);
+      const double truth[3] = {std::abs(r.energy - ref.energy), (r.force - ref.force).norm(),
+                               (r.torque - ref.torque).norm()};
+      const double estimate[3] = {r.error_estimate.energy, r.error_estimate.force, r.error_estimate.torque};
+      ++compared;
+      for (int q = 0; q < 3; ++q) {
+        if (estimate[q] >= truth[q]) ++covered[q];
+        if (truth[q] > 0) ratios[q].push_back(estimate[q] / truth[q]);
+      }
+    }
+    for (int q = 0; q < 3; ++q) {
+      s.estimate_coverage[q] = compared ? double(covered[q]) / double(compared) : 0;
+      s.estimate_ratio_median[q] = ratios[q].empty() ? 0 : quantile(ratios[q], 0.5);
     }
     s.energy_error = sums.relative(0);
     s.force_error = sums.relative(1);

@@ -45,6 +45,11 @@ struct StrategyAccuracy {
   bool fits = false;      // its p99 meets the budget with the margin
   double frame_ms_p50 = 0, frame_ms_p99 = 0;
   double energy_error = 0, force_error = 0, torque_error = 0;
+  // The per-query error estimate (QueryResult::error_estimate) against the true error
+  // |x - x_ref| at each pose, per output (0 energy, 1 force, 2 torque): the share of poses
+  // where it is at least the true error, and the median of estimate / true error.
+  double estimate_coverage[3] = {0, 0, 0};
+  double estimate_ratio_median[3] = {0, 0, 0};
   // exact_product only: the time to make one product at `modes` (how far behind the
   // current rotation the background product can be); the errors above are with the
   // product made for each pose's rotation (a part at rest).

@@ -240,9 +240,12 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     const Pose queried = part.pose;
     const QueryResult q = engine.evaluate(queried);
     geometric = Wrench{};
+    ErrorEstimate geometric_error;
     if (q.flags == query_ok) {
       geometric.force = config.geometry_gain * q.force;
       geometric.torque = config.geometry_gain * config.coupling.metres_per_unit * q.torque;
+      geometric_error = {q.error_estimate.energy, config.geometry_gain * q.error_estimate.force,
+                         config.geometry_gain * config.coupling.metres_per_unit * q.error_estimate.torque};
     } else {
       ++report.flagged_frames;
     }
@@ -282,8 +285,8 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     report.frame_ms.push_back(frame_ms);
     report.wake_late_ms.push_back(1e3 * (woke - tick_time));
     if (config.keep_log)
-      report.log.push_back(
-          FrameRecord{tick_time, frame_ms, handle.pose, queried, q.energy, geometric, sent, q.modes, q.flags, missed});
+      report.log.push_back(FrameRecord{tick_time, frame_ms, handle.pose, queried, q.energy, geometric, geometric_error,
+                                       sent, q.modes, q.flags, missed});
     ++report.frames;
     if (missed) ++report.misses;
 

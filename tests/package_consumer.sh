@@ -23,8 +23,12 @@ query_out=$("$cli" query "$scene" --modes 4096 --pose "$pose" 2>/dev/null)
 echo "consumer: $consumer_out"
 echo "query:    $query_out"
 
-# The number after "key": in a JSON line (first element for arrays).
-field() { sed -E "s/.*\"$2\": *\[? *([-0-9.eE+]+).*/\1/" <<<"$1"; }
+# The number after "key": in a JSON line (first element for arrays), outside the nested
+# error_estimate object, whose keys have the same names.
+field() {
+  sed -E 's/"error_estimate": *\{[^}]*\},?//' <<<"$1" | grep -oE "\"$2\": *\[? *[-0-9.eE+]+" | head -n 1 |
+    sed -E 's/.*[:[] *//'
+}
 for key in energy force; do
   a=$(field "$consumer_out" "$key")
   b=$(field "$query_out" "$key")

@@ -163,10 +163,12 @@ TEST_CASE("pipeline: snapfit run, snapfit query and the library give the same wr
       // The kernels sum in float: a pose read back from the log's 9 digits rounds their
       // terms differently, by float epsilons of the wrench's size along the run, which
       // is far more than a torque that cancels to nearly zero (an inserted peg's).
-      double torque_scale = 0;
-      for (const auto& r : rows)
+      double torque_scale = 0, energy_scale = 0;
+      for (const auto& r : rows) {
         torque_scale =
             std::max(torque_scale, Eigen::Vector3d(r[col("geo_tx")], r[col("geo_ty")], r[col("geo_tz")]).norm());
+        energy_scale = std::max(energy_scale, std::abs(r[col("energy")]));
+      }
       for (std::size_t i = 0; i < rows.size(); i += rows.size() / 7) {
         const auto& r = rows[i];
         REQUIRE(r[col("modes")] == double(kModes));
@@ -178,7 +180,9 @@ TEST_CASE("pipeline: snapfit run, snapfit query and the library give the same wr
         CAPTURE(i);
         REQUIRE(q.flags == unsigned(r[col("flags")]));
         const double e = r[col("energy")];
-        CHECK(std::abs(q.energy - e) <= 1e-6 * std::max(1.0, std::abs(e)));
+        // Devices split the modes into different work-groups: float round-off of the
+        // energy's size along the run, not of an energy that cancels at one pose.
+        CHECK(std::abs(q.energy - e) <= 1e-6 * std::max({1.0, std::abs(e), energy_scale}));
         const Eigen::Vector3d f(r[col("geo_fx")], r[col("geo_fy")], r[col("geo_fz")]);
         const Eigen::Vector3d t(r[col("geo_tx")], r[col("geo_ty")], r[col("geo_tz")]);
         CHECK((gain * q.force - f).norm() <= 1e-6 * std::max(1e-9, f.norm()) + 1e-12);

@@ -110,7 +110,9 @@ struct FrameRecord {
   Pose part;            // the part's pose the engine was queried at (before this frame's step)
   double energy = 0;    // engine energy at `part`
   Wrench geometric;     // scaled to N, N m
-  Wrench sent;          // to the device, after clamping
+  // The engine's error estimate for `energy` and `geometric` (same units as they).
+  ErrorEstimate geometric_error;
+  Wrench sent;  // to the device, after clamping
   std::size_t modes = 0;
   std::uint32_t flags = 0;  // QueryFlags of the engine
   bool missed = false;

@@ -75,11 +75,20 @@ enum QueryFlags : std::uint32_t {
   query_bad_pose = 1u << 1,      // non-finite or non-unit rotation input: zero returned
 };
 
+// An estimate of the absolute error of a query's energy, |force| and |torque| error
+// against the untruncated sum with exact rotation: kErrorEstimateScale times the root
+// sum of squares of the two octave bands below the cut, modes (m'/4, m'/2] and
+// (m'/2, m'] (engine/error_estimate.h; docs/design.md "Error estimate").
+struct ErrorEstimate {
+  double energy = 0, force = 0, torque = 0;
+};
+
 struct QueryResult {
   double energy = 0;
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();
   std::complex<double> score = 0;  // f(R, t)
+  ErrorEstimate error_estimate;
   std::uint32_t flags = query_ok;
   std::size_t modes = 0;  // m' used
   double seconds = 0;     // wall time of this query (batch: of the whole batch / count)

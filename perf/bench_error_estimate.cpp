@@ -1,0 +1,135 @@
+// How the per-query error estimate (engine/error_estimate.h) relates to the true error:
+// at poses along a scene's trajectory, for the loop's strategy (tricubic interpolation, or
+// the translation lines) at several m', the true error of E, |F| and |T| against the
+// exact reference (every mode, exact rotation: scheduler/accuracy.h) divided by the root
+// sum of squares of the two band sums (the estimate before kErrorEstimateScale). Its
+// quantiles are what the scale is chosen from (the 95th percentile: the estimate covers
+// the error at 95 % of poses); the coverage and the median estimate / error at the
+// shipped scale say how the estimate does.
+//
+//   ./build/perf/bench_error_estimate [--scene scenes/default.json] [--poses N] [--quick] [--out DIR]
+// --quick: 4 poses, m' = 8,192 only.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "core/quantile.h"
+#include "engine/device.h"
+#include "engine/error_estimate.h"
+#include "engine/query_engine.h"
+#include "perf/bench_common.h"
+#include "pipeline/assembly_pair.h"
+#include "scheduler/accuracy.h"
+#include "scheduler/engine_tuning.h"
+
+using namespace snapfit;
+
+namespace {
+
+void usage(std::ostream& out) {
+  out << "bench_error_estimate [--scene FILE] [--poses N] [--quick] [--device SPEC] [--out DIR]\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bench::guarded_main("bench_error_estimate", [&] {
+    bool quick = false;
+    std::string device_spec, out_dir = "results/bench_error_estimate", scene_path = "scenes/default.json";
+    long pose_count = 40;
+    bench::parse_options(argc, argv, quick, device_spec, out_dir, usage, [&](const std::string&, auto value, auto is) {
+      if (is("--scene"))
+        scene_path = value("--scene");
+      else if (is("--poses"))
+        pose_count = bench::integer_option("--poses", value("--poses"), 2, 10000);
+      else
+        return false;
+      return true;
+    });
+    if (quick) pose_count = 4;
+    const Scene scene = load_scene(scene_path);
+    const Device device = select_device(device_spec_from(device_spec));
+    const FftLibrary fft;
+    const ComputeContext ctx = make_compute_context(device);
+    const AssemblyPair pair = build_assembly_pair(scene, ctx, fft);
+    const QueryVariant variant = query_variant_for(scene, Interpolation::tricubic);
+    const std::vector<Pose> poses = accuracy_poses(scene, std::size_t(pose_count));
+
+    // The reference: every mode, exact in rotation, made for each pose's rotation.
+    QueryVariant exact = variant;
+    if (!variant.translation_only) {
+      exact.rotation = RotationMethod::exact_product;
+      exact.product_update = ProductUpdate::each_query;
+      exact.product_modes = pair.spectra.part1.rho.size();
+    }
+    std::vector<QueryResult> reference;
+    {
+      auto engine = make_query_engine(ctx, pair.spectra, exact);
+      engine->set_modes(engine->max_modes());
+      for (const Pose& p : poses) {
+        reference.push_back(engine->query(p));
+        std::cerr << "\rreference " << reference.size() << "/" << poses.size() << std::flush;
+      }
+      std::cerr << "\n";
+    }
+
+    auto engine = make_query_engine(ctx, pair.spectra, variant);
+    const char* names[3] = {"energy", "force", "torque"};
+    nlohmann::json rows = nlohmann::json::array();
+    std::cout << "scene " << scene_path << ", " << variant_name(variant) << ", " << poses.size() << " poses, device "
+              << describe_device(device.info) << "\n";
+    const std::vector<std::size_t> ladder =
+        quick ? std::vector<std::size_t>{8192} : std::vector<std::size_t>{8192, 16384, 32768};
+    for (const std::size_t m : ladder) {
+      engine->set_modes(m);
+      std::vector<double> ratio[3];
+      std::size_t covered[3] = {0, 0, 0}, compared = 0;
+      std::vector<double> over[3];
+      for (std::size_t i = 0; i < poses.size(); ++i) {
+        const QueryResult r = engine->query(poses[i]);
+        const QueryResult& ref = reference[i];
+        if (r.flags != query_ok || ref.flags != query_ok) continue;
+        ++compared;
+        const double truth[3] = {std::abs(r.energy - ref.energy), (r.force - ref.force).norm(),
+                                 (r.torque - ref.torque).norm()};
+        const double estimate[3] = {r.error_estimate.energy, r.error_estimate.force, r.error_estimate.torque};
+        for (int q = 0; q < 3; ++q) {
+          if (estimate[q] > 0) ratio[q].push_back(kErrorEstimateScale * truth[q] / estimate[q]);
+          if (estimate[q] >= truth[q]) ++covered[q];
+          if (truth[q] > 0) over[q].push_back(estimate[q] / truth[q]);
+        }
+      }
+      for (int q = 0; q < 3; ++q) {
+        if ((q == 1 && !variant.force) || (q == 2 && !variant.torque) || ratio[q].empty()) continue;
+        const double p05 = quantile(ratio[q], 0.05), p50 = quantile(ratio[q], 0.5), p95 = quantile(ratio[q], 0.95);
+        const double coverage = double(covered[q]) / double(compared), median_over = quantile(over[q], 0.5);
+        std::printf(
+            "  m' %6zu %-6s  error / band rss: p05 %.2f p50 %.2f p95 %.2f   at scale %.1f: covers %.0f%%, "
+            "median estimate / error %.2f\n",
+            m, names[q], p05, p50, p95, kErrorEstimateScale, 100 * coverage, median_over);
+        rows.push_back({{"modes", m},
+                        {"output", names[q]},
+                        {"ratio_p05", p05},
+                        {"ratio_p50", p50},
+                        {"ratio_p95", p95},
+                        {"scale", kErrorEstimateScale},
+                        {"coverage", coverage},
+                        {"overestimate_median", median_over}});
+      }
+    }
+    std::filesystem::create_directories(out_dir);
+    std::ofstream(std::filesystem::path(out_dir) / "error_estimate.json")
+        << nlohmann::json{{"command", bench::command_line(argc, argv)},
+                          {"date", bench::now_iso()},
+                          {"device", device.info.name},
+                          {"scene", scene_path},
+                          {"strategy", variant_name(variant)},
+                          {"poses", poses.size()},
+                          {"rows", rows}}
+               .dump(1)
+        << "\n";
+    return 0;
+  });
+}
