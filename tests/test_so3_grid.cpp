@@ -68,7 +68,7 @@ TEST_CASE("so3 grid: holds the identity and is uniform (Haar measure of balls ab
   CHECK_THROWS_AS(so3_grid_for_count(0), Error);
 }
 
-TEST_CASE("so3 grid: --rotations N gives about N; the covering radius is at least a brute-force one") {
+TEST_CASE("so3 grid: --rotations N gives about N, and the covering radius is at least a brute-force one") {
   for (std::size_t n : {72, 576, 4000}) {
     const So3Grid g = so3_grid_for_count(n);
     CHECK(double(g.rotations.size()) == doctest::Approx(double(n)).epsilon(0.2));
