@@ -14,18 +14,13 @@
 #include "engine/query_engine.h"
 #include "engine/rotation_search.h"
 #include "snapfit/error.h"
+#include "tests/test_cube_grid.h"
 
 using namespace snapfit;
 
-namespace {
+using test::cube_grid;
 
-GridSpec cube_grid(const Eigen::Vector3d& centre, int n, double h) {
-  GridSpec g;
-  g.spacing = h;
-  g.dims = Eigen::Vector3i(n, n, n);
-  g.origin = centre - Eigen::Vector3d::Constant(h * (n - 1) / 2.0 + 0.013);
-  return g;
-}
+namespace {
 
 // sign * i * exp(-1/2 (p - m)^T B (p - m)): part 1 with +i and part 2 with -i correlate
 // to f = +integral rho1 rho2, so overlap has E = -Re f < 0 like a fit.
