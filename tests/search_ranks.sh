@@ -15,7 +15,7 @@ run() {  # ranks, extra arguments...
   local n=$1
   shift
   timeout 240 "$mpirun" --oversubscribe --mca btl self,vader -np "$n" "$snapfit" search "$work/scene.json" \
-    --rotations 24 --top 4 --refine-queries 40 "$@"
+    --rotations 16 --top 4 --refine-queries 10 "$@"
 }
 for n in 1 2 4; do
   run "$n" >"$work/out$n.txt" 2>"$work/err$n.txt" || { echo "FAIL: $n ranks"; cat "$work/err$n.txt"; exit 1; }

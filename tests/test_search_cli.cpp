@@ -58,9 +58,10 @@ TEST_CASE("snapfit search: on the shipped peg and hole the assembled pose comes 
   REQUIRE(scene.assembled_pose.has_value());
   const Mesh peg = prepare_parts(scene).part2.mesh;
 
-  const test::Command run = test::run_command(
-      std::string(SNAPFIT_CLI_PATH) + " search " + scene_file + " --rotations 48 --top 3 --out " + dir.file("out"),
-      false);
+  const test::Command run =
+      test::run_command(std::string(SNAPFIT_CLI_PATH) + " search " + scene_file +
+                            " --rotations 48 --top 3 --refine-queries 80 --out " + dir.file("out"),
+                        false);
   INFO(run.output);
   REQUIRE(run.status == 0);
   CHECK(run.output.find("covering radius") != std::string::npos);
