@@ -4,10 +4,12 @@
 // local 6-DOF descent with the query engine (engine/pose_descent.h). Under mpirun the
 // ranks share the rotations cyclically, each on its own OpenCL device
 // (cli/search_ranks.h); rank 0 merges, refines and reports.
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
