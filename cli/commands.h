@@ -11,6 +11,7 @@ void add_run_command(CLI::App& app);
 void add_fields_command(CLI::App& app);
 void add_query_command(CLI::App& app);
 void add_map_command(CLI::App& app);
+void add_search_command(CLI::App& app);
 void add_tune_command(CLI::App& app);
 void add_accuracy_command(CLI::App& app);
 

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   snapfit::cli::add_fields_command(app);
   snapfit::cli::add_query_command(app);
   snapfit::cli::add_map_command(app);
+  snapfit::cli::add_search_command(app);
   snapfit::cli::add_tune_command(app);
   snapfit::cli::add_accuracy_command(app);
   snapfit::cli::add_run_command(app);

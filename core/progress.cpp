@@ -60,7 +60,7 @@ std::string format_duration(double seconds) {
 }
 
 std::string progress_line(const std::string& label, std::uint64_t done, std::uint64_t total, double elapsed_s,
-                          bool final, bool terminal) {
+                          bool final, bool terminal, const std::string& rate_unit) {
   const double f = fraction(done, total);
   const bool complete = done >= total;
   char pct[16];
@@ -74,6 +74,11 @@ std::string progress_line(const std::string& label, std::uint64_t done, std::uin
     line += " [" + std::string(filled, '#') + std::string(kBarWidth - filled, '-') + "] " + pct + "  ";
   } else {
     line += std::string(": ") + pct + " (" + std::to_string(done) + "/" + std::to_string(total) + "), ";
+  }
+  if (!rate_unit.empty() && elapsed_s > 0) {
+    char rate[64];
+    std::snprintf(rate, sizeof rate, "%.3g %s/s, ", static_cast<double>(done) / elapsed_s, rate_unit.c_str());
+    line += rate;
   }
   if (final) return line + (complete ? "done in " : "stopped after ") + format_duration(elapsed_s);
   line += format_duration(elapsed_s) + " elapsed";
@@ -128,7 +133,7 @@ std::function<void(std::uint64_t)> Progress::advancer() {
 
 void Progress::draw(bool final) {
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-  const std::string line = progress_line(label_, done_.load(), total_, elapsed, final, terminal_);
+  const std::string line = progress_line(label_, done_.load(), total_, elapsed, final, terminal_, rate_unit_);
   if (terminal_) {
     // Blank what is left of a longer previous line.
     const std::string pad(last_width_ > line.size() ? last_width_ - line.size() : 0, ' ');

@@ -24,9 +24,10 @@ namespace snapfit {
 std::string format_duration(double seconds);
 
 // One report line without '\r' or '\n'. `terminal` picks the bar layout, `final` the
-// closing wording; percentages are rounded down so 100% means all steps are done.
+// closing wording; percentages are rounded down so 100% means all steps are done. A
+// non-empty `rate_unit` adds the steps per second so far ("12.5 rotations/s").
 std::string progress_line(const std::string& label, std::uint64_t done, std::uint64_t total, double elapsed_s,
-                          bool final, bool terminal);
+                          bool final, bool terminal, const std::string& rate_unit = "");
 
 enum class ProgressStyle {
   automatic,  // terminal when `out` is std::cerr/std::clog (std::cout) and fd 2 (1) is a tty
@@ -38,6 +39,8 @@ class Progress {
  public:
   Progress(std::string label, std::uint64_t total, std::ostream& out = std::cerr,
            ProgressStyle style = ProgressStyle::automatic);
+  // Show the steps per second, named `unit` per second (progress_line's rate_unit).
+  void show_rate(const std::string& unit) { rate_unit_ = unit; }
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
   // Calls finish() if it was not called (so an aborted run says where it stopped).
@@ -69,6 +72,7 @@ class Progress {
   std::atomic<bool> finished_{false};
   std::mutex mutex_;            // guards out_ and last_width_
   std::size_t last_width_ = 0;  // terminal: the last line's length, to blank leftovers
+  std::string rate_unit_;       // empty: no rate shown
 };
 
 // A callback for work done in named passes that each report (done, total): one

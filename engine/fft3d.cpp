@@ -91,12 +91,16 @@ Fft3d::~Fft3d() {
 }
 
 void Fft3d::transform(FftDirection direction, const cl::Buffer& input, const cl::Buffer& output) const {
+  enqueue(direction, input, output);
+  ctx_.queue.finish();
+}
+
+void Fft3d::enqueue(FftDirection direction, const cl::Buffer& input, const cl::Buffer& output) const {
   cl_command_queue queue = ctx_.queue();
   cl_mem in = input(), out = output();
   check(clfftEnqueueTransform(plan_, direction == FftDirection::forward ? CLFFT_FORWARD : CLFFT_BACKWARD, 1, &queue, 0,
                               nullptr, nullptr, &in, &out, nullptr),
         "FFT " + dims_text(dims_) + " failed on " + ctx_.device.info.name);
-  ctx_.queue.finish();
 }
 
 }  // namespace snapfit

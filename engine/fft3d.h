@@ -44,6 +44,9 @@ class Fft3d {
 
   // Out-of-place transform of count() complex floats; blocks until done.
   void transform(FftDirection direction, const cl::Buffer& input, const cl::Buffer& output) const;
+  // The same transform enqueued on the context's queue without waiting (later commands
+  // on that in-order queue see its result).
+  void enqueue(FftDirection direction, const cl::Buffer& input, const cl::Buffer& output) const;
 
  private:
   const ComputeContext& ctx_;

@@ -9,34 +9,61 @@
 #include "snapfit/error.h"
 
 namespace snapfit {
+namespace {
 
-TranslationMap translational_energy_map(const FftLibrary& library, const ComputeContext& ctx,
-                                        const PairSpectra& spectra, const Eigen::Matrix3d& R,
-                                        Interpolation interpolation, std::size_t modes,
-                                        const ProgramCacheConfig& cache) {
-  const auto start = std::chrono::steady_clock::now();
+// Low-pass radius: the |w|^2 of the modes-th smallest node (infinite: every mode).
+float low_pass_w2(const PairSpectra& spectra, std::size_t modes) {
   const auto& dims = spectra.dims;
   const std::size_t total = dims[0] * dims[1] * dims[2];
-  // Low-pass radius: the |w| of the modes-th smallest node.
-  float max_w2 = std::numeric_limits<float>::infinity();
-  if (modes > 0 && modes < total) {
-    std::vector<float> w2(total);
-    for (std::size_t z = 0; z < dims[2]; ++z)
-      for (std::size_t y = 0; y < dims[1]; ++y)
-        for (std::size_t x = 0; x < dims[0]; ++x)
-          w2[x + dims[0] * (y + dims[1] * z)] =
-              float(std::pow(spectra.frequency(0, x), 2) + std::pow(spectra.frequency(1, y), 2) +
-                    std::pow(spectra.frequency(2, z), 2));
-    std::nth_element(w2.begin(), w2.begin() + (modes - 1), w2.end());
-    max_w2 = w2[modes - 1];
-  }
-  const Eigen::Vector3d shift = R * spectra.part2.centre - spectra.part1.centre;
-  TranslationMap map;
-  std::vector<std::complex<float>> f(total);
+  if (modes == 0 || modes >= total) return std::numeric_limits<float>::infinity();
+  std::vector<float> w2(total);
+  for (std::size_t z = 0; z < dims[2]; ++z)
+    for (std::size_t y = 0; y < dims[1]; ++y)
+      for (std::size_t x = 0; x < dims[0]; ++x)
+        w2[x + dims[0] * (y + dims[1] * z)] =
+            float(std::pow(spectra.frequency(0, x), 2) + std::pow(spectra.frequency(1, y), 2) +
+                  std::pow(spectra.frequency(2, z), 2));
+  std::nth_element(w2.begin(), w2.begin() + (modes - 1), w2.end());
+  return w2[modes - 1];
+}
+
+[[noreturn]] void rethrow(const ComputeContext& ctx, const cl::Error& e) {
+  throw Error("full map failed on " + ctx.device.info.name + ": " + e.what() + " (error " + std::to_string(e.err()) +
+              ")");
+}
+
+}  // namespace
+
+struct TranslationMapper::Slot {
+  std::vector<Complex> f;  // the inverse FFT, read back
+  cl::Event read;
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  bool pending = false;
+};
+
+TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeContext& ctx, const PairSpectra& spectra,
+                                     Interpolation interpolation, std::size_t modes, const ProgramCacheConfig& cache)
+    : ctx_(ctx), spectra_(spectra), max_w2_(low_pass_w2(spectra, modes)), slot_(new Slot[slots]) {
+  const auto& dims = spectra.dims;
+  const std::size_t total = dims[0] * dims[1] * dims[2];
+  // Regular order: translation index j' from -floor(N/2) to N - 1 - floor(N/2) per axis;
+  // its FFT index is j = j' mod N.
+  grid_.spacing = spectra.spacing;
+  grid_.dims = Eigen::Vector3i(int(dims[0]), int(dims[1]), int(dims[2]));
+  for (int a = 0; a < 3; ++a) grid_.origin[a] = -spectra.spacing * double(dims[a] / 2);
+  fft_index_.resize(total);
+  for (std::size_t z = 0; z < dims[2]; ++z)
+    for (std::size_t y = 0; y < dims[1]; ++y)
+      for (std::size_t x = 0; x < dims[0]; ++x) {
+        const std::size_t jx = (x + dims[0] - dims[0] / 2) % dims[0], jy = (y + dims[1] - dims[1] / 2) % dims[1],
+                          jz = (z + dims[2] - dims[2] / 2) % dims[2];
+        fft_index_[x + dims[0] * (y + dims[1] * z)] = jx + dims[0] * (jy + dims[1] * jz);
+      }
+  for (int s = 0; s < slots; ++s) slot_[s].f.resize(total);
   try {
     const std::string options =
         std::string("-cl-std=CL1.2") + (interpolation == Interpolation::tricubic ? " -D TRICUBIC" : "");
-    cl::Kernel kernel(
+    kernel_ = cl::Kernel(
         build_program(ctx, "full_map", kernel_source("spectrum_sample") + kernel_source("full_map"), options, cache)
             .program,
         "spectrum_product");
@@ -44,50 +71,96 @@ TranslationMap translational_energy_map(const FftLibrary& library, const Compute
       return cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * v.size(),
                         const_cast<Complex*>(v.data()));
     };
-    cl::Buffer s1 = upload(spectra.part1.rho), s2 = upload(spectra.part2.rho);
-    cl::Buffer product(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * total);
-    cl::Buffer result(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * total);
-    cl_float16 pose{};
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) pose.s[3 * r + c] = static_cast<float>(R(r, c));
-    for (int a = 0; a < 3; ++a) pose.s[9 + a] = static_cast<float>(shift[a]);
-    kernel.setArg(0, s1);
-    kernel.setArg(1, s2);
-    kernel.setArg(2, cl_int4{{int(dims[0]), int(dims[1]), int(dims[2]), 0}});
-    kernel.setArg(3,
-                  cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
-    kernel.setArg(4, pose);
-    kernel.setArg(5, static_cast<float>(1.0 / (spectra.length.x() * spectra.length.y() * spectra.length.z())));
-    kernel.setArg(6, max_w2);
-    kernel.setArg(7, product);
-    ctx.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(total));
-    const Fft3d fft(library, ctx, dims);
-    fft.transform(FftDirection::inverse, product, result);  // f(t_j) = sum_k P_k e^{2 pi i k.j / N}
-    ctx.queue.enqueueReadBuffer(result, CL_TRUE, 0, sizeof(Complex) * total, f.data());
+    s1_ = upload(spectra.part1.rho);
+    s2_ = upload(spectra.part2.rho);
+    product_ = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * total);
+    result_ = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * total);
+    kernel_.setArg(0, s1_);
+    kernel_.setArg(1, s2_);
+    kernel_.setArg(2, cl_int4{{int(dims[0]), int(dims[1]), int(dims[2]), 0}});
+    kernel_.setArg(3,
+                   cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
+    kernel_.setArg(5, static_cast<float>(1.0 / (spectra.length.x() * spectra.length.y() * spectra.length.z())));
+    kernel_.setArg(6, max_w2_);
+    kernel_.setArg(7, product_);
   } catch (const cl::Error& e) {
-    throw Error("full map failed on " + ctx.device.info.name + ": " + e.what() + " (error " + std::to_string(e.err()) +
-                ")");
+    rethrow(ctx, e);
   }
-  // Regular order: translation index j' from -floor(N/2) to N - 1 - floor(N/2) per axis.
-  map.grid.spacing = spectra.spacing;
-  map.grid.dims = Eigen::Vector3i(int(dims[0]), int(dims[1]), int(dims[2]));
-  for (int a = 0; a < 3; ++a) map.grid.origin[a] = -spectra.spacing * double(dims[a] / 2);
-  map.energy.assign(total, std::numeric_limits<float>::quiet_NaN());
-  const Eigen::Vector3d reach = spectra.part1.half_extent + R.cwiseAbs() * spectra.part2.half_extent;
-  for (std::size_t z = 0; z < dims[2]; ++z)
-    for (std::size_t y = 0; y < dims[1]; ++y)
-      for (std::size_t x = 0; x < dims[0]; ++x) {
-        const Eigen::Vector3d t = map.grid.point(int(x), int(y), int(z));
-        // FFT index of translation t: j = j' mod N.
-        std::size_t j[3];
-        for (int a = 0; a < 3; ++a) {
-          const long jp = std::lround(t[a] / spectra.spacing);
-          j[a] = static_cast<std::size_t>((jp % long(dims[a]) + long(dims[a])) % long(dims[a]));
-        }
-        // Same aliasing rule as the pose queries (engine/pose_query.cpp).
-        if ((((t + shift).cwiseAbs() + reach).array() > spectra.length.array()).any()) continue;
-        map.energy[map.grid.index(int(x), int(y), int(z))] = -f[j[0] + dims[0] * (j[1] + dims[1] * j[2])].real();
-      }
+  fft_ = std::make_unique<Fft3d>(library, ctx, dims);
+}
+
+TranslationMapper::~TranslationMapper() {
+  for (int s = 0; s < slots; ++s)
+    if (slot_[s].pending) slot_[s].read.wait();  // the read writes into the slot's vector
+}
+
+void TranslationMapper::submit(int slot, const Eigen::Matrix3d& R) {
+  Slot& s = slot_[slot];
+  const std::size_t total = fft_index_.size();
+  const Eigen::Vector3d shift = R * spectra_.part2.centre - spectra_.part1.centre;
+  cl_float16 pose{};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) pose.s[3 * r + c] = static_cast<float>(R(r, c));
+  for (int a = 0; a < 3; ++a) pose.s[9 + a] = static_cast<float>(shift[a]);
+  try {
+    if (s.pending) s.read.wait();  // an uncollected map is dropped
+    s.pending = false;
+    kernel_.setArg(4, pose);
+    ctx_.queue.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(total));
+    fft_->enqueue(FftDirection::inverse, product_, result_);  // f(t_j) = sum_k P_k e^{2 pi i k.j / N}
+    ctx_.queue.enqueueReadBuffer(result_, CL_FALSE, 0, sizeof(Complex) * total, s.f.data(), nullptr, &s.read);
+    ctx_.queue.flush();
+  } catch (const cl::Error& e) {
+    rethrow(ctx_, e);
+  }
+  s.R = R;
+  s.pending = true;
+}
+
+void TranslationMapper::collect(int slot, std::vector<float>& energy) {
+  Slot& s = slot_[slot];
+  if (!s.pending) throw Error("full map: slot " + std::to_string(slot) + " has no map submitted");
+  try {
+    s.read.wait();
+  } catch (const cl::Error& e) {
+    rethrow(ctx_, e);
+  }
+  s.pending = false;
+  // Same aliasing rule as the pose queries (engine/pose_query.cpp), per axis: the
+  // translation t aliases when |t + R c2 - c1| + reach > L on some axis.
+  const Eigen::Vector3d shift = s.R * spectra_.part2.centre - spectra_.part1.centre;
+  const Eigen::Vector3d reach = spectra_.part1.half_extent + s.R.cwiseAbs() * spectra_.part2.half_extent;
+  std::array<std::vector<char>, 3> inside;
+  for (int a = 0; a < 3; ++a) {
+    inside[a].resize(std::size_t(grid_.dims[a]));
+    for (int i = 0; i < grid_.dims[a]; ++i)
+      inside[a][i] = std::abs(grid_.origin[a] + grid_.spacing * i + shift[a]) + reach[a] <= spectra_.length[a];
+  }
+  energy.resize(fft_index_.size());
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::size_t g = 0;
+  for (int z = 0; z < grid_.dims.z(); ++z)
+    for (int y = 0; y < grid_.dims.y(); ++y) {
+      const bool row = inside[2][z] && inside[1][y];
+      for (int x = 0; x < grid_.dims.x(); ++x, ++g) energy[g] = row && inside[0][x] ? -s.f[fft_index_[g]].real() : nan;
+    }
+}
+
+TranslationMap TranslationMapper::map(const Eigen::Matrix3d& R) {
+  TranslationMap out;
+  out.grid = grid_;
+  submit(0, R);
+  collect(0, out.energy);
+  return out;
+}
+
+TranslationMap translational_energy_map(const FftLibrary& library, const ComputeContext& ctx,
+                                        const PairSpectra& spectra, const Eigen::Matrix3d& R,
+                                        Interpolation interpolation, std::size_t modes,
+                                        const ProgramCacheConfig& cache) {
+  const auto start = std::chrono::steady_clock::now();
+  TranslationMapper mapper(library, ctx, spectra, interpolation, modes, cache);
+  TranslationMap map = mapper.map(R);
   map.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return map;
 }

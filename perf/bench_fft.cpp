@@ -94,6 +94,7 @@
 #include "engine/program_cache.h"
 #include "engine/spectra.h"
 #include "perf/bench_common.h"
+#include "perf/bench_spectra.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/part_fields.h"
 #include "snapfit/error.h"
@@ -463,31 +464,7 @@ std::vector<TransformRow> bench_transforms(const snapfit::FftLibrary& lib, const
 
 // ---------------------------------------------------------------- 2. full maps
 
-// Spectra of two synthetic parts on an FFT grid of exactly `d` points (oversampling 1, the
-// fields filling the central half of the box): part 1 a ball, part 2 a box, values
-// i * indicator as for the indicator descriptor.
-snapfit::PairSpectra synthetic_spectra(const snapfit::FftLibrary& lib, const snapfit::ComputeContext& ctx,
-                                       const Dims& d, double spacing) {
-  snapfit::GridSpec g;
-  g.spacing = spacing;
-  g.dims = Eigen::Vector3i(int(d[0]), int(d[1]), int(d[2]));
-  g.origin = -0.5 * spacing * Eigen::Vector3d(double(d[0]), double(d[1]), double(d[2]));
-  const Eigen::Vector3d half = 0.5 * spacing * Eigen::Vector3d(double(d[0]), double(d[1]), double(d[2]));
-  std::vector<cf> rho1(g.count()), rho2(g.count());
-  for (int k = 0; k < g.dims.z(); ++k)
-    for (int j = 0; j < g.dims.y(); ++j)
-      for (int i = 0; i < g.dims.x(); ++i) {
-        const Eigen::Vector3d p = g.point(i, j, k);
-        const Eigen::Vector3d q = p.cwiseQuotient(half);  // in [-1, 1)
-        rho1[g.index(i, j, k)] = cf(0.0f, q.norm() < 0.45 ? 1.0f : 0.0f);
-        rho2[g.index(i, j, k)] = cf(0.0f, (q.cwiseAbs().array() < Eigen::Array3d(0.3, 0.2, 0.4)).all() ? 1.0f : 0.0f);
-      }
-  snapfit::SpectrumOptions opt;
-  opt.oversampling = 1.0;
-  snapfit::PairSpectra s = snapfit::compute_pair_spectra(lib, ctx, g, rho1, g, rho2, opt);
-  if (s.dims != d) throw snapfit::Error("synthetic spectra: got " + dims_text(s.dims) + ", wanted " + dims_text(d));
-  return s;
-}
+using snapfit::bench::synthetic_spectra;  // perf/bench_spectra.h
 
 struct MapRow {
   std::string library;  // clfft | vkfft | fftw | full_map (the real path)

@@ -6,18 +6,13 @@
 #include "engine/device.h"
 #include "engine/full_map.h"
 #include "engine/query_engine.h"
+#include "tests/test_cube_grid.h"
 
 using namespace snapfit;
 
-namespace {
+using test::cube_grid;
 
-GridSpec cube_grid(const Eigen::Vector3d& centre, int n, double h) {
-  GridSpec g;
-  g.spacing = h;
-  g.dims = Eigen::Vector3i(n, n, n);
-  g.origin = centre - Eigen::Vector3d::Constant(h * (n - 1) / 2.0 + 0.013);
-  return g;
-}
+namespace {
 
 // i * exp(-1/2 (p - m)^T B (p - m)) sampled on the grid.
 std::vector<Complex> gaussian(const GridSpec& g, const Eigen::Vector3d& m, const Eigen::Matrix3d& B) {

@@ -1,0 +1,26 @@
+#pragma once
+// The best fits of one translational map: local minima of E(R, t) over the grid's
+// translations, thinned by non-maximum suppression (a minimum is kept only when no
+// better kept one lies within `separation` of it), best first.
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+#include "core/grid.h"
+
+namespace snapfit {
+
+struct MapMinimum {
+  std::size_t index = 0;  // grid index
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  float energy = 0;
+};
+
+// Minima with E < 0 (contact that fits; E = 0 is no contact) that are <= each of their
+// 26 neighbours (NaN neighbours and those beyond the grid do not count; on a plateau the
+// lowest grid index counts), at most `count`, each farther than `separation` from every
+// better one kept. Ties in energy go to the lower grid index, so the result is deterministic.
+std::vector<MapMinimum> map_minima(const GridSpec& grid, const std::vector<float>& energy, std::size_t count,
+                                   double separation);
+
+}  // namespace snapfit
