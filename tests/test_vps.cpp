@@ -1,14 +1,18 @@
 // Voxmap PointShell (mesh/voxmap.h, scheduler/vps_method.h): the voxmap of a box against
 // its closed-form voxel counts, one point against a plane against the closed-form force
 // and torque, and a cube inserted into a square cup through the haptic loop: it goes in
-// at a clearance of twice the voxel size and jams at zero clearance (seed 002 8.2.1).
+// at a clearance of twice the voxel size and jams at zero clearance (seed 002 8.2.1);
+// `snapfit run` with a vps scene.
 #include <doctest/doctest.h>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "mesh/voxmap.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/vps_method.h"
 #include "tests/test_meshes.h"
+#include "tests/test_support.h"
 
 using namespace snapfit;
 
@@ -135,4 +139,32 @@ TEST_CASE("vps: a cube goes into a cup at twice the voxel size of clearance and 
   CHECK(tight.loop.final_part.pose.translation.z() > -3 + 4 * voxel);  // jammed well short of the target
   // The jammed cube rests on the rim: the user feels the coupling's reaction, upwards.
   CHECK(tight.loop.log.back().sent.force.z() > 0.5);
+}
+
+TEST_CASE("vps: snapfit run plays a vps scene and names the method in summary.json") {
+  // The shipped 0.5 mm clearance scene with "method": "vps" at a quarter-millimetre voxel.
+  nlohmann::json scene;
+  std::ifstream(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/peg_hole_clearance_0p5.json") >> scene;
+  scene["method"] = "vps";
+  scene["vps"] = {{"voxel_size", 0.25}};
+  const test::TempDir dir;
+  test::write_text(dir.file("vps.json"), scene.dump());
+  const test::Command run = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("vps.json") +
+                                              " --simulated-time --out " + dir.file("out"));
+  INFO(run.output);
+  REQUIRE(run.status == 0);
+  nlohmann::json summary;
+  std::ifstream(dir.file("out/summary.json")) >> summary;
+  CHECK(summary["method"] == "vps");
+  CHECK(summary["vps"]["voxel_size"] == 0.25);
+  CHECK(summary["vps"]["shell_points"].get<int>() > 1000);
+  CHECK(summary["tuning"].is_null());
+  CHECK(summary["haptic_loop"]["frames"] == 5500);
+  CHECK(summary["haptic_loop"]["assembled"] == true);  // 0.5 mm of clearance, twice the voxel size
+  // A bad vps field stops the run with the field named.
+  scene["vps"]["voxel_size"] = 0;
+  test::write_text(dir.file("bad.json"), scene.dump());
+  const test::Command bad = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("bad.json"));
+  CHECK(bad.status != 0);
+  CHECK(bad.output.find("vps.voxel_size: must be > 0 (got 0)") != std::string::npos);
 }
