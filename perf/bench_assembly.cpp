@@ -315,16 +315,7 @@ int main(int argc, char** argv) {
     std::optional<FftLibrary> fft;
     std::string device_name = "host only";
     if (need_device) {
-      expose_pocl_caller_thread_driver();
-      Device device;
-      if (device_spec.empty()) {
-        std::optional<Device> caller_thread;
-        for (const Device& d : enumerate_devices())
-          if (d.info.runs_in_caller_thread() && !caller_thread) caller_thread = d;
-        device = caller_thread ? *caller_thread : select_device(device_spec_from(""));
-      } else {
-        device = select_device(device_spec_from(device_spec));
-      }
+      const Device device = bench::loop_device(device_spec);  // as `snapfit run` picks it
       device_name = device.info.name;
       std::cout << "device " << describe_device(device.info) << "\n";
       ctx.emplace(make_compute_context(device));

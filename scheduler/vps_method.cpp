@@ -116,13 +116,7 @@ WrenchEvaluator vps_evaluator(const VpsModel& model) {
 }
 
 LoopConfig vps_loop_config(const Scene& scene, const VpsModel& model, const CouplingParams& coupling) {
-  LoopConfig config;
-  config.rate_hz = scene.loop_rate_hz;
-  const Trajectory& t = scene.trajectory;
-  config.duration_s =
-      t.keyframes.empty() ? 0.0 : t.keyframes.back().time_s - t.keyframes.front().time_s + scene.haptics.settle_s;
-  config.budget_ms = scene.frame_budget_ms;
-  config.coupling = coupling;
+  LoopConfig config = scene_loop_config(scene, coupling);
   config.geometry_gain = 1;
   config.modes.levels = {1};
   // Speed limit (McNeely 1999): no shell point moves more than half a voxel per frame.
