@@ -2,7 +2,7 @@
 // its closed-form voxel counts, one point against a plane against the closed-form force
 // and torque, and a cube inserted into a square cup through the haptic loop: it goes in
 // at a clearance of twice the voxel size and jams at zero clearance (seed 002 8.2.1);
-// `snapfit run` with a vps scene.
+// `snapfit run` with a vps scene; the loop's speed limit.
 #include <doctest/doctest.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -10,6 +10,8 @@
 #include "mesh/voxmap.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/haptic_setup.h"
+#include "scheduler/scripted_device.h"
+#include "scheduler/virtual_coupling.h"
 #include "scheduler/vps_method.h"
 #include "tests/test_meshes.h"
 #include "tests/test_support.h"
@@ -167,4 +169,33 @@ TEST_CASE("vps: snapfit run plays a vps scene and names the method in summary.js
   const test::Command bad = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("bad.json"));
   CHECK(bad.status != 0);
   CHECK(bad.output.find("vps.voxel_size: must be > 0 (got 0)") != std::string::npos);
+}
+
+TEST_CASE("vps: the loop's speed limit bounds each step's travel and turn") {
+  // The device holds part 2 10 units away and turned 0.5 rad: the coupling alone would move
+  // the part ~0.16 units in the first step; the limit allows 0.01 units and 0.002 rad.
+  Keyframe target;
+  target.pose.translation = Eigen::Vector3d(10, 0, 0);
+  target.pose.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()));
+  ScriptedDevice device(Trajectory{{target}}, DeviceLimits{});
+  LoopConfig config;
+  config.duration_s = 0.1;
+  config.coupling = make_coupling(1e-3, 0.05, 1e-5, 800, 0.08, 1);
+  config.modes.levels = {1};
+  config.max_travel = 0.01;
+  config.max_rotation = 0.002;
+  WrenchEvaluator none;
+  none.evaluate = [](const Pose&) { return QueryResult{}; };
+  const LoopReport report = run_haptic_loop(device, none, config, simulated_loop_clock(), BodyState{});
+  REQUIRE(report.log.size() == 100);
+  for (std::size_t i = 1; i < report.log.size(); ++i) {
+    const Pose& a = report.log[i - 1].part;
+    const Pose& b = report.log[i].part;
+    CHECK((b.translation - a.translation).norm() <= 0.01 + 1e-12);
+    CHECK(rotation_between(a.rotation, b.rotation).norm() <= 0.002 + 1e-12);
+  }
+  // Far from the target the whole time, it moved at the limit every step.
+  CHECK(report.final_part.pose.translation.x() == doctest::Approx(100 * 0.01));
+  CHECK(rotation_between(Eigen::Quaterniond::Identity(), report.final_part.pose.rotation).norm() ==
+        doctest::Approx(100 * 0.002));
 }
