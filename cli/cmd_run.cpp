@@ -21,6 +21,7 @@
 #include "report/web_assets.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/loop_devices.h"
+#include "scheduler/vps_method.h"
 #include "snapfit/error.h"
 
 namespace snapfit::cli {
@@ -55,8 +56,63 @@ void print_loop(const Scene& scene, const SessionResult& session) {
             << "\n";
 }
 
-void run_main_job(const RunOptions& opt) {
+// Writes the report folder and says where it went.
+void write_report(const RunOptions& opt, RunRecord& record, std::chrono::steady_clock::time_point start) {
   namespace fs = std::filesystem;
+  const fs::path out = opt.out.empty() ? fs::path("results") / fs::path(opt.scene).stem() : fs::path(opt.out);
+  std::cout << "writing the report to " << out.string() << "\n";
+  record.seconds = seconds_since(start);
+  const std::vector<std::string> written = write_run_report(out, record);
+  std::cout << "done in " << seconds_since(start) << " s: " << (out / written.front()).string();
+  for (std::size_t i = 1; i < written.size(); ++i) std::cout << ", " << written[i];
+  std::cout << "\n";
+  if (!web_pages_available())
+    std::cerr << "snapfit: no report.html: this snapfit was built with -DSNAPFIT_WEB_REPORT=OFF (no node/npm at build "
+                 "time)\n";
+}
+
+// A scene with "method": "vps": part 1's voxmap and part 2's point shell on the host,
+// then the same scripted loop and report (no device, fields, spectra or tuning).
+void run_vps_job(const RunOptions& opt, const AssemblyPair& pair, std::chrono::steady_clock::time_point start) {
+  const Scene& scene = pair.scene;
+  std::cout << "[3/7] Voxmap PointShell: voxelising part 1, point shell of part 2 (no OpenCL device)\n";
+  const auto built = std::chrono::steady_clock::now();
+  const CouplingParams coupling = coupling_for(scene, pair.part(2).mesh);
+  const VpsModel model = vps_model_for(scene, pair.part(1).mesh, pair.part(2).mesh, pair.grids.spacing, coupling);
+  RunRecord record;
+  record.pair = &pair;
+  VpsFacts& facts = record.vps.emplace();
+  facts.voxel_size = model.voxmap.voxel_size;
+  facts.shell_spacing = model.shell.spacing;
+  facts.surface_voxels = model.voxmap.count(VoxelState::surface);
+  facts.interior_voxels = model.voxmap.count(VoxelState::interior);
+  facts.proximity_voxels = model.voxmap.count(VoxelState::proximity);
+  facts.shell_points = model.shell.points.size();
+  facts.stiffness_n_per_m = model.stiffness;
+  facts.braking_n_s_per_m = model.braking;
+  facts.build_seconds = seconds_since(built);
+  record.device.name = record.loop_device.name = "host";
+  std::cout << "    voxel " << facts.voxel_size << " " << scene.units << ": " << facts.surface_voxels << " surface, "
+            << facts.interior_voxels << " interior, " << facts.proximity_voxels << " proximity voxels; "
+            << facts.shell_points << " shell points at " << facts.shell_spacing << " " << scene.units << " (built in "
+            << facts.build_seconds << " s)\n";
+  if (!scene.trajectory.keyframes.empty()) {
+    const Trajectory& t = scene.trajectory;
+    const double seconds = t.keyframes.back().time_s - t.keyframes.front().time_s + scene.haptics.settle_s;
+    std::cout << "[7/7] haptic loop at " << scene.loop_rate_hz << " Hz playing the scripted trajectory (" << seconds
+              << " s of " << (opt.simulated_time ? "simulated" : "real") << " time, Voxmap PointShell)\n";
+    SessionOptions session;
+    session.simulated_time = opt.simulated_time;
+    record.session = run_scripted_session(scene, pair.grids.spacing, vps_loop_config(scene, model, coupling),
+                                          vps_evaluator(model), session);
+    print_loop(scene, *record.session);
+  } else {
+    std::cout << "[7/7] the scene has no trajectory: no scripted assembly to run\n";
+  }
+  write_report(opt, record, start);
+}
+
+void run_main_job(const RunOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   const auto note = [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; };
   std::cout << "[1/7] reading scene " << opt.scene << "\n";
@@ -65,6 +121,7 @@ void run_main_job(const RunOptions& opt) {
   std::cout << "[2/7] building and validating both parts (in parallel)\n";
   AssemblyPair pair = prepare_assembly_pair(scene);
   print_scene_summary(std::cout, scene, pair.parts, pair.plan);
+  if (scene.method == Method::vps) return run_vps_job(opt, pair, start);
 
   std::cout << "[3/7] opening the OpenCL device and checking it\n";
   const Device device = select_device(device_spec_from(opt.device));
@@ -163,15 +220,7 @@ void run_main_job(const RunOptions& opt) {
     std::cout << "[7/7] the scene has no trajectory: no scripted assembly to run\n";
   }
 
-  const fs::path out = opt.out.empty() ? fs::path("results") / fs::path(opt.scene).stem() : fs::path(opt.out);
-  std::cout << "writing the report to " << out.string() << "\n";
-  record.seconds = seconds_since(start);
-  const std::vector<std::string> written = write_run_report(out, record);
-  std::cout << "done in " << seconds_since(start) << " s: " << (out / written.front()).string();
-  for (std::size_t i = 1; i < written.size(); ++i) std::cout << ", " << written[i];
-  std::cout << "\n";
-  if (!web_pages_available())
-    note("no report.html: this snapfit was built with -DSNAPFIT_WEB_REPORT=OFF (no node/npm at build time)");
+  write_report(opt, record, start);
 }
 
 }  // namespace

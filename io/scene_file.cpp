@@ -415,6 +415,35 @@ HapticsParams read_haptics(const Ctx& c, const json& v, const std::string& path)
   return h;
 }
 
+VpsParams read_vps(const Ctx& c, const json& v, const std::string& path) {
+  check_fields(c, v, path,
+               {"voxel_size", "stiffness_n_per_m", "shell_density", "proximity_layers", "braking_n_s_per_m"});
+  VpsParams p;
+  if (const json* x = find(v, "voxel_size")) p.voxel_size = positive(c, *x, join(path, "voxel_size"));
+  if (const json* x = find(v, "stiffness_n_per_m"))
+    p.stiffness_n_per_m = positive(c, *x, join(path, "stiffness_n_per_m"));
+  if (const json* x = find(v, "shell_density")) {
+    p.shell_density = positive(c, *x, join(path, "shell_density"));
+    if (p.shell_density > 8) fail(c, join(path, "shell_density"), "must be <= 8 (got " + fmt(p.shell_density) + ")");
+  }
+  if (const json* x = find(v, "proximity_layers")) {
+    const double layers = non_negative(c, *x, join(path, "proximity_layers"));
+    if (layers != std::floor(layers) || layers > 16)
+      fail(c, join(path, "proximity_layers"), "must be an integer in [0, 16] (got " + fmt(layers) + ")");
+    p.proximity_layers = static_cast<int>(layers);
+  }
+  if (const json* x = find(v, "braking_n_s_per_m"))
+    p.braking_n_s_per_m = non_negative(c, *x, join(path, "braking_n_s_per_m"));
+  return p;
+}
+
+Method read_method(const Ctx& c, const json& v, const std::string& path) {
+  const std::string m = text(c, v, path);
+  if (m == "snapfit") return Method::snapfit;
+  if (m == "vps") return Method::vps;
+  fail(c, path, "unknown method '" + m + "' (expected snapfit or vps)");
+}
+
 Motion read_motion(const Ctx& c, const json& v, const std::string& path) {
   const std::string m = text(c, v, path);
   if (m == "translation") return Motion::translation;
@@ -479,7 +508,7 @@ Scene read_scene(const Ctx& c, const json& root) {
     fail(c, "snapfit_scene", "unsupported format version " + fmt(version->get<double>()) + " (this build reads 1)");
   check_fields(c, root, "",
                {"snapfit_scene", "name", "units", "part1", "part2", "assembled_pose", "descriptor", "grid", "frame",
-                "outputs", "motion", "trajectory", "haptics"});
+                "outputs", "motion", "trajectory", "haptics", "method", "vps"});
 
   Scene s;
   s.source_path = c.origin;
@@ -498,6 +527,8 @@ Scene read_scene(const Ctx& c, const json& root) {
     s.outputs = Outputs{true, true, s.motion == Motion::six_dof};
   if (const json* t = find(root, "trajectory")) s.trajectory = read_trajectory(c, *t, "trajectory");
   if (const json* h = find(root, "haptics")) s.haptics = read_haptics(c, *h, "haptics");
+  if (const json* m = find(root, "method")) s.method = read_method(c, *m, "method");
+  if (const json* v = find(root, "vps")) s.vps = read_vps(c, *v, "vps");
 
   if (s.motion == Motion::translation) {
     if (s.assembled_pose) check_fixed_orientation(c, s, *s.assembled_pose, "assembled_pose.rotation");
@@ -671,6 +702,14 @@ std::string scene_to_json(const Scene& s) {
   if (h.success_position) hj["success_position"] = *h.success_position;
   hj["success_angle_deg"] = h.success_angle_deg;
   j["haptics"] = hj;
+  j["method"] = s.method == Method::vps ? "vps" : "snapfit";
+  ordered_json vj;
+  if (s.vps.voxel_size) vj["voxel_size"] = *s.vps.voxel_size;
+  vj["stiffness_n_per_m"] = s.vps.stiffness_n_per_m;
+  vj["shell_density"] = s.vps.shell_density;
+  vj["proximity_layers"] = s.vps.proximity_layers;
+  if (s.vps.braking_n_s_per_m) vj["braking_n_s_per_m"] = *s.vps.braking_n_s_per_m;
+  j["vps"] = vj;
   std::string out;
   write_value(out, j, 0, "");
   return out + "\n";

@@ -16,6 +16,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "engine/device.h"
 #include "report/chart_spec.h"
 #include "report/web_assets.h"
 #include "snapfit/error.h"
@@ -94,6 +95,17 @@ inline int guarded_main(const char* name, const std::function<int()>& body) {
     std::cerr << name << ": error: " << e.what() << "\n";
   }
   return 1;
+}
+
+// The loop's device as `snapfit run` picks it (scheduler/device_choice.h): PoCL's
+// single-threaded driver, which runs kernels in the loop's own thread, when there is one
+// (asked for as the CLI's main() does); a non-empty `spec` overrides.
+inline Device loop_device(const std::string& spec) {
+  expose_pocl_caller_thread_driver();
+  if (!spec.empty()) return select_device(device_spec_from(spec));
+  for (const Device& d : enumerate_devices())
+    if (d.info.runs_in_caller_thread()) return d;
+  return select_device(device_spec_from(""));
 }
 
 // /proc/loadavg as written, and its 1-minute figure (-1 when unreadable).

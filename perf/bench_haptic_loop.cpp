@@ -62,19 +62,7 @@ int main(int argc, char** argv) try {
   const std::string load_start = bench::read_loadavg();
 
   const Scene scene = load_scene(scene_path);
-  // The loop's device as `snapfit run` picks it (scheduler/device_choice.h): PoCL's
-  // single-threaded driver, which runs kernels in the loop's own thread, when there is
-  // one (asked for as the CLI's main() does); --device overrides.
-  expose_pocl_caller_thread_driver();
-  Device device;
-  if (device_spec.empty()) {
-    std::optional<Device> caller_thread;
-    for (const Device& d : enumerate_devices())
-      if (d.info.runs_in_caller_thread() && !caller_thread) caller_thread = d;
-    device = caller_thread ? *caller_thread : select_device(device_spec_from(""));
-  } else {
-    device = select_device(device_spec_from(device_spec));
-  }
+  const Device device = bench::loop_device(device_spec);  // as `snapfit run` picks it; --device overrides
   std::cout << "device " << describe_device(device.info) << "\n";
   const FftLibrary fft;
   const ComputeContext ctx = make_compute_context(device);

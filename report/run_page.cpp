@@ -47,7 +47,9 @@ nlohmann::json summary_json(const RunRecord& run) {
                       {"device", run.device.name},
                       {"loop_device", run.loop_device.name},
                       {"modes", run.tuning.chosen_modes},
-                      {"modes_source", run.tuning_key.empty() ? "fixed by --modes" : "tuned for this device"},
+                      {"modes_source", run.vps                  ? "none: Voxmap PointShell"
+                                       : run.tuning_key.empty() ? "fixed by --modes"
+                                                                : "tuned for this device"},
                       {"seconds", run.seconds},
                       {"frames", nullptr},
                       {"misses", nullptr},
@@ -98,7 +100,8 @@ nlohmann::json playback_json(const RunRecord& run, const std::vector<Mesh>& show
   const std::size_t bits_a_frame = std::max<std::size_t>(1, centroids[0].size() + centroids[1].size());
   const std::size_t contact_frames = std::min(frames.size(), limits.contact_bits / bits_a_frame);
   nlohmann::json contact = nullptr;
-  if (contact_frames >= 1) {
+  const bool have_fields = !pair.fields(1).fields.winding.empty() && !pair.fields(2).fields.winding.empty();
+  if (contact_frames >= 1 && have_fields) {
     std::vector<std::size_t> picked;
     std::vector<unsigned char> bytes[2];
     for (std::size_t k : evenly_spaced_frames(frames.size(), std::max<std::size_t>(2, contact_frames))) {

@@ -11,6 +11,14 @@
 
 namespace snapfit {
 
+// What a Voxmap PointShell run built (scheduler/vps_method.h).
+struct VpsFacts {
+  double voxel_size = 0, shell_spacing = 0;  // scene units
+  std::size_t surface_voxels = 0, interior_voxels = 0, proximity_voxels = 0, shell_points = 0;
+  double stiffness_n_per_m = 0, braking_n_s_per_m = 0;
+  double build_seconds = 0;
+};
+
 struct RunRecord {
   const AssemblyPair* pair = nullptr;  // parts, fields, spectra
   DeviceInfo device;                   // where fields and spectra were computed
@@ -20,6 +28,7 @@ struct RunRecord {
   std::string tuning_key;                // "" when m' was fixed by the user
   std::optional<SessionResult> session;  // the scripted assembly, when the scene has a trajectory
   double seconds = 0;                    // the whole job so far
+  std::optional<VpsFacts> vps;           // set for a scene whose method is "vps" (no fields, spectra or tuning)
 };
 
 }  // namespace snapfit

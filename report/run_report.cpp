@@ -76,12 +76,28 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
   }
   std::vector<PageFigure> figures;
   nlohmann::json fields = nlohmann::json::array();
-  for (int part = 1; part <= 2; ++part)
+  for (int part = 1; part <= 2 && !run.vps; ++part)
     fields.push_back(
         write_affinity_figure(out, scene, part, pair.part(part).mesh, pair.fields(part), figures, written));
 
-  nlohmann::json tuning = nlohmann::json::parse(tuning_to_json(run.tuning));
-  tuning["key"] = run.tuning_key;
+  nlohmann::json tuning = nullptr;
+  if (!run.vps) {
+    tuning = nlohmann::json::parse(tuning_to_json(run.tuning));
+    tuning["key"] = run.tuning_key;
+  }
+  nlohmann::json vps = nullptr;
+  if (run.vps) {
+    const VpsFacts& v = *run.vps;
+    vps = {{"voxel_size", v.voxel_size},
+           {"shell_spacing", v.shell_spacing},
+           {"surface_voxels", v.surface_voxels},
+           {"interior_voxels", v.interior_voxels},
+           {"proximity_voxels", v.proximity_voxels},
+           {"shell_points", v.shell_points},
+           {"stiffness_n_per_m", v.stiffness_n_per_m},
+           {"braking_n_s_per_m", v.braking_n_s_per_m},
+           {"build_seconds", v.build_seconds}};
+  }
   nlohmann::json loop = nullptr;
   if (run.session) {
     loop = write_haptic_report(out, *run.session, run.tuning);
@@ -98,6 +114,8 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
       {"scene", scene.name},
       {"scene_file", scene.source_path},
       {"units", scene.units},
+      {"method", run.vps ? "vps" : "snapfit"},
+      {"vps", vps},
       {"device", run.device.name},
       {"driver", run.device.driver_version},
       {"loop_device", run.loop_device.name},
@@ -106,7 +124,7 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
       {"part2", part_json(pair.parts.part2)},
       {"plan", pair.plan.lines},
       {"spacing", pair.grids.spacing},
-      {"fft_dims", pair.spectra.dims},
+      {"fft_dims", run.vps ? nlohmann::json(nullptr) : nlohmann::json(pair.spectra.dims)},
       {"fields", fields},
       {"tuning", tuning},
       {"haptic_loop", loop},

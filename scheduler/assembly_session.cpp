@@ -11,13 +11,22 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, 
                                     const TuningResult& tuning, const SessionOptions& options) {
   if (scene.trajectory.keyframes.empty())
     throw Error(scene.source_path + ": no trajectory: a scripted assembly needs one (or use a real device)");
+  double force_scale = 0;
+  const LoopConfig config = loop_config_for(scene, part2_mesh, spacing, engine, tuning, force_scale);
+  SessionResult out = run_scripted_session(scene, spacing, config, wrench_evaluator(engine), options);
+  out.force_scale = force_scale;
+  return out;
+}
+
+SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfig config,
+                                   const WrenchEvaluator& evaluator, const SessionOptions& options) {
+  if (scene.trajectory.keyframes.empty())
+    throw Error(scene.source_path + ": no trajectory: a scripted assembly needs one (or use a real device)");
   SessionResult out;
   out.limits = device_limits_for(scene);
   out.target = scene.assembled_pose.value_or(scene.trajectory.keyframes.back().pose);
   out.position_tolerance = scene.haptics.success_position.value_or(spacing);  // the descriptors' resolution
   out.angle_tolerance_deg = scene.haptics.success_angle_deg;
-
-  LoopConfig config = loop_config_for(scene, part2_mesh, spacing, engine, tuning, out.force_scale);
   out.coupling = config.coupling;
   out.geometry_gain = config.geometry_gain;
   const Trajectory& t = scene.trajectory;
@@ -27,7 +36,6 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, 
   ScriptedDevice device(t, out.limits, options.loop_back);
   BodyState part;
   part.pose = device.read(0).pose;  // the part starts in the user's hand
-  const WrenchEvaluator evaluator = wrench_evaluator(engine);
   const bool raise =
       (options.priority.nice_value != 0 || options.priority.realtime_priority > 0) && !options.simulated_time;
   if (raise) out.priority = raise_process_priority(options.priority);
@@ -36,7 +44,7 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, 
     // engages the device: the runtime's threads, now at their new priority, and the
     // caches see the query once before the first deadline.
     if (!options.simulated_time)
-      for (int i = 0; i < options.warmup_queries; ++i) engine.query(part.pose);
+      for (int i = 0; i < options.warmup_queries; ++i) evaluator.evaluate(part.pose);
     HapticLoopThread loop(device, evaluator, config, part,
                           options.simulated_time ? simulated_loop_clock() : steady_loop_clock());
     out.loop = loop.join();

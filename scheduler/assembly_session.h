@@ -45,4 +45,9 @@ struct SessionResult {
 SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
                                     const TuningResult& tuning, const SessionOptions& options = {});
 
+// The same for any method's evaluator and loop configuration (a Voxmap PointShell run:
+// scheduler/vps_method.h); `spacing` is the default position tolerance.
+SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfig config,
+                                   const WrenchEvaluator& evaluator, const SessionOptions& options = {});
+
 }  // namespace snapfit

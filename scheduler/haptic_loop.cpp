@@ -49,6 +49,8 @@ void check_config(const LoopConfig& c) {
   if (!(std::isfinite(c.geometry_gain) && c.geometry_gain >= 0)) throw Error("haptic loop: geometry gain must be >= 0");
   if (!std::isfinite(c.duration_s)) throw Error("haptic loop: duration must be finite");
   if (c.duration_s <= 0 && !c.stop) throw Error("haptic loop: no duration and no stop flag: it would never end");
+  if (!(std::isfinite(c.max_travel) && c.max_travel >= 0 && std::isfinite(c.max_rotation) && c.max_rotation >= 0))
+    throw Error("haptic loop: the speed limits must be >= 0");
   if (c.modes.levels.empty()) throw Error("haptic loop: the m' ladder is empty");
   if (!std::is_sorted(c.modes.levels.begin(), c.modes.levels.end()) || c.modes.levels.front() == 0)
     throw Error("haptic loop: the m' ladder must be positive and increasing");
@@ -196,11 +198,26 @@ class PassivityController {
   double stiffness_ = 0, rot_stiffness_ = 0;  // N / m, N m / rad
 };
 
+// The speed limit (LoopConfig::max_travel, max_rotation): scales the step's velocities
+// down so that the part moves and turns at most that far from `before`.
+void limit_speed(BodyState& part, const Pose& before, const LoopConfig& c, double period) {
+  if (c.max_travel > 0 && part.velocity.norm() * period > c.max_travel) {
+    part.velocity *= c.max_travel / (part.velocity.norm() * period);
+    part.pose.translation = before.translation + period * part.velocity;
+  }
+  if (c.max_rotation > 0 && part.angular_velocity.norm() * period > c.max_rotation) {
+    part.angular_velocity *= c.max_rotation / (part.angular_velocity.norm() * period);
+    part.pose.rotation = (rotation_exp(period * part.angular_velocity) * before.rotation).normalized();
+  }
+}
+
 }  // namespace
 
 WrenchEvaluator wrench_evaluator(QueryEngine& engine) {
-  return WrenchEvaluator{[&engine](const Pose& p) { return engine.query(p); },
-                         [&engine](std::size_t m) { engine.set_modes(m); }};
+  WrenchEvaluator e;
+  e.evaluate = [&engine](const Pose& p) { return engine.query(p); };
+  e.set_modes = [&engine](std::size_t m) { engine.set_modes(m); };
+  return e;
 }
 
 LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, const LoopConfig& config,
@@ -238,7 +255,7 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     }
     last_good_handle = handle;
     const Pose queried = part.pose;
-    const QueryResult q = engine.evaluate(queried);
+    const QueryResult q = engine.evaluate_state ? engine.evaluate_state(part) : engine.evaluate(queried);
     geometric = Wrench{};
     ErrorEstimate geometric_error;
     if (q.flags == query_ok) {
@@ -254,6 +271,7 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     passivity.observe(part.pose, q, geometric);
     const ImplicitExtras extra = passivity.extras(part);
     step_body(part, handle, geometric, config.coupling, period, extra);
+    limit_speed(part, queried, config, period);
     if (const double removed = passivity.stepped(part, extra); removed > 0) {
       ++report.passivity_frames;
       report.passivity_dissipated_j += removed;
@@ -297,7 +315,9 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
       next = static_cast<std::size_t>(std::floor(end / period)) + 1;
       for (std::size_t t = tick + 1; t < next; ++t) {
         if (config.duration_s > 0 && t * period >= config.duration_s - 1e-12) break;
+        const Pose before = part.pose;
         step_body(part, device.read(t * period), geometric, config.coupling, period);
+        limit_speed(part, before, config, period);
         ++report.skipped_ticks;
         passivity.invalidate();
       }

@@ -53,15 +53,20 @@ PoseError pose_error(const Pose& actual, const Pose& target) {
   return e;
 }
 
-LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
-                           const TuningResult& tuning, double& force_scale) {
+LoopConfig scene_loop_config(const Scene& scene, const CouplingParams& coupling) {
   LoopConfig config;
   config.rate_hz = scene.loop_rate_hz;
   const Trajectory& t = scene.trajectory;
   config.duration_s =
       t.keyframes.empty() ? 0.0 : t.keyframes.back().time_s - t.keyframes.front().time_s + scene.haptics.settle_s;
   config.budget_ms = scene.frame_budget_ms;
-  config.coupling = coupling_for(scene, part2_mesh);
+  config.coupling = coupling;
+  return config;
+}
+
+LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
+                           const TuningResult& tuning, double& force_scale) {
+  LoopConfig config = scene_loop_config(scene, coupling_for(scene, part2_mesh));
   engine.set_modes(tuning.chosen_modes);
   force_scale = 0;
   for (const QueryResult& r : engine.query_batch(gain_probe_poses(scene, spacing)))

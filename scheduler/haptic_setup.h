@@ -36,6 +36,10 @@ Pose gain_reference_pose(const Scene& scene);
 // force scale is the largest engine force magnitude among them.
 std::vector<Pose> gain_probe_poses(const Scene& scene, double spacing);
 
+// What every method's loop takes from the scene: rate, frame budget, the coupling, and
+// the duration (the trajectory's length plus haptics.settle_s; 0 without a trajectory).
+LoopConfig scene_loop_config(const Scene& scene, const CouplingParams& coupling);
+
 // The loop's configuration for `scene` (include/snapfit/haptic_loop.h loop_config):
 // `engine` is set to the tuned m' and probed at gain_probe_poses for the gain; the
 // largest force it saw goes to `force_scale`.

@@ -134,6 +134,12 @@ void check_same_scene(const Scene& a, const Scene& b) {
   CHECK(ha.settle_s == hb.settle_s);
   CHECK(ha.success_position == hb.success_position);
   CHECK(ha.success_angle_deg == hb.success_angle_deg);
+  CHECK(a.method == b.method);
+  CHECK(a.vps.voxel_size == b.vps.voxel_size);
+  CHECK(a.vps.stiffness_n_per_m == b.vps.stiffness_n_per_m);
+  CHECK(a.vps.shell_density == b.vps.shell_density);
+  CHECK(a.vps.proximity_layers == b.vps.proximity_layers);
+  CHECK(a.vps.braking_n_s_per_m == b.vps.braking_n_s_per_m);
 }
 
 std::vector<fs::path> shipped_scenes() {
@@ -165,6 +171,45 @@ TEST_CASE("scene: haptics fields round-trip and unknown ones are refused") {
   CHECK(d.haptics.mass_kg == 0.05);
   CHECK(!d.haptics.geometry_gain);
   CHECK(!d.haptics.success_position);
+}
+
+TEST_CASE("scene: method and vps fields round-trip, and bad ones are named") {
+  const Scene d = parse_scene(base_scene().dump(), "test.json");
+  CHECK(d.method == Method::snapfit);
+  CHECK(!d.vps.voxel_size);
+  json j = base_scene();
+  j["method"] = "vps";
+  j["vps"] = {{"voxel_size", 0.25},
+              {"stiffness_n_per_m", 500},
+              {"shell_density", 2},
+              {"proximity_layers", 3},
+              {"braking_n_s_per_m", 0.5}};
+  const Scene s = parse_scene(j.dump(), "test.json");
+  CHECK(s.method == Method::vps);
+  CHECK(s.vps.voxel_size == 0.25);
+  CHECK(s.vps.stiffness_n_per_m == 500);
+  CHECK(s.vps.shell_density == 2);
+  CHECK(s.vps.proximity_layers == 3);
+  CHECK(s.vps.braking_n_s_per_m == 0.5);
+  check_same_scene(s, parse_scene(scene_to_json(s), "copy.json"));
+
+  const auto with = [&](const std::string& field, const json& value) {
+    json k = j;
+    k["vps"][field] = value;
+    return k;
+  };
+  json bad = j;
+  bad["method"] = "voxels";
+  CHECK_ERROR(bad, "test.json: method: unknown method 'voxels' (expected snapfit or vps)");
+  bad["method"] = 1;
+  CHECK_ERROR(bad, "method: expected a string");
+  CHECK_ERROR(with("voxel_size", -1), "vps.voxel_size: must be > 0");
+  CHECK_ERROR(with("voxel_size", "fine"), "vps.voxel_size: expected a number");
+  CHECK_ERROR(with("stiffness_n_per_m", 0), "vps.stiffness_n_per_m: must be > 0");
+  CHECK_ERROR(with("shell_density", 20), "vps.shell_density: must be <= 8 (got 20)");
+  CHECK_ERROR(with("proximity_layers", 1.5), "vps.proximity_layers: must be an integer in [0, 16] (got 1.5)");
+  CHECK_ERROR(with("braking_n_s_per_m", -2), "vps.braking_n_s_per_m: must be >= 0");
+  CHECK_ERROR(with("density", 2), "vps.density: unknown field");
 }
 
 TEST_CASE("scene: every shipped scene parses and round-trips") {

@@ -76,9 +76,12 @@ LoopClock steady_loop_clock();
 LoopClock simulated_loop_clock();
 
 // The engine as the loop sees it: a query at a pose, and a way to change m'.
+// `evaluate_state`, when set, is used instead of `evaluate`: for methods whose wrench
+// depends on the part's velocity too (Voxmap PointShell's pre-contact braking).
 struct WrenchEvaluator {
   std::function<QueryResult(const Pose&)> evaluate;
   std::function<void(std::size_t)> set_modes;
+  std::function<QueryResult(const BodyState&)> evaluate_state;
 };
 
 struct ModePolicy {
@@ -99,7 +102,11 @@ struct LoopConfig {
   double geometry_gain = 1;  // N per engine force unit (loop_config sets it from the scene)
   ModePolicy modes;
   bool passivity_control = true;  // observer + damping controller on the geometric wrench (above)
-  bool keep_log = true;           // one FrameRecord per frame
+  // Speed limit: the most the part's origin moves (scene units) and turns (rad) in one
+  // step; 0 = none. Voxmap PointShell sets it (no point moves more than half a voxel).
+  double max_travel = 0;
+  double max_rotation = 0;
+  bool keep_log = true;  // one FrameRecord per frame
   const std::atomic<bool>* stop = nullptr;
 };
 

@@ -98,6 +98,21 @@ struct HapticsParams {
   double success_angle_deg = 1.0;
 };
 
+// Which haptic rendering method a scene's run uses.
+enum class Method {
+  snapfit,  // skeletal densities and truncated Fourier sums (seed 000)
+  vps,      // Voxmap PointShell (seed 002 section 4.1; scheduler/vps_method.h)
+};
+
+// Voxmap PointShell's parameters (the scene's `vps` section; every field optional).
+struct VpsParams {
+  std::optional<double> voxel_size;  // part 1's voxels, scene units; default the grid spacing
+  double stiffness_n_per_m = 800;    // k_ff per contact point
+  double shell_density = 1;          // shell points per voxel along the surface: shell spacing = voxel_size / density
+  int proximity_layers = 2;          // free voxels around the surface that brake an approaching point
+  std::optional<double> braking_n_s_per_m;  // b_ff per point; default 2 sqrt(k_ff m) / 10
+};
+
 struct Scene {
   std::string name;
   std::string source_path;             // the file it was read from ("" when built in code)
@@ -113,6 +128,8 @@ struct Scene {
   Motion motion = Motion::six_dof;
   Trajectory trajectory;
   HapticsParams haptics;
+  Method method = Method::snapfit;
+  VpsParams vps;
 };
 
 // Reads and validates a scene file. Unknown fields, wrong types and invalid values

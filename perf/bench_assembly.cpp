@@ -1,0 +1,522 @@
+// The assembly benchmark: scripted insertions by an imprecise user, so that the geometry
+// has to do the aligning, for snapfit (6-DOF and translation-only) and Voxmap
+// PointShell (scheduler/vps_method.h) at several voxel sizes, in the same haptic loop.
+//
+// Cells: the peg in its blind hole (scenes/peg_hole_clearance_0p5.json with the hole's
+// clearance set to each of --clearances) and the three-peg pair (scenes/three_pegs.json,
+// zero clearance). Each trial (seeded) ends the device's target off the assembled pose
+// by a lateral offset of 0-1 mm in a random direction and a tilt of 0-3 degrees about a
+// random horizontal axis (none for translation-only), approaching from a random side
+// (0-4 mm off the axis, 8-12 mm up) over 1.5-3.5 s, then 1 s of settling. The loop runs
+// on simulated time (trials do not wait in real time); each frame's query is timed as the
+// loop thread's CPU time (and on the wall clock), and a frame whose query took more CPU
+// time than the scene's budget counts as a miss.
+//
+// Per trial: inserted (axial error <= the scene's position tolerance), success (inserted,
+// lateral error <= tolerance + clearance, angle error <= tolerance + the hole's play
+// atan(2 c / depth)), final position and angle errors, the largest true
+// interpenetration (the deepest vertex of either part inside the other by exact
+// point-to-mesh signed distance, mesh/mesh_distance.h, every --penetration-stride
+// frames and at the last), the largest change of the sent force between frames, the RMS
+// of its second difference (high-frequency content), and frame-work p99 and misses.
+//
+//   ./build/perf/bench_assembly [--quick] [--trials 20] [--seed 1] [--modes 16384]
+//       [--clearances 0,0.02,0.05,0.1,0.25,0.5,1] [--voxels 0.1,0.25,0.5]
+//       [--methods snapfit,translation,vps] [--no-three-pegs] [--penetration-stride 10]
+//       [--device SPEC] [--out results/bench_assembly]
+// --quick: clearance 0.5 only (the shipped scene), no three-peg pair, 2 trials, VPS at 0.25 mm, m' 4096.
+// Writes trials.csv (one row per trial), summary.csv and summary.md (per cell),
+// wrench_vs_depth.csv (one trial per method), summary.json and charts.html.
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <random>
+#include <sstream>
+#include <time.h>
+
+#include "core/quantile.h"
+#include "engine/device.h"
+#include "engine/query_engine.h"
+#include "mesh/mesh_distance.h"
+#include "perf/bench_common.h"
+#include "pipeline/assembly_pair.h"
+#include "scheduler/assembly_session.h"
+#include "scheduler/haptic_setup.h"
+#include "scheduler/vps_method.h"
+
+using namespace snapfit;
+namespace fs = std::filesystem;
+
+namespace {
+
+void usage(std::ostream& os) {
+  os << "bench_assembly [--quick] [--trials N] [--seed S] [--modes M] [--clearances LIST] [--voxels LIST]\n"
+        "               [--methods snapfit,translation,vps] [--no-three-pegs] [--penetration-stride K]\n"
+        "               [--device SPEC] [--out DIR]\n"
+        "Scripted imprecise-user insertions: success, errors and true interpenetration against clearance,\n"
+        "for snapfit (6-DOF, translation-only) and Voxmap PointShell (see perf/bench_assembly.cpp).\n";
+}
+
+std::vector<double> number_list(const std::string& name, const std::string& text) {
+  std::vector<double> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || item.empty() || !(v >= 0) || !std::isfinite(v))
+      throw Error(name + ": expected comma-separated numbers >= 0 (got '" + text + "')");
+    out.push_back(v);
+  }
+  if (out.empty()) throw Error(name + ": empty list");
+  return out;
+}
+
+// One insertion by the imprecise user (see the top of the file).
+struct UserTrial {
+  double lateral = 0, lateral_dir = 0;  // mm, rad
+  double tilt_deg = 0, tilt_dir = 0;    // degrees, rad (axis in the xy plane)
+  double approach_offset = 0, approach_dir = 0, approach_height = 0;
+  double duration_s = 0;
+};
+
+UserTrial draw_trial(std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  UserTrial t;
+  t.lateral = unit(rng);
+  t.lateral_dir = 2 * M_PI * unit(rng);
+  t.tilt_deg = 3 * unit(rng);
+  t.tilt_dir = 2 * M_PI * unit(rng);
+  t.approach_offset = 4 * unit(rng);
+  t.approach_dir = 2 * M_PI * unit(rng);
+  t.approach_height = 8 + 4 * unit(rng);
+  t.duration_s = 1.5 + 2 * unit(rng);
+  return t;
+}
+
+// The trial's device trajectory: from above and to the side, to just above the entry
+// (`entry` above the assembled pose, already offset and tilted), to the offset target.
+Trajectory user_trajectory(const Pose& assembled, double entry, const UserTrial& t, bool tilt) {
+  const Eigen::Vector3d offset(t.lateral * std::cos(t.lateral_dir), t.lateral * std::sin(t.lateral_dir), 0);
+  Eigen::Quaterniond rotation = assembled.rotation;
+  if (tilt)
+    rotation =
+        Eigen::AngleAxisd(t.tilt_deg * M_PI / 180, Eigen::Vector3d(std::cos(t.tilt_dir), std::sin(t.tilt_dir), 0)) *
+        assembled.rotation;
+  Keyframe start, above, end;
+  start.pose.rotation = above.pose.rotation = end.pose.rotation = rotation;
+  start.pose.translation = assembled.translation + offset +
+                           Eigen::Vector3d(t.approach_offset * std::cos(t.approach_dir),
+                                           t.approach_offset * std::sin(t.approach_dir), entry + t.approach_height);
+  above.pose.translation = assembled.translation + offset + Eigen::Vector3d(0, 0, entry + 1);
+  end.pose.translation = assembled.translation + offset;
+  above.time_s = 0.4 * t.duration_s;
+  end.time_s = t.duration_s;
+  return Trajectory{{start, above, end}};
+}
+
+struct BenchMethod {
+  std::string name;  // "snapfit-6dof", "snapfit-translation", "vps-0.25"
+  enum Kind { six_dof, translation, vps } kind = six_dof;
+  double voxel = 0;
+};
+
+struct Cell {
+  std::string pair;  // "peg-in-hole" or "three-pegs"
+  double clearance = 0;
+  Scene scene;
+  double entry = 0;    // height of the entry above the assembled pose (part 2's travel to first contact)
+  double engaged = 0;  // length of the fit along the axis, for the play angle
+};
+
+struct TrialResult {
+  bool inserted = false, success = false;
+  double position_error = 0, lateral_error = 0, axial_error = 0, angle_error = 0;
+  double max_penetration = 0, max_force_step = 0, force_hf_rms = 0, peak_force = 0;
+  double frame_p99_ms = 0;             // the query's CPU time per frame
+  double frame_wall_p99_ms = 0;        // the same on the wall clock
+  std::size_t misses = 0, frames = 0;  // frames whose query's CPU time exceeded the budget
+};
+
+// The deepest vertex of either part inside the other at `pose` (part 2 in part 1's frame).
+double penetration_at(const Pose& pose, const Mesh& m1, const MeshDistanceIndex& i1, const Mesh& m2,
+                      const MeshDistanceIndex& i2) {
+  double deepest = 0;
+  const auto check = [&](const Mesh& from, const Pose& to_other, const MeshDistanceIndex& other) {
+    for (const Eigen::Vector3d& v : from.vertices) {
+      const Eigen::Vector3d p = to_other.apply(v);
+      if ((p.array() < other.box_min().array()).any() || (p.array() > other.box_max().array()).any()) continue;
+      if (other.inside(p)) deepest = std::max(deepest, other.distance(p));
+    }
+  };
+  check(m2, pose, i1);
+  check(m1, pose.inverse(), i2);
+  return deepest;
+}
+
+// Per-frame work of the method's query, on the wall clock and as the loop thread's CPU
+// time (the loop runs on simulated time; on a loaded machine the wall clock also counts
+// the time the thread waited for a core, the CPU time only its own work).
+struct FrameWork {
+  std::vector<double> wall_ms, cpu_ms;
+};
+
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+template <class Query>
+QueryResult timed_query(FrameWork& work, const Query& query) {
+  const auto wall = std::chrono::steady_clock::now();
+  const double cpu = thread_cpu_s();
+  QueryResult q = query();
+  work.cpu_ms.push_back(1e3 * (thread_cpu_s() - cpu));
+  work.wall_ms.push_back(1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count());
+  return q;
+}
+
+WrenchEvaluator timed(const WrenchEvaluator& inner, FrameWork& work) {
+  WrenchEvaluator e = inner;
+  e.evaluate = [inner, &work](const Pose& p) { return timed_query(work, [&] { return inner.evaluate(p); }); };
+  if (inner.evaluate_state)
+    e.evaluate_state = [inner, &work](const BodyState& s) {
+      return timed_query(work, [&] { return inner.evaluate_state(s); });
+    };
+  return e;
+}
+
+TrialResult measure(const Cell& cell, const SessionResult& run, const FrameWork& work, const Mesh& m1,
+                    const MeshDistanceIndex& i1, const Mesh& m2, const MeshDistanceIndex& i2, std::size_t stride) {
+  TrialResult r;
+  const LoopReport& loop = run.loop;
+  const Pose& final_pose = loop.final_part.pose;
+  const Eigen::Vector3d d = final_pose.translation - run.target.translation;
+  r.position_error = run.final_error.position;
+  r.angle_error = run.final_error.angle_deg;
+  r.axial_error = std::abs(d.z());
+  r.lateral_error = std::hypot(d.x(), d.y());
+  const double play_deg = std::atan(2 * cell.clearance / cell.engaged) * 180 / M_PI;
+  r.inserted = r.axial_error <= run.position_tolerance;
+  r.success = r.inserted && r.lateral_error <= run.position_tolerance + cell.clearance &&
+              r.angle_error <= run.angle_tolerance_deg + play_deg;
+  for (std::size_t i = 0; i < loop.log.size(); ++i) {
+    const FrameRecord& f = loop.log[i];
+    r.peak_force = std::max(r.peak_force, f.sent.force.norm());
+    if (i > 0) r.max_force_step = std::max(r.max_force_step, (f.sent.force - loop.log[i - 1].sent.force).norm());
+    if (i > 0 && i + 1 < loop.log.size())
+      r.force_hf_rms += (loop.log[i + 1].sent.force - 2 * f.sent.force + loop.log[i - 1].sent.force).squaredNorm();
+    if (i % stride == 0) r.max_penetration = std::max(r.max_penetration, penetration_at(f.part, m1, i1, m2, i2));
+  }
+  if (loop.log.size() > 2) r.force_hf_rms = std::sqrt(r.force_hf_rms / (loop.log.size() - 2));
+  r.max_penetration = std::max(r.max_penetration, penetration_at(final_pose, m1, i1, m2, i2));
+  r.frames = loop.frames;
+  r.frame_p99_ms = quantile(work.cpu_ms, 0.99);
+  r.frame_wall_p99_ms = quantile(work.wall_ms, 0.99);
+  for (double w : work.cpu_ms) r.misses += w > cell.scene.frame_budget_ms;
+  return r;
+}
+
+Scene translation_scene(Scene s) {
+  s.motion = Motion::translation;
+  s.outputs = Outputs{true, true, false};
+  s.part2.pose.rotation = Eigen::Quaterniond::Identity();
+  if (s.assembled_pose) s.assembled_pose->rotation = Eigen::Quaterniond::Identity();
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bench::guarded_main("bench_assembly", [&] {
+    bool quick = false, three_pegs = true;
+    std::string device_spec, out_dir = "results/bench_assembly";
+    long trials = 20, seed = 1, modes = 16384, stride = 10;
+    std::vector<double> clearances = {0, 0.02, 0.05, 0.1, 0.25, 0.5, 1}, voxels = {0.1, 0.25, 0.5};
+    std::string methods_text = "snapfit,translation,vps";
+    std::optional<long> trials_set, modes_set;
+    std::optional<std::vector<double>> clearances_set, voxels_set;
+    bench::parse_options(
+        argc, argv, quick, device_spec, out_dir, usage, [&](const std::string& s, auto value, auto is) {
+          if (is("--trials")) return trials_set = bench::integer_option("--trials", value("--trials"), 1, 100000), true;
+          if (is("--seed")) return seed = bench::integer_option("--seed", value("--seed"), 0, 1L << 30), true;
+          if (is("--modes")) return modes_set = bench::integer_option("--modes", value("--modes"), 1, 1L << 24), true;
+          if (is("--penetration-stride"))
+            return stride = bench::integer_option("--penetration-stride", value("--penetration-stride"), 1, 100000),
+                   true;
+          if (is("--clearances")) return clearances_set = number_list("--clearances", value("--clearances")), true;
+          if (is("--voxels")) return voxels_set = number_list("--voxels", value("--voxels")), true;
+          if (is("--methods")) return methods_text = value("--methods"), true;
+          if (s == "--no-three-pegs") return three_pegs = false, true;
+          return false;
+        });
+    if (quick) {
+      trials = 2, modes = 4096, clearances = {0.5}, voxels = {0.25}, three_pegs = false;
+    }
+    if (trials_set) trials = *trials_set;
+    if (modes_set) modes = *modes_set;
+    if (clearances_set) clearances = *clearances_set;
+    if (voxels_set) voxels = *voxels_set;
+    for (double v : voxels)
+      if (!(v > 0)) throw Error("--voxels: voxel sizes must be > 0");
+
+    std::vector<BenchMethod> methods;
+    {
+      std::stringstream in(methods_text);
+      std::string m;
+      while (std::getline(in, m, ',')) {
+        if (m == "snapfit")
+          methods.push_back({"snapfit-6dof", BenchMethod::six_dof, 0});
+        else if (m == "translation")
+          methods.push_back({"snapfit-translation", BenchMethod::translation, 0});
+        else if (m == "vps")
+          for (double v : voxels) methods.push_back({"vps-" + bench::fixed(v, 2), BenchMethod::vps, v});
+        else
+          throw Error("--methods: unknown method '" + m + "' (expected snapfit, translation, vps)");
+      }
+    }
+    const bool need_device =
+        std::any_of(methods.begin(), methods.end(), [](const BenchMethod& m) { return m.kind != BenchMethod::vps; });
+
+    // Cells: the peg at each clearance, then the three-peg pair.
+    std::vector<Cell> cells;
+    for (double c : clearances) {
+      Cell cell;
+      cell.pair = "peg-in-hole";
+      cell.clearance = c;
+      cell.scene = load_scene("scenes/peg_hole_clearance_0p5.json");
+      cell.scene.part1.procedural->numbers["clearance"] = c;
+      cell.scene.name = "peg in hole, clearance " + bench::fixed(c, 2) + " mm";
+      cell.scene.part2.pose = Pose{};
+      cell.entry = 20;  // the hole's depth: the peg's bottom meets the block's top 20 mm above home
+      cell.engaged = 20;
+      cells.push_back(cell);
+    }
+    if (three_pegs) {
+      Cell cell;
+      cell.pair = "three-pegs";
+      cell.scene = load_scene("scenes/three_pegs.json");
+      cell.scene.part2.pose = Pose{};
+      cell.entry = 14;   // above the tallest peg (12 mm) and its fillet
+      cell.engaged = 8;  // the shortest peg's height
+      cells.push_back(cell);
+    }
+
+    std::optional<ComputeContext> ctx;
+    std::optional<FftLibrary> fft;
+    std::string device_name = "host only";
+    if (need_device) {
+      const Device device = bench::loop_device(device_spec);  // as `snapfit run` picks it
+      device_name = device.info.name;
+      std::cout << "device " << describe_device(device.info) << "\n";
+      ctx.emplace(make_compute_context(device));
+      fft.emplace();
+    }
+    const std::string load_start = bench::read_loadavg();
+    fs::create_directories(out_dir);
+    std::ofstream csv(fs::path(out_dir) / "trials.csv");
+    csv << "pair,method,clearance,trial,success,inserted,position_error,lateral_error,axial_error,angle_error,"
+           "max_penetration,max_force_step,force_hf_rms,peak_force,frame_p99_ms,frame_wall_p99_ms,misses,frames,"
+           "lateral_offset,tilt_deg,"
+           "approach_offset,duration_s\n";
+    std::ofstream depth_csv(fs::path(out_dir) / "wrench_vs_depth.csv");
+    depth_csv << "pair,method,clearance,trial,time_s,depth,force_n,torque_nm\n";
+
+    struct Summary {
+      std::string pair, method;
+      double clearance = 0;
+      std::vector<TrialResult> trials;
+    };
+    std::vector<Summary> summaries;
+    std::map<std::string, std::vector<std::pair<double, double>>> force_depth,
+        torque_depth;  // method -> (depth, value)
+    const double depth_clearance = clearances.size() > 1 ? clearances[clearances.size() / 2] : clearances[0];
+    const auto started = std::chrono::steady_clock::now();
+
+    for (const Cell& cell : cells) {
+      std::cout << "== " << cell.scene.name << "\n";
+      const AssemblyPair parts = prepare_assembly_pair(cell.scene);
+      const Mesh& m1 = parts.part(1).mesh;
+      const Mesh& m2 = parts.part(2).mesh;
+      const MeshDistanceIndex i1(m1), i2(m2);
+      const double spacing = parts.grids.spacing;
+      for (const BenchMethod& method : methods) {
+        Scene scene = method.kind == BenchMethod::translation ? translation_scene(cell.scene) : cell.scene;
+        scene.haptics.settle_s = 1;
+        std::optional<AssemblyPair> pair;
+        std::unique_ptr<QueryEngine> engine;
+        std::optional<VpsModel> vps;
+        CouplingParams coupling;
+        const auto build_start = std::chrono::steady_clock::now();
+        if (method.kind == BenchMethod::vps) {
+          scene.vps.voxel_size = method.voxel;
+          coupling = coupling_for(scene, m2);
+          vps = vps_model_for(scene, m1, m2, spacing, coupling);
+        } else {
+          PairOptions options;
+          options.note = [](const std::string& m) { std::cerr << "  " << m << "\n"; };
+          pair = build_assembly_pair(scene, *ctx, *fft, options);
+          engine = make_query_engine(*ctx, pair->spectra, query_variant_for(scene, Interpolation::tricubic));
+        }
+        std::cout << "  " << bench::padr(method.name, 20) << " built in "
+                  << bench::fixed(bench::seconds_since(build_start), 1) << " s" << std::flush;
+        Summary summary{cell.pair, method.name, cell.clearance, {}};
+        std::mt19937 rng(static_cast<unsigned>(seed));  // the same users for every method of a cell
+        for (long t = 0; t < trials; ++t) {
+          const UserTrial user = draw_trial(rng);
+          scene.trajectory = user_trajectory(scene.assembled_pose.value_or(Pose{}), cell.entry, user,
+                                             method.kind != BenchMethod::translation);
+          scene.part2.pose = scene.trajectory.keyframes.front().pose;
+          SessionOptions options;
+          options.simulated_time = true;
+          FrameWork work;
+          work.wall_ms.reserve(8000), work.cpu_ms.reserve(8000);
+          SessionResult run;
+          if (method.kind == BenchMethod::vps) {
+            run = run_scripted_session(scene, spacing, vps_loop_config(scene, *vps, coupling),
+                                       timed(vps_evaluator(*vps), work), options);
+          } else {
+            const TuningResult fixed =
+                pick_modes({TimingPoint{std::min<std::size_t>(modes, engine->max_modes()), 0, 0, 0, 1}},
+                           scene.frame_budget_ms, 0.25);
+            double force_scale = 0;
+            const LoopConfig config = loop_config_for(scene, pair->part(2).mesh, spacing, *engine, fixed, force_scale);
+            run = run_scripted_session(scene, spacing, config, timed(wrench_evaluator(*engine), work), options);
+          }
+          const TrialResult r = measure(cell, run, work, m1, i1, m2, i2, static_cast<std::size_t>(stride));
+          csv << cell.pair << "," << method.name << "," << cell.clearance << "," << t << "," << r.success << ","
+              << r.inserted << "," << r.position_error << "," << r.lateral_error << "," << r.axial_error << ","
+              << r.angle_error << "," << r.max_penetration << "," << r.max_force_step << "," << r.force_hf_rms << ","
+              << r.peak_force << "," << r.frame_p99_ms << "," << r.frame_wall_p99_ms << "," << r.misses << ","
+              << r.frames << "," << user.lateral << ","
+              << (method.kind == BenchMethod::translation ? 0.0 : user.tilt_deg) << "," << user.approach_offset << ","
+              << user.duration_s << "\n";
+          if (t == 0 && cell.pair == "peg-in-hole" && cell.clearance == depth_clearance) {
+            for (const FrameRecord& f : run.loop.log) {
+              const double depth = scene.assembled_pose->translation.z() + cell.entry - f.part.translation.z();
+              depth_csv << cell.pair << "," << method.name << "," << cell.clearance << "," << t << "," << f.time_s
+                        << "," << depth << "," << f.sent.force.norm() << "," << f.sent.torque.norm() << "\n";
+              force_depth[method.name].push_back({depth, f.sent.force.norm()});
+              torque_depth[method.name].push_back({depth, f.sent.torque.norm()});
+            }
+          }
+          summary.trials.push_back(r);
+          std::cout << (r.success ? " +" : r.inserted ? " ~" : " -") << std::flush;
+        }
+        std::cout << "\n";
+        summaries.push_back(std::move(summary));
+      }
+    }
+    const double seconds = bench::seconds_since(started);
+    const std::string load_end = bench::read_loadavg();
+
+    // The summary per cell: success rate, medians of the errors, the worst penetration.
+    std::ostringstream md;
+    std::ofstream scsv(fs::path(out_dir) / "summary.csv");
+    scsv << "pair,method,clearance,trials,success_rate,inserted_rate,median_position_error,median_angle_error,"
+            "median_max_penetration,max_penetration,median_max_force_step,median_force_hf_rms,frame_p99_ms,frame_wall_"
+            "p99_ms,"
+            "misses\n";
+    md << "| pair | method | clearance (mm) | trials | success | inserted | position error (mm, median) | angle "
+          "error (deg, median) | max penetration (mm, median / max) | max force step (N, median) | query CPU "
+          "p99 (ms, max) | misses |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    nlohmann::json cells_json = nlohmann::json::array();
+    std::map<std::string, Series> success_series;
+    for (const Summary& s : summaries) {
+      std::vector<double> pos, ang, pen, step, hf, p99, wall99;
+      double ok = 0, in = 0, misses = 0;
+      for (const TrialResult& r : s.trials) {
+        pos.push_back(r.position_error), ang.push_back(r.angle_error), pen.push_back(r.max_penetration);
+        step.push_back(r.max_force_step), hf.push_back(r.force_hf_rms), p99.push_back(r.frame_p99_ms);
+        wall99.push_back(r.frame_wall_p99_ms);
+        ok += r.success, in += r.inserted, misses += r.misses;
+      }
+      const double n = s.trials.size();
+      scsv << s.pair << "," << s.method << "," << s.clearance << "," << n << "," << ok / n << "," << in / n << ","
+           << quantile(pos, 0.5) << "," << quantile(ang, 0.5) << "," << quantile(pen, 0.5) << "," << quantile(pen, 1.0)
+           << "," << quantile(step, 0.5) << "," << quantile(hf, 0.5) << "," << quantile(p99, 1.0) << ","
+           << quantile(wall99, 1.0) << "," << misses << "\n";
+      md << "| " << s.pair << " | " << s.method << " | " << s.clearance << " | " << n << " | "
+         << bench::fixed(100 * ok / n, 0) << " % | " << bench::fixed(100 * in / n, 0) << " % | "
+         << bench::fixed(quantile(pos, 0.5), 3) << " | " << bench::fixed(quantile(ang, 0.5), 2) << " | "
+         << bench::fixed(quantile(pen, 0.5), 3) << " / " << bench::fixed(quantile(pen, 1.0), 3) << " | "
+         << bench::fixed(quantile(step, 0.5), 3) << " | " << bench::fixed(quantile(p99, 1.0), 3) << " | " << misses
+         << " |\n";
+      cells_json.push_back({{"pair", s.pair},
+                            {"method", s.method},
+                            {"clearance", s.clearance},
+                            {"trials", n},
+                            {"success_rate", ok / n},
+                            {"inserted_rate", in / n},
+                            {"median_position_error", bench::num(quantile(pos, 0.5))},
+                            {"median_angle_error", bench::num(quantile(ang, 0.5))},
+                            {"max_penetration", bench::num(quantile(pen, 1.0))},
+                            {"frame_p99_ms", bench::num(quantile(p99, 1.0))},
+                            {"frame_wall_p99_ms", bench::num(quantile(wall99, 1.0))},
+                            {"misses", misses}});
+      if (s.pair == "peg-in-hole") {
+        Series& series = success_series[s.method];
+        series.label = s.method;
+        series.x.push_back(std::max(s.clearance, 0.01));  // log axis: clearance 0 drawn at 0.01 mm
+        series.y.push_back(100 * ok / n);
+      }
+    }
+    std::cout << "\n"
+              << md.str() << "\n"
+              << summaries.size() << " cells x methods, " << trials << " trials each, in " << bench::fixed(seconds, 0)
+              << " s; load average " << load_start << " -> " << load_end << "\n";
+    std::ofstream(fs::path(out_dir) / "summary.md") << md.str();
+
+    Chart success;
+    success.title = "Imprecise-user insertions of the peg: success rate against clearance (" + std::to_string(trials) +
+                    " trials per point; clearance 0 drawn at 0.01 mm)";
+    success.x_label = "clearance (mm)";
+    success.y_label = "success (%)";
+    success.log_x = true;
+    for (auto& [name, series] : success_series) success.series.push_back(series);
+    success.y_min = 0, success.y_max = 100;
+    const auto depth_chart = [&](const std::string& what, const std::string& unit,
+                                 const std::map<std::string, std::vector<std::pair<double, double>>>& data) {
+      Chart c;
+      c.title = what + " sent to the user against insertion depth, trial 0 at clearance " +
+                bench::fixed(depth_clearance, 2) + " mm (depth 0: the peg's tip at the hole's entry)";
+      c.x_label = "depth (mm)";
+      c.y_label = what + " (" + unit + ")";
+      for (const auto& [name, points] : data) {
+        Series s;
+        s.label = name;
+        s.style = Series::Style::points;
+        for (const auto& [x, y] : points) s.x.push_back(x), s.y.push_back(y);
+        c.series.push_back(s);
+      }
+      return c;
+    };
+    const std::vector<Chart> charts = {success, depth_chart("|force|", "N", force_depth),
+                                       depth_chart("|torque|", "N m", torque_depth)};
+    const nlohmann::json report = {{"command", bench::command_line(argc, argv)},
+                                   {"date", bench::now_iso()},
+                                   {"device", device_name},
+                                   {"trials", trials},
+                                   {"seed", seed},
+                                   {"modes", modes},
+                                   {"penetration_stride", stride},
+                                   {"seconds", seconds},
+                                   {"load_average", {{"start", load_start}, {"end", load_end}}},
+                                   {"cells", cells_json}};
+    std::ofstream(fs::path(out_dir) / "summary.json") << report.dump(2) << "\n";
+    const std::string page = bench::write_charts(out_dir, "bench_assembly: imprecise-user insertions",
+                                                 bench::command_line(argc, argv), charts);
+    std::cout << "wrote " << out_dir << "/trials.csv, summary.csv, summary.md, summary.json, wrench_vs_depth.csv and "
+              << page << "\n";
+    return 0;
+  });
+}
