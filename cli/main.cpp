@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   snapfit::cli::add_search_command(app);
   snapfit::cli::add_tune_command(app);
   snapfit::cli::add_accuracy_command(app);
+  snapfit::cli::add_spheres_command(app);
   snapfit::cli::add_run_command(app);
   try {
     app.parse(argc, argv);

@@ -291,8 +291,43 @@ CadPartSpec read_cad(const Ctx& c, const json& v, const std::string& path) {
   return cad;
 }
 
+PartDescriptorSpec read_part_descriptor(const Ctx& c, const json& v, const std::string& path) {
+  expect_object(c, v, path);
+  check_fields(c, v, path, {"source", "tolerance", "protrusion", "method", "nufft_tolerance"});
+  PartDescriptorSpec d;
+  if (const json* s = find(v, "source")) {
+    const std::string source = text(c, *s, join(path, "source"));
+    if (source == "spheres")
+      d.source = SpectrumSource::spheres;
+    else if (source != "grid")
+      fail(c, join(path, "source"), "unknown source '" + source + "' (expected grid or spheres)");
+  }
+  if (d.source == SpectrumSource::grid) {
+    for (const char* key : {"tolerance", "protrusion", "method", "nufft_tolerance"})
+      if (find(v, key)) fail(c, join(path, key), "only for source \"spheres\"");
+    return d;
+  }
+  if (const json* x = find(v, "tolerance")) d.tolerance = positive(c, *x, join(path, "tolerance"));
+  if (const json* x = find(v, "protrusion")) {
+    d.protrusion = number(c, *x, join(path, "protrusion"));
+    if (!(d.protrusion >= 0 && d.protrusion <= 1))
+      fail(c, join(path, "protrusion"), "must be in [0, 1] (got " + fmt(d.protrusion) + ")");
+  }
+  if (const json* x = find(v, "method")) {
+    d.method = text(c, *x, join(path, "method"));
+    if (d.method != "auto" && d.method != "direct" && d.method != "nufft")
+      fail(c, join(path, "method"), "unknown method '" + d.method + "' (expected auto, direct or nufft)");
+  }
+  if (const json* x = find(v, "nufft_tolerance")) {
+    d.nufft_tolerance = number(c, *x, join(path, "nufft_tolerance"));
+    if (!(d.nufft_tolerance > 0 && d.nufft_tolerance <= 0.1))
+      fail(c, join(path, "nufft_tolerance"), "must be in (0, 0.1] (got " + fmt(d.nufft_tolerance) + ")");
+  }
+  return d;
+}
+
 PartSpec read_part(const Ctx& c, const json& v, const std::string& path, const std::string& units) {
-  check_fields(c, v, path, {"name", "mesh", "mesh_units", "scale", "cad", "procedural", "pose"});
+  check_fields(c, v, path, {"name", "mesh", "mesh_units", "scale", "cad", "procedural", "pose", "descriptor"});
   PartSpec part;
   part.name = path;  // default: "part1" / "part2"
   if (const json* n = find(v, "name")) part.name = text(c, *n, join(path, "name"));
@@ -329,6 +364,7 @@ PartSpec read_part(const Ctx& c, const json& v, const std::string& path, const s
     part.procedural = read_procedural(c, *proc, join(path, "procedural"));
   }
   if (const json* p = find(v, "pose")) part.pose = read_pose(c, *p, join(path, "pose"));
+  if (const json* d = find(v, "descriptor")) part.descriptor = read_part_descriptor(c, *d, join(path, "descriptor"));
   return part;
 }
 
@@ -530,6 +566,11 @@ Scene read_scene(const Ctx& c, const json& root) {
   if (const json* m = find(root, "method")) s.method = read_method(c, *m, "method");
   if (const json* v = find(root, "vps")) s.vps = read_vps(c, *v, "vps");
 
+  for (const auto& [part, name] : {std::pair{&s.part1, "part1"}, std::pair{&s.part2, "part2"}})
+    if (part->descriptor.source == SpectrumSource::spheres && s.descriptor.kind != DescriptorKind::indicator)
+      fail(c, join(name, "descriptor.source"),
+           "\"spheres\" gives the indicator descriptor only (seed 001 defines ball sums, not the skeletal density); "
+           "set descriptor.kind to \"indicator\"");
   if (s.motion == Motion::translation) {
     if (s.assembled_pose) check_fixed_orientation(c, s, *s.assembled_pose, "assembled_pose.rotation");
     for (std::size_t i = 0; i < s.trajectory.keyframes.size(); ++i)
@@ -578,6 +619,15 @@ ordered_json part_json(const PartSpec& part, const std::string& units, const std
     j["procedural"] = proc;
   }
   j["pose"] = pose_json(part.pose);
+  if (part.descriptor.source == SpectrumSource::spheres) {
+    ordered_json d;
+    d["source"] = "spheres";
+    if (part.descriptor.tolerance) d["tolerance"] = *part.descriptor.tolerance;
+    d["protrusion"] = part.descriptor.protrusion;
+    d["method"] = part.descriptor.method;
+    d["nufft_tolerance"] = part.descriptor.nufft_tolerance;
+    j["descriptor"] = d;
+  }
   return j;
 }
 

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "pipeline/spectra_cache.h"
+#include "pipeline/sphere_spectra.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -47,15 +48,22 @@ void compute_assembly_spectra(AssemblyPair& pair, const ComputeContext& ctx, con
   const auto note = note_of(options);
   SpectrumOptions spectrum = options.spectrum;
   if (!pair.plan.rotation) spectrum.exact_rotation_width = 0;  // part 2 never turns
-  const std::string key =
-      options.use_cache ? spectra_cache_key(pair.fields1.fields, pair.fields2.fields, spectrum) : std::string();
+  const PartDescriptorSpec& source1 = pair.scene.part1.descriptor;
+  const PartDescriptorSpec& source2 = pair.scene.part2.descriptor;
+  const std::string key = options.use_cache ? spectra_cache_key(pair.fields1.fields, pair.fields2.fields, spectrum,
+                                                                spectrum_source_key(source1, pair.grids.spacing),
+                                                                spectrum_source_key(source2, pair.grids.spacing))
+                                            : std::string();
   pair.spectra_from_cache = false;
   if (auto cached = options.use_cache ? load_cached_spectra(key, note) : std::nullopt) {
     pair.spectra = std::move(*cached);
     pair.spectra_from_cache = true;
     return;
   }
-  pair.spectra = compute_pair_spectra(fft, ctx, pair.fields1.fields, pair.fields2.fields, spectrum);
+  if (source1.source == SpectrumSource::spheres || source2.source == SpectrumSource::spheres)
+    pair.spectra = compute_sphere_pair_spectra(pair, ctx, fft, spectrum, options.descriptors, note);
+  else
+    pair.spectra = compute_pair_spectra(fft, ctx, pair.fields1.fields, pair.fields2.fields, spectrum);
   if (options.use_cache) save_cached_spectra(key, pair.spectra, note);
 }
 

@@ -77,11 +77,12 @@ std::string path_for(const std::string& key) {
 }  // namespace
 
 std::string spectra_cache_key(const DescriptorFields& part1, const DescriptorFields& part2,
-                              const SpectrumOptions& options) {
+                              const SpectrumOptions& options, const std::string& source1, const std::string& source2) {
   std::ostringstream key;
   key.precision(17);
   key << "fields1=" << hex64(field_hash(part1)) << "|fields2=" << hex64(field_hash(part2))
-      << "|oversampling=" << options.oversampling << "|exact_rotation_width=" << options.exact_rotation_width;
+      << "|oversampling=" << options.oversampling << "|exact_rotation_width=" << options.exact_rotation_width
+      << "|source1=" << source1 << "|source2=" << source2;
   return key.str();
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // On-disk cache of pair spectra (engine/spectra.h), in the versioned, checksummed,
 // atomically written container of io/cache_file.h, under cache_root()/spectra. The key
-// hashes both affinity fields and their grids, the oversampling and the exact-rotation kernel.
+// hashes both affinity fields and their grids, the oversampling, the exact-rotation kernel
+// and where each part's spectrum comes from (pipeline/sphere_spectra.h spectrum_source_key).
 #include <functional>
 #include <optional>
 #include <string>
@@ -11,7 +12,7 @@
 namespace snapfit {
 
 std::string spectra_cache_key(const DescriptorFields& part1, const DescriptorFields& part2,
-                              const SpectrumOptions& options);
+                              const SpectrumOptions& options, const std::string& source1, const std::string& source2);
 
 // Nothing when missing; a stale or corrupt entry is reported through `note` and ignored.
 std::optional<PairSpectra> load_cached_spectra(const std::string& key,

@@ -32,6 +32,19 @@ struct CadPartSpec {
   std::optional<double> angular_deflection_deg;  // default 30
 };
 
+// Where a part's spectrum comes from: the FFT of its descriptor sampled on the grid, or
+// seed 001's spherical decomposition with analytic ball transforms summed by a
+// non-uniform DFT (docs/scenes.md "Spectra from balls"; indicator descriptor only).
+enum class SpectrumSource { grid, spheres };
+
+struct PartDescriptorSpec {
+  SpectrumSource source = SpectrumSource::grid;
+  std::optional<double> tolerance;  // spheres: Hausdorff bound epsilon (scene units); default the grid spacing
+  double protrusion = 0.25;         // spheres: mu of seed 001 (A.1)
+  std::string method = "auto";      // spheres: "direct" (NDFT), "nufft" (type 1) or "auto"
+  double nufft_tolerance = 1e-5;    // spheres: relative accuracy of the type-1 NUFFT
+};
+
 struct PartSpec {
   std::string name;
   std::optional<std::string> mesh_path;  // absolute, or relative to the scene file's folder
@@ -41,6 +54,7 @@ struct PartSpec {
   CadPartSpec cad;                               // only for STEP and IGES files
   std::optional<ProceduralPartSpec> procedural;  // exactly one of mesh_path, procedural
   Pose pose;                                     // part1: world pose; part2: initial pose relative to part 1
+  PartDescriptorSpec descriptor;                 // "descriptor" of the part: where its spectrum comes from
 };
 
 enum class DescriptorKind {

@@ -9,6 +9,7 @@
 #include <doctest/doctest.h>
 #include <limits>
 
+#include "engine/ball_spectrum.h"
 #include "engine/full_map.h"
 #include "tests/oclgrind/oclgrind_cases.h"
 #include "tests/oclgrind/oclgrind_support.h"
@@ -161,6 +162,28 @@ TEST_CASE("oclgrind: spectra (clFFT forward transforms, deconvolution) and full 
       CHECK_MESSAGE(diff <= 32 * kEps * scale, what << ": energies differ by " << diff);
     }
   }
+}
+
+TEST_CASE("oclgrind: the ball NDFT (spectra from spheres): clean, and equal to PoCL") {
+  std::vector<Ball> balls;
+  for (int j = 0; j < 24; ++j)
+    balls.push_back({Eigen::Vector3d(std::sin(1.3 * j), std::cos(0.7 * j), 0.1 * j - 1.2), 0.2 + 0.03 * j});
+  FrequencyLattice lattice;
+  lattice.dims = {6, 5, 4};  // 120 modes: two 64-item groups, the second half past the end
+  lattice.length = Eigen::Vector3d(4.0, 3.5, 3.0);
+  lattice.centre = Eigen::Vector3d(0.1, 0.0, -0.2);
+  const auto pocl = ball_spectrum_direct(test_context(), balls, lattice, {}, test_program_cache());
+  OclgrindSession session(checks_for({"ball_ndft"}));
+  const auto oclgrind = ball_spectrum_direct(session.context(), balls, lattice, {}, test_program_cache());
+  expect_clean(session, "ball_ndft");
+  REQUIRE(oclgrind.size() == pocl.size());
+  // Each mode is a float sum of 24 terms bounded by the balls' volumes, in the same order
+  // on both devices (sincos may differ by ulps).
+  double volume = 0, diff = 0;
+  for (const Ball& b : balls) volume += ball_transform(b.radius, 0);
+  for (std::size_t k = 0; k < pocl.size(); ++k) diff = std::max(diff, double(std::abs(pocl[k] - oclgrind[k])));
+  MESSAGE("ball_ndft: PoCL - Oclgrind " << diff << " of " << volume);
+  CHECK(diff <= 32 * kEps * volume);
 }
 
 }  // namespace snapfit::test
