@@ -3,6 +3,8 @@
 #include <chrono>
 #include <sstream>
 
+#include "core/hash.h"
+#include "engine/kernel_sources.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/trajectory.h"
 #include "snapfit/assembly.h"
@@ -32,8 +34,12 @@ TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, 
   key.driver = device.driver_version;
   key.variant = variant_name(variant);
   std::ostringstream features;
+  // The query kernels' source: timings taken with other kernels say nothing about these.
+  const std::string kernels = kernel_source("spectrum_sample") + kernel_source("pose_query") +
+                              (variant.rotation == RotationMethod::exact_product ? kernel_source("rotated_product") : "");
   features << "fft " << spectra.dims[0] << "x" << spectra.dims[1] << "x" << spectra.dims[2] << " exact_rotation "
-           << spectra.part2.deconvolved_width << " spacing " << spectra.spacing;
+           << spectra.part2.deconvolved_width << " spacing " << spectra.spacing << " kernels "
+           << hex64(fnv1a64(kernels));
   key.scene_features = features.str();
   key.budget_ms = budget_ms;
   key.margin = margin;
