@@ -100,6 +100,39 @@ TEST_CASE("auto-tune: p99, not the mean: 2% slow queries push the pick down") {
   CHECK(ok.chosen_modes > 16384);
 }
 
+TEST_CASE("auto-tune: a burst of other work during one level's timing neither ends the sweep nor lowers the pick") {
+  TuneOptions opt;
+  opt.repetitions = 200;
+  opt.warmup = 5;
+  const TuningResult quiet = tune_modes(linear_timer(0.05, 2e-5), 1 << 20, opt);
+  REQUIRE(quiet.fits);
+  // The first timed run of the level below the pick is slowed 3x throughout (every query,
+  // as when another process takes the core); timed again, it is as quiet as the rest.
+  const std::size_t burst_level = quiet.points[quiet.points.size() - 4].modes;
+  const QueryTimer quiet_timer = linear_timer(0.05, 2e-5);
+  int timed_runs_of_burst_level = 0;
+  const QueryTimer bursty = [&](std::size_t modes, std::size_t count) {
+    std::vector<double> t = quiet_timer(modes, count);
+    if (modes == burst_level && count == opt.repetitions && timed_runs_of_burst_level++ == 0)
+      for (double& x : t) x *= 3.0;
+    return t;
+  };
+  const TuningResult r = tune_modes(bursty, 1 << 20, opt);
+  CHECK(timed_runs_of_burst_level == 2);
+  CHECK(r.chosen_modes == quiet.chosen_modes);
+  CHECK(r.points.size() == quiet.points.size());
+  // A level that is slow every time it is timed still ends the sweep and is not picked.
+  const QueryTimer slow_level = [&](std::size_t modes, std::size_t count) {
+    std::vector<double> t = quiet_timer(modes, count);
+    if (modes == burst_level)
+      for (double& x : t) x *= 3.0;
+    return t;
+  };
+  const TuningResult slow = tune_modes(slow_level, 1 << 20, opt);
+  CHECK(slow.points.back().modes == burst_level);
+  CHECK(slow.chosen_modes < burst_level);
+}
+
 TEST_CASE("auto-tune: a budget that no level meets picks the smallest level and says so") {
   TuneOptions opt;
   opt.repetitions = 50;
