@@ -23,7 +23,9 @@
 //   ./build/perf/bench_assembly [--quick] [--trials 20] [--seed 1] [--modes 16384]
 //       [--clearances 0,0.02,0.05,0.1,0.25,0.5,1] [--voxels 0.1,0.25,0.5]
 //       [--methods snapfit,translation,vps] [--no-three-pegs] [--penetration-stride 10]
-//       [--device SPEC] [--out results/bench_assembly]
+//       [--geometry-strength G] [--lambda-in P] [--device SPEC] [--out results/bench_assembly]
+// --geometry-strength and --lambda-in override the scenes' haptics.geometry_strength and
+// descriptor.lambda_in (the penalty factor with lambda_out 1) for snapfit's methods.
 // --quick: clearance 0.5 only (the shipped scene), no three-peg pair, 2 trials, VPS at 0.25 mm, m' 4096.
 // Writes trials.csv (one row per trial), summary.csv and summary.md (per cell),
 // wrench_vs_depth.csv (one trial per method), summary.json and charts.html.
@@ -55,6 +57,7 @@ namespace {
 void usage(std::ostream& os) {
   os << "bench_assembly [--quick] [--trials N] [--seed S] [--modes M] [--clearances LIST] [--voxels LIST]\n"
         "               [--methods snapfit,translation,vps] [--no-three-pegs] [--penetration-stride K]\n"
+        "               [--geometry-strength G] [--lambda-in P]\n"
         "               [--device SPEC] [--out DIR]\n"
         "Scripted imprecise-user insertions: success, errors and true interpenetration against clearance,\n"
         "for snapfit (6-DOF, translation-only) and Voxmap PointShell (see perf/bench_assembly.cpp).\n";
@@ -245,6 +248,7 @@ int main(int argc, char** argv) {
     std::string methods_text = "snapfit,translation,vps";
     std::optional<long> trials_set, modes_set;
     std::optional<std::vector<double>> clearances_set, voxels_set;
+    std::optional<double> geometry_strength, lambda_in;  // overrides of the scenes' values
     bench::parse_options(
         argc, argv, quick, device_spec, out_dir, usage, [&](const std::string& s, auto value, auto is) {
           if (is("--trials")) return trials_set = bench::integer_option("--trials", value("--trials"), 1, 100000), true;
@@ -256,6 +260,9 @@ int main(int argc, char** argv) {
           if (is("--clearances")) return clearances_set = number_list("--clearances", value("--clearances")), true;
           if (is("--voxels")) return voxels_set = number_list("--voxels", value("--voxels")), true;
           if (is("--methods")) return methods_text = value("--methods"), true;
+          if (is("--geometry-strength"))
+            return geometry_strength = number_list("--geometry-strength", value("--geometry-strength")).at(0), true;
+          if (is("--lambda-in")) return lambda_in = number_list("--lambda-in", value("--lambda-in")).at(0), true;
           if (s == "--no-three-pegs") return three_pegs = false, true;
           return false;
         });
@@ -352,6 +359,8 @@ int main(int argc, char** argv) {
       for (const BenchMethod& method : methods) {
         Scene scene = method.kind == BenchMethod::translation ? translation_scene(cell.scene) : cell.scene;
         scene.haptics.settle_s = 1;
+        if (geometry_strength) scene.haptics.geometry_strength = *geometry_strength;
+        if (lambda_in) scene.descriptor.lambda_in = *lambda_in;
         std::optional<AssemblyPair> pair;
         std::unique_ptr<QueryEngine> engine;
         std::optional<VpsModel> vps;
