@@ -82,7 +82,26 @@ int main(int argc, char** argv) {
               << describe_device(device.info) << "\n";
     const std::vector<std::size_t> ladder =
         quick ? std::vector<std::size_t>{8192} : std::vector<std::size_t>{8192, 16384, 32768};
+    std::filesystem::create_directories(out_dir);
+    // Per pose and m': the true error (reference - result) and the two band sums, as
+    // differences of queries at m'/4, m'/2 and m' (equal to the kernels' band sums), for
+    // trying other estimators from the same data (perf/error_estimate_spread.py).
+    std::ofstream per_pose(std::filesystem::path(out_dir) / "poses.csv");
+    per_pose << "modes,pose";
+    for (const char* block : {"error", "band_a", "band_b"})
+      for (const char* c : {"E", "Fx", "Fy", "Fz", "Tx", "Ty", "Tz"}) per_pose << "," << block << "_" << c;
+    per_pose << "\n";
+    const auto put = [&per_pose](const QueryResult& a, const QueryResult& b) {
+      per_pose << "," << a.energy - b.energy;
+      for (int c = 0; c < 3; ++c) per_pose << "," << a.force[c] - b.force[c];
+      for (int c = 0; c < 3; ++c) per_pose << "," << a.torque[c] - b.torque[c];
+    };
     for (const std::size_t m : ladder) {
+      std::vector<QueryResult> at_quarter, at_half;
+      engine->set_modes(m / 4);
+      for (const Pose& p : poses) at_quarter.push_back(engine->query(p));
+      engine->set_modes(m / 2);
+      for (const Pose& p : poses) at_half.push_back(engine->query(p));
       engine->set_modes(m);
       std::vector<double> ratio[3];
       std::size_t covered[3] = {0, 0, 0}, compared = 0;
@@ -90,6 +109,11 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i < poses.size(); ++i) {
         const QueryResult r = engine->query(poses[i]);
         const QueryResult& ref = reference[i];
+        per_pose << m << "," << i;
+        put(ref, r);
+        put(at_half[i], at_quarter[i]);
+        put(r, at_half[i]);
+        per_pose << "\n";
         if (r.flags != query_ok || ref.flags != query_ok) continue;
         ++compared;
         const double truth[3] = {std::abs(r.energy - ref.energy), (r.force - ref.force).norm(),
@@ -119,7 +143,6 @@ int main(int argc, char** argv) {
                         {"overestimate_median", median_over}});
       }
     }
-    std::filesystem::create_directories(out_dir);
     std::ofstream(std::filesystem::path(out_dir) / "error_estimate.json")
         << nlohmann::json{{"command", bench::command_line(argc, argv)},
                           {"date", bench::now_iso()},
