@@ -5,6 +5,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,7 @@
 #include "pipeline/assembly_pair.h"
 #include "snapfit/scene.h"
 #include "tests/test_engine_support.h"
+#include "tests/test_support.h"
 
 using namespace snapfit;
 
@@ -127,4 +130,29 @@ TEST_CASE("collision predicate: clearly separated and clearly overlapping poses 
       CHECK(v.collides);
     }
   }
+}
+
+TEST_CASE("collision predicate: snapfit query --collision prints the verdict, the overlap and the bound") {
+  const test::CacheDirScope cache;
+  const std::string scene = std::string(SNAPFIT_SOURCE_DIR) + "/scenes/collision_only.json";
+  const test::Command run = test::run_command(
+      std::string(SNAPFIT_CLI_PATH) + " query " + scene + " --collision --modes 4096 --pose 10,0,-25 --pose 1,0,10",
+      false);
+  INFO(run.output);
+  REQUIRE(run.status == 0);
+  std::istringstream lines(run.output);
+  std::string deep, apart;
+  REQUIRE(std::getline(lines, deep));
+  REQUIRE(std::getline(lines, apart));
+  const nlohmann::json a = nlohmann::json::parse(deep), b = nlohmann::json::parse(apart);
+  CHECK(a["collides"] == true);
+  CHECK(b["collides"] == false);
+  CHECK(a["truncation_bound"].get<double>() == doctest::Approx(b["truncation_bound"].get<double>()));
+  CHECK(a["overlap"].get<double>() > a["truncation_bound"].get<double>());
+  CHECK(a["overlap"].get<double>() == a["energy"].get<double>());
+
+  const test::Command plain =
+      test::run_command(std::string(SNAPFIT_CLI_PATH) + " query " + scene + " --modes 4096 --pose 1,0,10", false);
+  REQUIRE(plain.status == 0);
+  CHECK(nlohmann::json::parse(plain.output).count("collides") == 0);
 }
