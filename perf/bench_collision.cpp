@@ -67,12 +67,7 @@ void usage(std::ostream& os) {
         "  fcl::collide on the shipped scenes, at m' = 512, 1024, 2048, 4096: agreement and query time.\n";
 }
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const std::size_t rank = std::size_t(std::ceil(q * double(v.size())));
-  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
-}
+using bench::percentile;
 
 // The deepest vertex of `a` (placed by pose_a) inside `b_index` (b at the identity): >= 0.
 double deepest_vertex(const Mesh& a, const Pose& pose_a, const MeshDistanceIndex& b_index) {

@@ -138,12 +138,7 @@ Args parse_args(int argc, char** argv) {
 
 // ---------------------------------------------------------------- small helpers
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
-  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
-}
+using snapfit::bench::percentile;
 
 double surface_area(const Mesh& m) {
   double a = 0;
