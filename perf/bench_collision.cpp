@@ -252,7 +252,7 @@ int run(int argc, char** argv) {
     }
   }
 
-  // Totals over the scenes per m' and predicate; every query time pooled by its scene's median.
+  // Totals over the scenes per m' and predicate; the query times of the slowest scene.
   std::vector<Row> totals;
   for (std::size_t m : modes_list)
     for (const std::string pred : {"bound", "estimate", "zero"}) {
