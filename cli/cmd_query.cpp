@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "cli/parse_options.h"
 #include "core/progress.h"
+#include "engine/collision_predicate.h"
 #include "engine/query_engine.h"
 #include "pipeline/assembly_pair.h"
 #include "snapfit/error.h"
@@ -22,6 +23,7 @@ struct QueryOptions {
   std::size_t modes = 32768;
   std::string interpolation = "tricubic";
   std::string device;
+  bool collision = false;
 };
 
 // "x,y,z" or "x,y,z,ax,ay,az,angle_deg" (axis-angle, degrees): part 2 in part 1's frame.
@@ -53,12 +55,12 @@ Pose parse_pose(const std::string& text, const std::string& where) {
   return pose;
 }
 
-nlohmann::json result_json(const Pose& pose, const QueryResult& r) {
+nlohmann::json result_json(const Pose& pose, const QueryResult& r, const TruncationTails* tails) {
   nlohmann::json flags = nlohmann::json::array();
   if (r.flags & query_outside_grid) flags.push_back("outside_grid");
   if (r.flags & query_bad_pose) flags.push_back("bad_pose");
   const Eigen::AngleAxisd aa(pose.rotation);
-  return {
+  nlohmann::json j = {
       {"position", {pose.translation.x(), pose.translation.y(), pose.translation.z()}},
       {"rotation_axis", {aa.axis().x(), aa.axis().y(), aa.axis().z()}},
       {"rotation_deg", aa.angle() * 180.0 / M_PI},
@@ -71,10 +73,17 @@ nlohmann::json result_json(const Pose& pose, const QueryResult& r) {
       {"flags", flags},
       {"modes", r.modes},
       {"time_ms", r.seconds * 1e3}};
+  if (tails) {  // seed 001's predicate: the truncated overlap volume above its truncation bound
+    const CollisionVerdict v = collision_verdict(r, *tails);
+    j["collides"] = v.collides;
+    j["overlap"] = v.overlap;
+    j["truncation_bound"] = v.bound;
+  }
+  return j;
 }
 
 void run_query(const QueryOptions& opt) {
-  const Scene scene = load_scene(opt.scene);
+  const Scene scene = opt.collision ? indicator_scene(load_scene(opt.scene)) : load_scene(opt.scene);
   std::vector<Pose> poses;
   for (std::size_t i = 0; i < opt.poses.size(); ++i)
     poses.push_back(parse_pose(opt.poses[i], "--pose " + opt.poses[i]));
@@ -98,7 +107,9 @@ void run_query(const QueryOptions& opt) {
   auto engine = make_query_engine(ctx, pair.spectra, query_variant_for(scene, interpolation));
   engine->set_modes(opt.modes);
   const std::vector<QueryResult> results = engine->query_batch(poses);
-  for (std::size_t i = 0; i < poses.size(); ++i) std::cout << result_json(poses[i], results[i]).dump() << "\n";
+  const TruncationTails tails = opt.collision ? truncation_tails(pair.spectra) : TruncationTails{};
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    std::cout << result_json(poses[i], results[i], opt.collision ? &tails : nullptr).dump() << "\n";
 }
 
 }  // namespace
@@ -114,6 +125,9 @@ void add_query_command(CLI::App& app) {
   cmd->add_option("--modes", opt->modes, "m': number of retained Fourier modes (lowest |w| first)");
   cmd->add_option("--interpolation", opt->interpolation, "trilinear (seed 000) or tricubic (Catmull-Rom)");
   cmd->add_option("--device", opt->device, "OpenCL device (see `snapfit devices`)");
+  cmd->add_flag("--collision", opt->collision,
+                "Collision verdict (seed 001): the indicator descriptor, and `collides` when the overlap volume "
+                "summed over m' modes exceeds its truncation bound (docs/spheres.md)");
   cmd->callback([opt] { run_query(*opt); });
 }
 

@@ -11,10 +11,12 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 #include "engine/device.h"
 #include "report/chart_spec.h"
@@ -202,6 +204,14 @@ inline std::string padr(const std::string& s, std::size_t w) {
   return s.size() >= w ? s : s + std::string(w - s.size(), ' ');
 }
 // A finite number as JSON, anything else as null (JSON has no NaN or Inf).
+// The nearest-rank q-quantile of v (NaN for none).
+inline double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
+  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
+}
+
 inline nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 // DIR/charts.html: the benchmark's charts on one self-contained page (report/chart_spec.h),

@@ -156,12 +156,7 @@ std::string sci(double v, int prec = 2) {
   return os.str();
 }
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
-  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
-}
+using snapfit::bench::percentile;
 double median(const std::vector<double>& v) { return percentile(v, 0.5); }
 double minimum(const std::vector<double>& v) {
   return v.empty() ? std::numeric_limits<double>::quiet_NaN() : *std::min_element(v.begin(), v.end());

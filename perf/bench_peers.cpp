@@ -50,11 +50,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <fcl/geometry/bvh/BVH_model.h>
-#include <fcl/math/bv/OBBRSS.h>
-#include <fcl/narrowphase/collision.h>
-#include <fcl/narrowphase/collision_object.h>
-#include <fcl/narrowphase/distance.h>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -77,9 +72,9 @@
 #include "engine/spectra.h"
 #include "mesh/triangle_refine.h"
 #include "perf/bench_common.h"
+#include "perf/fcl_peer.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/part_fields.h"
-#include "scheduler/trajectory.h"
 #include "snapfit/error.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
@@ -143,12 +138,7 @@ Args parse_args(int argc, char** argv) {
 
 // ---------------------------------------------------------------- small helpers
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
-  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
-}
+using snapfit::bench::percentile;
 
 double surface_area(const Mesh& m) {
   double a = 0;
@@ -158,29 +148,6 @@ double surface_area(const Mesh& m) {
 }
 
 // ---------------------------------------------------------------- poses
-
-std::vector<Pose> make_poses(const snapfit::Scene& scene, std::size_t count, unsigned seed) {
-  snapfit::Trajectory traj = scene.trajectory;
-  if (traj.keyframes.empty()) {
-    traj.keyframes.push_back({0.0, scene.part2.pose});
-    if (scene.assembled_pose) traj.keyframes.push_back({1.0, *scene.assembled_pose});
-  }
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const double t0 = traj.keyframes.front().time_s, t1 = traj.keyframes.back().time_s;
-  std::vector<Pose> poses;
-  for (std::size_t i = 0; i < count; ++i) {
-    const double t = t0 + (t1 - t0) * (count > 1 ? double(i) / double(count - 1) : 0.0);
-    Pose p = snapfit::trajectory_pose(traj, t);
-    p.translation += 0.5 * Eigen::Vector3d(u(rng), u(rng), u(rng));
-    Eigen::Vector3d axis(u(rng), u(rng), u(rng));
-    if (axis.norm() < 1e-6) axis = Eigen::Vector3d::UnitZ();
-    const double angle = 2.0 * M_PI / 180.0 * std::abs(u(rng));
-    p.rotation = (Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis.normalized())) * p.rotation).normalized();
-    poses.push_back(p);
-  }
-  return poses;
-}
 
 // ---------------------------------------------------------------- refinement
 
@@ -220,28 +187,8 @@ Level make_level(const snapfit::PreparedParts& parts, std::size_t target, const 
 
 // ---------------------------------------------------------------- FCL
 
-using FclModel = fcl::BVHModel<fcl::OBBRSSd>;
-
-std::shared_ptr<FclModel> fcl_model(const Mesh& m, double& seconds) {
-  const auto t0 = Clock::now();
-  std::vector<fcl::Vector3d> v(m.vertices.begin(), m.vertices.end());
-  std::vector<fcl::Triangle> t;
-  t.reserve(m.triangles.size());
-  for (const auto& tri : m.triangles) t.emplace_back(std::size_t(tri[0]), std::size_t(tri[1]), std::size_t(tri[2]));
-  auto model = std::make_shared<FclModel>();
-  if (model->beginModel(int(t.size()), int(v.size())) != fcl::BVH_OK || model->addSubModel(v, t) != fcl::BVH_OK ||
-      model->endModel() != fcl::BVH_OK)
-    throw snapfit::Error("FCL: cannot build the BVH model (" + std::to_string(t.size()) + " triangles)");
-  seconds = seconds_since(t0);
-  return model;
-}
-
-fcl::Transform3d fcl_transform(const Pose& p) {
-  fcl::Transform3d tf = fcl::Transform3d::Identity();
-  tf.linear() = p.rotation.toRotationMatrix();
-  tf.translation() = p.translation;
-  return tf;
-}
+using snapfit::bench::fcl_model;
+using snapfit::bench::fcl_transform;
 
 // ---------------------------------------------------------------- per level results
 
@@ -325,9 +272,8 @@ int run(const Args& args) {
   const auto& info = ctx.device.info;
   std::cout << "  device: " << snapfit::describe_device(info) << ", driver " << info.driver_version << "\n";
   const snapfit::Scene base_scene = snapfit::load_scene(args.scene);
-  snapfit::Scene scene = base_scene;  // its indicator version (scenes/collision_only.json style), 6-DOF
+  snapfit::Scene scene = snapfit::indicator_scene(base_scene);  // (scenes/collision_only.json style), 6-DOF
   scene.name = base_scene.name + " (indicator)";
-  scene.descriptor.kind = snapfit::DescriptorKind::indicator;
   scene.motion = snapfit::Motion::six_dof;
   scene.outputs = snapfit::Outputs{true, true, true};
   if (args.quick) {  // CI proves the program runs: a grid twice as coarse (8x fewer points) keeps it short
@@ -344,7 +290,7 @@ int run(const Args& args) {
   if (!(snapfit::query_variant_for(base_scene).torque))
     std::cout << "  note: the scene itself does not ask for torque; E+F+T is timed anyway (the default scene's)\n";
 
-  const std::vector<Pose> all_poses = make_poses(scene, pose_count, 20261122u);
+  const std::vector<Pose> all_poses = snapfit::bench::trajectory_poses(scene, pose_count, 20261122u, 0.5, 2.0);
   std::vector<Pose> poses;  // filled at the first level (those snapfit accepts)
   std::size_t dropped = 0;
 

@@ -75,6 +75,12 @@ AssemblyPair build_assembly_pair(const Scene& scene, const ComputeContext& ctx, 
   return pair;
 }
 
+Scene indicator_scene(const Scene& scene) {
+  Scene s = scene;
+  s.descriptor.kind = DescriptorKind::indicator;
+  return s;
+}
+
 QueryVariant query_variant_for(const Scene& scene, Interpolation interpolation) {
   const ComputePlan plan = plan_computation(scene);
   QueryVariant variant;

@@ -47,9 +47,16 @@ std::vector<float> ball_density_on_grid(const std::vector<Ball>& balls, double w
   return density;
 }
 
+std::size_t nufft_from_balls(std::size_t modes) {
+  // perf/bench_ndft_crossover (docs/spheres.md "The auto switch"): the NUFFT first won at 64
+  // balls on 32^3 and 48^3 lattices (the direct sum at 32), at 256 on 64^3 (direct at 128), and
+  // not yet at 128 on 96^3; each threshold is the geometric mean of the bracketing counts.
+  return modes <= std::size_t(48 * 48 * 48) ? 45 : 181;
+}
+
 std::string ball_spectrum_method(const std::string& method, std::size_t balls, std::size_t modes) {
   if (method != "auto") return method;
-  return double(balls) * double(modes) <= double(1 << 26) ? "direct" : "nufft";
+  return balls < nufft_from_balls(modes) ? "direct" : "nufft";
 }
 
 PairSpectra compute_sphere_pair_spectra(const AssemblyPair& pair, const ComputeContext& ctx, const FftLibrary& fft,

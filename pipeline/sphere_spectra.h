@@ -25,8 +25,12 @@ std::string spectrum_source_key(const PartDescriptorSpec& spec, double spacing);
 // The number of balls containing each point of `grid`, times `weight` (grid order).
 std::vector<float> ball_density_on_grid(const std::vector<Ball>& balls, double weight, const GridSpec& grid);
 
+// The ball count from which the type-1 NUFFT is faster than the direct NDFT onto `modes`
+// lattice nodes, as measured on PoCL's CPU device (perf/bench_ndft_crossover).
+std::size_t nufft_from_balls(std::size_t modes);
+
 // "direct" or "nufft" for `balls` balls onto `modes` modes, as `method` ("auto": direct
-// up to 2^26 ball-mode pairs).
+// below nufft_from_balls(modes)).
 std::string ball_spectrum_method(const std::string& method, std::size_t balls, std::size_t modes);
 
 // Stage 3 with at least one "spheres" part. `note` gets one line per such part (balls, method, time).
