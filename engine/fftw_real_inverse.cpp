@@ -36,7 +36,7 @@ std::string FftwRealInverse::version() { return fftwf_version; }
 FftwRealInverse::FftwRealInverse(std::array<std::size_t, 3> dims, int buffers) : dims_(dims) {
   const std::string size = std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " + std::to_string(dims[2]);
   for (int b = 0; b < buffers; ++b) {
-    halves_.push_back(fftwf_alloc_complex(half_count()));
+    halves_.push_back(reinterpret_cast<std::complex<float>*>(fftwf_alloc_complex(half_count())));
     reals_.push_back(fftwf_alloc_real(count()));
     if (!halves_.back() || !reals_.back()) {
       release();

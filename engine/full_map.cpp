@@ -77,8 +77,9 @@ TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeCon
   if (fft == MapFft::clfft)
     for (int s = 0; s < slots; ++s) slot_[s].f.resize(total);
   try {
-    const std::string options =
-        std::string("-cl-std=CL1.2") + (interpolation == Interpolation::tricubic ? " -D TRICUBIC" : "");
+    const std::string options = std::string("-cl-std=CL1.2") +
+                                (interpolation == Interpolation::tricubic ? " -D TRICUBIC" : "") +
+                                (fft == MapFft::fftw && spectra.conjugate_pairs() == 1 ? " -D CONJUGATE_PAIRS" : "");
     kernel_ = cl::Kernel(
         build_program(ctx, "full_map", kernel_source("spectrum_sample") + kernel_source("full_map"), options, cache)
             .program,
@@ -263,7 +264,7 @@ TranslationMap translational_energy_map(const FftLibrary& library, const Compute
                                         Interpolation interpolation, std::size_t modes,
                                         const ProgramCacheConfig& cache) {
   const auto start = std::chrono::steady_clock::now();
-  TranslationMapper mapper(library, ctx, spectra, interpolation, modes, cache);
+  TranslationMapper mapper(library, ctx, spectra, interpolation, modes, MapFft::clfft, cache);
   TranslationMap map = mapper.map(R);
   map.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return map;

@@ -1,10 +1,9 @@
 #pragma once
 // Which inverse FFT makes full maps fastest on this device at this size: every backend
 // this build has (engine/map_fft.h) maps the same few rotations through a
-// TranslationMapper, two in flight as in a search; the lowest median interval between
-// finished maps wins. The pick and its timings are cached per (device, driver, FFT size,
-// interpolation, backends built) under cache_root()/map_fft (io/cache_file.h), so a
-// size is measured once per device.
+// TranslationMapper, two in flight as in a search; the fewest seconds per map wins. The pick and its timings are cached
+// per (device, driver, FFT size, interpolation, backends built) under cache_root()/map_fft (io/cache_file.h), so a size
+// is measured once per device.
 #include <string>
 #include <vector>
 
@@ -15,7 +14,7 @@ namespace snapfit {
 
 struct MapFftTiming {
   MapFft fft = MapFft::clfft;
-  double seconds = 0;  // median seconds per map
+  double seconds = 0;  // seconds per map, two in flight
 };
 
 struct MapFftChoice {

@@ -34,6 +34,8 @@ __kernel void spectrum_product(__global const float2* s1, __global const float2*
 // H_k = (P_k + conj P_{-k}) / 2 (index -k taken mod N). H is fixed by the half
 // x = 0..dims.x/2 (layout x fastest, dims.x/2 + 1 per row), the input of a
 // complex-to-real inverse FFT: half the transform and a real map of half the bytes.
+// -D CONJUGATE_PAIRS: both parts' samples real, or both imaginary, so P_{-k} = conj P_k
+// (engine/spectra.h sample_parity) and H = P: one product per node instead of two.
 __kernel void spectrum_product_half(__global const float2* s1, __global const float2* s2, const int4 dims,
                                     const float4 length, const float16 pose, const float dw, const float max_w2,
                                     __global float2* half_product) {
@@ -42,7 +44,11 @@ __kernel void spectrum_product_half(__global const float2* s1, __global const fl
   if (k >= hx * dims.y * dims.z) return;
   const int x = k % hx, y = (k / hx) % dims.y, z = k / (hx * dims.y);
   const float2 p = product_at(s1, s2, dims, length, pose, dw, max_w2, x, y, z);
+#ifdef CONJUGATE_PAIRS
+  half_product[k] = p;
+#else
   const float2 q = product_at(s1, s2, dims, length, pose, dw, max_w2, (dims.x - x) % dims.x, (dims.y - y) % dims.y,
                               (dims.z - z) % dims.z);
   half_product[k] = 0.5f * (float2)(p.x + q.x, p.y - q.y);
+#endif
 }
