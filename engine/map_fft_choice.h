@@ -1,9 +1,10 @@
 #pragma once
 // Which inverse FFT makes full maps fastest on this device at this size: every backend
 // this build has (engine/map_fft.h) maps the same few rotations through a
-// TranslationMapper, two in flight as in a search; the fewest seconds per map wins. The pick and its timings are cached
-// per (device, driver, FFT size, interpolation, backends built) under cache_root()/map_fft (io/cache_file.h), so a size
-// is measured once per device.
+// TranslationMapper, two in flight as in a search; the fewest seconds per map wins.
+// The pick and its timings are cached per (device, driver, FFT size, interpolation, the
+// map kernels' source, backends built) under cache_root()/map_fft (io/cache_file.h), so
+// a size is measured once per device.
 #include <string>
 #include <vector>
 
