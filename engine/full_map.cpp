@@ -164,7 +164,7 @@ void TranslationMapper::submit(int slot, const Eigen::Matrix3d& R) {
 void TranslationMapper::finish_map(int slot, std::vector<float>& energy, MapStageSeconds* stages) {
   Slot& s = slot_[slot];
   auto t0 = std::chrono::steady_clock::now();
-  // value(j): Re f at FFT index j.
+  // Re f at FFT index j: real[j] (fftw) or s.f[j].real() (clfft).
   const float* real = nullptr;
 #ifdef SNAPFIT_HAVE_FFTW
   if (fft_kind_ == MapFft::fftw) {
@@ -245,9 +245,7 @@ MapStageSeconds TranslationMapper::time_stages(const Eigen::Matrix3d& R, std::ve
     rethrow(ctx_, e);
   }
   slot_[0].R = R;
-  const double fft = t.fft;
   finish_map(0, energy, &t);
-  if (fft_kind_ == MapFft::clfft) t.fft = fft;
   return t;
 }
 
