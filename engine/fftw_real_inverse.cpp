@@ -48,9 +48,10 @@ FftwRealInverse::FftwRealInverse(std::array<std::size_t, 3> dims, int buffers) :
   std::lock_guard<std::mutex> lock(planner_lock());
   static const bool threads = fftwf_init_threads() != 0;
   if (threads) fftwf_plan_with_nthreads(planner_threads());
+  bool from_cache = false;
   if (auto wisdom = read_cache_payload(path, kKind, kVersion, key, "FFTW wisdom", [](const std::string&) {})) {
     wisdom->push_back(0);
-    fftwf_import_wisdom_from_string(reinterpret_cast<const char*>(wisdom->data()));
+    from_cache = fftwf_import_wisdom_from_string(reinterpret_cast<const char*>(wisdom->data())) != 0;
   }
   // FFTW_MEASURE overwrites the arrays while it plans: nothing is in them yet.
   plan_ = fftwf_plan_dft_c2r_3d(int(dims[2]), int(dims[1]), int(dims[0]), reinterpret_cast<fftwf_complex*>(halves_[0]),
@@ -59,7 +60,7 @@ FftwRealInverse::FftwRealInverse(std::array<std::size_t, 3> dims, int buffers) :
     release();
     throw Error("FFTW cannot plan a real inverse FFT of " + size);
   }
-  if (char* text = fftwf_export_wisdom_to_string()) {
+  if (char* text = from_cache ? nullptr : fftwf_export_wisdom_to_string()) {
     const std::string wisdom(text);
     fftwf_free(text);
     try {
