@@ -18,6 +18,7 @@
 #include "cli/search_ranks.h"
 #include "core/progress.h"
 #include "core/so3_grid.h"
+#include "engine/map_fft_choice.h"
 #include "engine/pose_descent.h"
 #include "engine/query_engine.h"
 #include "engine/rotation_search.h"
@@ -43,6 +44,7 @@ struct SearchOptions {
   std::size_t modes = 0;
   std::size_t refine_modes = 65536;
   std::size_t refine_queries = 200;
+  std::string map_fft = "auto";  // auto: measured per (device, size), engine/map_fft_choice.h
 };
 
 std::string device_for_rank(const std::string& list, int local_rank) {
@@ -143,14 +145,31 @@ void run_search(const SearchOptions& opt, const SearchRanks& ranks) {
   std::unique_ptr<ComputeContext> ctx;
   std::unique_ptr<FftLibrary> fft;
   std::unique_ptr<TranslationMapper> mapper;
-  try {
-    ctx = std::make_unique<ComputeContext>(
-        make_compute_context(select_device(device_for_rank(opt.devices, ranks.local_rank()))));
-    fft = std::make_unique<FftLibrary>();
-    mapper = std::make_unique<TranslationMapper>(*fft, *ctx, pair.spectra, interpolation, opt.modes);
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
+  std::string fft_used;
+  // Rank 0 measures the inverse FFTs first (alone on the machine), so the other ranks on
+  // the same kind of device find its pick in the cache.
+  auto make_mapper = [&] {
+    try {
+      ctx = std::make_unique<ComputeContext>(
+          make_compute_context(select_device(device_for_rank(opt.devices, ranks.local_rank()))));
+      fft = std::make_unique<FftLibrary>();
+      MapFft kind = MapFft::clfft;
+      if (opt.map_fft == "auto") {
+        const MapFftChoice choice = choose_map_fft(*fft, *ctx, pair.spectra, interpolation, opt.modes);
+        kind = choice.fft;
+        fft_used = describe_map_fft_choice(choice);
+      } else {
+        kind = parse_map_fft(opt.map_fft);
+        fft_used = map_fft_name(kind) + " (--map-fft)";
+      }
+      mapper = std::make_unique<TranslationMapper>(*fft, *ctx, pair.spectra, interpolation, opt.modes, kind);
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  };
+  if (ranks.root()) make_mapper();
+  ranks.checkpoint(error);
+  if (!ranks.root()) make_mapper();
   ranks.checkpoint(error);
   if (ranks.root()) {
     const auto& d = pair.spectra.dims;
@@ -159,7 +178,8 @@ void run_search(const SearchOptions& opt, const SearchRanks& ranks) {
               << so3_covering_radius(grid) / kDeg << " deg\n"
               << "maps: " << d[0] << " x " << d[1] << " x " << d[2] << " translations, spacing " << pair.spectra.spacing
               << " " << pair.scene.units << ", " << opt.interpolation << ", " << ranks.size()
-              << (ranks.size() == 1 ? " rank" : " ranks") << "\n";
+              << (ranks.size() == 1 ? " rank" : " ranks") << "\n"
+              << "map FFT: " << fft_used << "\n";
   }
   std::vector<std::size_t> mine;
   for (std::size_t r = std::size_t(ranks.rank()); r < grid.rotations.size(); r += std::size_t(ranks.size()))
@@ -218,6 +238,7 @@ void run_search(const SearchOptions& opt, const SearchRanks& ranks) {
     nlohmann::json line = pose_json(top[k].pose);
     line["rank"] = k + 1;
     line["energy"] = top[k].energy;
+    line["map_fft"] = map_fft_name(mapper->fft());
     try {
       const DescentResult refined = descend_pose(*engine, top[k].pose, descent);
       nlohmann::json r = pose_json(refined.pose);
@@ -259,6 +280,8 @@ void add_search_command(CLI::App& app) {
   cmd->add_option("--refine-modes", opt->refine_modes, "Modes of the refining queries (default 65536)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--refine-queries", opt->refine_queries, "Queries per refined pose at most (default 200)");
+  cmd->add_option("--map-fft", opt->map_fft,
+                  "Inverse FFT of the maps: auto (the fastest, measured once per device and size), clfft or fftw");
   cmd->callback([opt] {
     const SearchRanks ranks;
     try {

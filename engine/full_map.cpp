@@ -6,6 +6,9 @@
 #include <limits>
 
 #include "engine/kernel_sources.h"
+#ifdef SNAPFIT_HAVE_FFTW
+#include "engine/fftw_real_inverse.h"
+#endif
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -35,17 +38,29 @@ float low_pass_w2(const PairSpectra& spectra, std::size_t modes) {
 }  // namespace
 
 struct TranslationMapper::Slot {
-  std::vector<Complex> f;  // the inverse FFT, read back
+  std::vector<Complex> f;  // clfft: the complex inverse FFT, read back
   cl::Event read;
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   bool pending = false;
 };
 
+#ifdef SNAPFIT_HAVE_FFTW
+struct TranslationMapper::HostFft {
+  FftwRealInverse fft;  // one buffer pair per slot
+  explicit HostFft(const std::array<std::size_t, 3>& dims) : fft(dims, slots) {}
+};
+#else
+struct TranslationMapper::HostFft {};
+#endif
+
 TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeContext& ctx, const PairSpectra& spectra,
-                                     Interpolation interpolation, std::size_t modes, const ProgramCacheConfig& cache)
-    : ctx_(ctx), spectra_(spectra), max_w2_(low_pass_w2(spectra, modes)), slot_(new Slot[slots]) {
+                                     Interpolation interpolation, std::size_t modes, MapFft fft,
+                                     const ProgramCacheConfig& cache)
+    : ctx_(ctx), spectra_(spectra), max_w2_(low_pass_w2(spectra, modes)), fft_kind_(fft), slot_(new Slot[slots]) {
+  parse_map_fft(map_fft_name(fft));  // throws for a backend this build lacks
   const auto& dims = spectra.dims;
   const std::size_t total = dims[0] * dims[1] * dims[2];
+  const std::size_t half = (dims[0] / 2 + 1) * dims[1] * dims[2];
   // Regular order: translation index j' from -floor(N/2) to N - 1 - floor(N/2) per axis;
   // its FFT index is j = j' mod N.
   grid_.spacing = spectra.spacing;
@@ -59,22 +74,24 @@ TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeCon
                           jz = (z + dims[2] - dims[2] / 2) % dims[2];
         fft_index_[x + dims[0] * (y + dims[1] * z)] = jx + dims[0] * (jy + dims[1] * jz);
       }
-  for (int s = 0; s < slots; ++s) slot_[s].f.resize(total);
+  if (fft == MapFft::clfft)
+    for (int s = 0; s < slots; ++s) slot_[s].f.resize(total);
   try {
-    const std::string options =
-        std::string("-cl-std=CL1.2") + (interpolation == Interpolation::tricubic ? " -D TRICUBIC" : "");
+    const std::string options = std::string("-cl-std=CL1.2") +
+                                (interpolation == Interpolation::tricubic ? " -D TRICUBIC" : "") +
+                                (fft == MapFft::fftw && spectra.conjugate_pairs() == 1 ? " -D CONJUGATE_PAIRS" : "");
     kernel_ = cl::Kernel(
         build_program(ctx, "full_map", kernel_source("spectrum_sample") + kernel_source("full_map"), options, cache)
             .program,
-        "spectrum_product");
+        fft == MapFft::clfft ? "spectrum_product" : "spectrum_product_half");
     auto upload = [&](const std::vector<Complex>& v) {
       return cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * v.size(),
                         const_cast<Complex*>(v.data()));
     };
     s1_ = upload(spectra.part1.rho);
     s2_ = upload(spectra.part2.rho);
-    product_ = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * total);
-    result_ = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * total);
+    product_ = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * (fft == MapFft::clfft ? total : half));
+    if (fft == MapFft::clfft) result_ = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * total);
     kernel_.setArg(0, s1_);
     kernel_.setArg(1, s2_);
     kernel_.setArg(2, cl_int4{{int(dims[0]), int(dims[1]), int(dims[2]), 0}});
@@ -86,29 +103,56 @@ TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeCon
   } catch (const cl::Error& e) {
     rethrow(ctx, e);
   }
-  fft_ = std::make_unique<Fft3d>(library, ctx, dims);
+  if (fft == MapFft::clfft) fft_ = std::make_unique<Fft3d>(library, ctx, dims);
+#ifdef SNAPFIT_HAVE_FFTW
+  if (fft == MapFft::fftw) host_fft_ = std::make_unique<HostFft>(dims);
+#endif
 }
 
 TranslationMapper::~TranslationMapper() {
   for (int s = 0; s < slots; ++s)
-    if (slot_[s].pending) slot_[s].read.wait();  // the read writes into the slot's vector
+    if (slot_[s].pending) slot_[s].read.wait();  // the read writes into the slot's host buffer
 }
 
-void TranslationMapper::submit(int slot, const Eigen::Matrix3d& R) {
-  Slot& s = slot_[slot];
-  const std::size_t total = fft_index_.size();
+void TranslationMapper::enqueue_product(const Eigen::Matrix3d& R) {
   const Eigen::Vector3d shift = R * spectra_.part2.centre - spectra_.part1.centre;
   cl_float16 pose{};
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) pose.s[3 * r + c] = static_cast<float>(R(r, c));
   for (int a = 0; a < 3; ++a) pose.s[9 + a] = static_cast<float>(shift[a]);
+  const auto& d = spectra_.dims;
+  kernel_.setArg(4, pose);
+  ctx_.queue.enqueueNDRangeKernel(
+      kernel_, cl::NullRange,
+      cl::NDRange(fft_kind_ == MapFft::clfft ? d[0] * d[1] * d[2] : (d[0] / 2 + 1) * d[1] * d[2]));
+}
+
+void TranslationMapper::enqueue_fft() {
+  if (fft_kind_ == MapFft::clfft)
+    fft_->enqueue(FftDirection::inverse, product_, result_);  // f(t_j) = sum_k P_k e^{2 pi i k.j / N}
+}
+
+void TranslationMapper::enqueue_read(int slot, cl::Event* done) {
+  Slot& s = slot_[slot];
+  if (fft_kind_ == MapFft::clfft) {
+    ctx_.queue.enqueueReadBuffer(result_, CL_FALSE, 0, sizeof(Complex) * s.f.size(), s.f.data(), nullptr, done);
+    return;
+  }
+#ifdef SNAPFIT_HAVE_FFTW
+  const FftwRealInverse& host = host_fft_->fft;
+  ctx_.queue.enqueueReadBuffer(product_, CL_FALSE, 0, sizeof(Complex) * host.half_count(), host.half(slot), nullptr,
+                               done);
+#endif
+}
+
+void TranslationMapper::submit(int slot, const Eigen::Matrix3d& R) {
+  Slot& s = slot_[slot];
   try {
     if (s.pending) s.read.wait();  // an uncollected map is dropped
     s.pending = false;
-    kernel_.setArg(4, pose);
-    ctx_.queue.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(total));
-    fft_->enqueue(FftDirection::inverse, product_, result_);  // f(t_j) = sum_k P_k e^{2 pi i k.j / N}
-    ctx_.queue.enqueueReadBuffer(result_, CL_FALSE, 0, sizeof(Complex) * total, s.f.data(), nullptr, &s.read);
+    enqueue_product(R);
+    enqueue_fft();
+    enqueue_read(slot, &s.read);
     ctx_.queue.flush();
   } catch (const cl::Error& e) {
     rethrow(ctx_, e);
@@ -117,15 +161,22 @@ void TranslationMapper::submit(int slot, const Eigen::Matrix3d& R) {
   s.pending = true;
 }
 
-void TranslationMapper::collect(int slot, std::vector<float>& energy) {
+void TranslationMapper::finish_map(int slot, std::vector<float>& energy, MapStageSeconds* stages) {
   Slot& s = slot_[slot];
-  if (!s.pending) throw Error("full map: slot " + std::to_string(slot) + " has no map submitted");
-  try {
-    s.read.wait();
-  } catch (const cl::Error& e) {
-    rethrow(ctx_, e);
+  auto t0 = std::chrono::steady_clock::now();
+  // Re f at FFT index j: real[j] (fftw) or s.f[j].real() (clfft).
+  const float* real = nullptr;
+#ifdef SNAPFIT_HAVE_FFTW
+  if (fft_kind_ == MapFft::fftw) {
+    host_fft_->fft.execute(slot);  // Re f = inverse FFT of the Hermitian part (kernels/full_map.cl)
+    real = host_fft_->fft.real(slot);
+    if (stages) {
+      const auto t1 = std::chrono::steady_clock::now();
+      stages->fft = std::chrono::duration<double>(t1 - t0).count();
+      t0 = t1;
+    }
   }
-  s.pending = false;
+#endif
   // Same aliasing rule as the pose queries (engine/pose_query.cpp), per axis: the
   // translation t aliases when |t + R c2 - c1| + reach > L on some axis.
   const Eigen::Vector3d shift = s.R * spectra_.part2.centre - spectra_.part1.centre;
@@ -142,8 +193,60 @@ void TranslationMapper::collect(int slot, std::vector<float>& energy) {
   for (int z = 0; z < grid_.dims.z(); ++z)
     for (int y = 0; y < grid_.dims.y(); ++y) {
       const bool row = inside[2][z] && inside[1][y];
-      for (int x = 0; x < grid_.dims.x(); ++x, ++g) energy[g] = row && inside[0][x] ? -s.f[fft_index_[g]].real() : nan;
+      if (real)
+        for (int x = 0; x < grid_.dims.x(); ++x, ++g) energy[g] = row && inside[0][x] ? -real[fft_index_[g]] : nan;
+      else
+        for (int x = 0; x < grid_.dims.x(); ++x, ++g)
+          energy[g] = row && inside[0][x] ? -s.f[fft_index_[g]].real() : nan;
     }
+  if (stages) stages->host = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void TranslationMapper::collect(int slot, std::vector<float>& energy) {
+  Slot& s = slot_[slot];
+  if (!s.pending) throw Error("full map: slot " + std::to_string(slot) + " has no map submitted");
+  try {
+    s.read.wait();
+  } catch (const cl::Error& e) {
+    rethrow(ctx_, e);
+  }
+  s.pending = false;
+  finish_map(slot, energy, nullptr);
+}
+
+MapStageSeconds TranslationMapper::time_stages(const Eigen::Matrix3d& R, std::vector<float>& energy) {
+  for (int s = 0; s < slots; ++s)
+    if (slot_[s].pending) slot_[s].read.wait();
+  slot_[0].pending = slot_[1].pending = false;
+  MapStageSeconds t;
+  using Clock = std::chrono::steady_clock;
+  auto lap = [last = Clock::now()]() mutable {
+    const auto now = Clock::now();
+    const double s = std::chrono::duration<double>(now - last).count();
+    last = now;
+    return s;
+  };
+  try {
+    ctx_.queue.finish();
+    lap();
+    enqueue_product(R);
+    ctx_.queue.finish();
+    t.product = lap();
+    if (fft_kind_ == MapFft::clfft) {
+      enqueue_fft();
+      ctx_.queue.finish();
+      t.fft = lap();
+    }
+    cl::Event read;
+    enqueue_read(0, &read);
+    read.wait();
+    t.read = lap();
+  } catch (const cl::Error& e) {
+    rethrow(ctx_, e);
+  }
+  slot_[0].R = R;
+  finish_map(0, energy, &t);
+  return t;
 }
 
 TranslationMap TranslationMapper::map(const Eigen::Matrix3d& R) {
@@ -159,7 +262,7 @@ TranslationMap translational_energy_map(const FftLibrary& library, const Compute
                                         Interpolation interpolation, std::size_t modes,
                                         const ProgramCacheConfig& cache) {
   const auto start = std::chrono::steady_clock::now();
-  TranslationMapper mapper(library, ctx, spectra, interpolation, modes, cache);
+  TranslationMapper mapper(library, ctx, spectra, interpolation, modes, MapFft::clfft, cache);
   TranslationMap map = mapper.map(R);
   map.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return map;

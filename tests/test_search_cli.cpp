@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "engine/map_fft.h"
 #include "pipeline/prepare_parts.h"
 #include "snapfit/scene.h"
 #include "test_support.h"
@@ -90,6 +91,29 @@ TEST_CASE("snapfit search: on the shipped peg and hole the assembled pose comes 
   const std::size_t grid_at = run.output.find("SO(3) grid: ");
   REQUIRE(grid_at != std::string::npos);
   CHECK(rows == 1 + std::stoul(run.output.substr(grid_at + 12)));
+
+  // Every inverse FFT built finds the same top pose (a grid point, so exactly), its
+  // energy equal to single-precision rounding; the output names the FFT used.
+  CHECK(run.output.find("map FFT: ") != std::string::npos);
+  for (const MapFft kind : map_ffts_built()) {
+    const test::Command forced =
+        test::run_command(std::string(SNAPFIT_CLI_PATH) + " search " + scene_file +
+                              " --rotations 48 --top 1 --refine-queries 1 --map-fft " + map_fft_name(kind),
+                          false);
+    INFO(forced.output);
+    REQUIRE(forced.status == 0);
+    CHECK(forced.output.find("map FFT: " + map_fft_name(kind) + " (--map-fft)") != std::string::npos);
+    nlohmann::json top;
+    std::istringstream forced_lines(forced.output);
+    for (std::string line; std::getline(forced_lines, line);)
+      if (!line.empty() && line[0] == '{') top = nlohmann::json::parse(line);
+    REQUIRE(top.contains("energy"));
+    CHECK(top["map_fft"] == map_fft_name(kind));
+    CHECK(top["position"] == poses[0]["position"]);
+    CHECK(top["rotation_axis"] == poses[0]["rotation_axis"]);
+    CHECK(top["rotation_deg"] == poses[0]["rotation_deg"]);
+    CHECK(std::abs(double(top["energy"]) - double(poses[0]["energy"])) <= 1e-5 * std::abs(double(poses[0]["energy"])));
+  }
 
   const test::Command both =
       test::run_command(std::string(SNAPFIT_CLI_PATH) + " search " + scene_file + " --rotations 10 --step-deg 20");
