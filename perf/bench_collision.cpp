@@ -298,12 +298,9 @@ int run(int argc, char** argv) {
                        {"query_p50_us", bench::num(r.p50_us)},
                        {"query_p99_us", bench::num(r.p99_us)}});
     }
-  const nlohmann::json report = {{"command", bench::command_line(argc, argv)},
-                                 {"date", bench::now_iso()},
-                                 {"device", describe_device(ctx.device.info)},
-                                 {"quick", quick},
-                                 {"rows", jrows},
-                                 {"load_average", {{"start", load_start}, {"end", bench::read_loadavg()}}}};
+  nlohmann::json report = bench::run_record(argc, argv, describe_device(ctx.device.info), load_start);
+  report["quick"] = quick;
+  report["rows"] = jrows;
   std::ofstream(fs::path(out) / "collision.json") << report.dump(2) << "\n";
 
   Chart agreement;

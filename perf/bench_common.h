@@ -130,6 +130,14 @@ inline std::string now_iso() {
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S%z", std::localtime(&t));
   return buf;
 }
+// The header every benchmark's JSON report starts with: what ran, when, where, and the
+// load average before and after (this machine is shared; the load says how far to trust it).
+inline nlohmann::json run_record(int argc, char** argv, const std::string& device, const std::string& load_start) {
+  return {{"command", command_line(argc, argv)},
+          {"date", now_iso()},
+          {"device", device},
+          {"load_average", {{"start", load_start}, {"end", read_loadavg()}}}};
+}
 
 // CPU time used by the whole machine (non-idle, all cores) and by this process (all its
 // threads, the OpenCL device's worker threads included), in core-seconds: over an

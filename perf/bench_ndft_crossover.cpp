@@ -146,12 +146,9 @@ int run(int argc, char** argv) {
     jpoints.push_back(
         {{"n", p.n}, {"balls", p.balls}, {"direct_s", bench::num(p.direct_s)}, {"nufft_s", bench::num(p.nufft_s)}});
   }
-  const nlohmann::json report = {{"command", bench::command_line(argc, argv)},
-                                 {"date", bench::now_iso()},
-                                 {"device", describe_device(ctx.device.info)},
-                                 {"points", jpoints},
-                                 {"crossings", crossings},
-                                 {"load_average", {{"start", load_start}, {"end", bench::read_loadavg()}}}};
+  nlohmann::json report = bench::run_record(argc, argv, describe_device(ctx.device.info), load_start);
+  report["points"] = jpoints;
+  report["crossings"] = crossings;
   std::ofstream(fs::path(out) / "crossover.json") << report.dump(2) << "\n";
   Chart chart;
   chart.title = "Ball spectrum onto n^3 modes: direct NDFT and NUFFT against the ball count";
