@@ -11,6 +11,35 @@ std::string number(double v) {
   return out.str();
 }
 
+// Where each part's spectrum comes from, and which path docs/spheres.md recommends
+// ("Which path wins where": the grid path, at every setting measured).
+void add_spectrum_source(ComputePlan& plan, const Scene& scene) {
+  const PartDescriptorSpec* parts[2] = {&scene.part1.descriptor, &scene.part2.descriptor};
+  bool any_spheres = false;
+  for (int p = 0; p < 2; ++p) {
+    const PartDescriptorSpec& d = *parts[p];
+    if (d.source != SpectrumSource::spheres) continue;
+    any_spheres = true;
+    const std::string part = "part " + std::to_string(p + 1);
+    plan.lines.push_back(part + "'s spectrum: seed 001's balls (tolerance " +
+                         (d.tolerance ? number(*d.tolerance) : std::string("the grid spacing")) + ", protrusion " +
+                         number(d.protrusion) + "), their analytic transforms summed by " +
+                         (d.method == "auto" ? std::string("the direct NDFT or the type-1 NUFFT, whichever the "
+                                                           "ball count and lattice make faster")
+                                             : "the " + d.method + " NDFT"));
+    plan.warnings.push_back(part +
+                            " takes its spectrum from balls: \"source\": \"grid\" is recommended. The balls' "
+                            "density counts overlapping balls with multiplicity, so its spectrum is not the part's "
+                            "indicator's, and the decomposition itself needs the part's fields on a grid as fine "
+                            "as the grid path's: slower and less accurate at every setting measured "
+                            "(docs/spheres.md \"Which path wins where\")");
+  }
+  if (!any_spheres)
+    plan.lines.push_back(
+        "spectrum source: the grid for both parts (fields sampled, then FFT), the path docs/spheres.md recommends "
+        "over seed 001's balls");
+}
+
 }  // namespace
 
 ComputePlan plan_computation(const Scene& scene) {
@@ -31,6 +60,7 @@ ComputePlan plan_computation(const Scene& scene) {
         "fields: winding number (indicator) only: the scene asks for collision response, "
         "so no signed distance or skeletal density is computed");
   }
+  add_spectrum_source(plan, scene);
   plan.lines.push_back(plan.rotation
                            ? "spectra: both parts', and part 2's deconvolved for its exact rotation (6-DOF motion)"
                            : "spectra: both parts' (translation-only motion: part 2 never turns)");

@@ -1,5 +1,6 @@
 // The compute plan (pipeline/compute_plan.h) on shipped scenes: what it decides, and the
-// under-resolution warning when the skeletal density is narrower than the grid spacing.
+// under-resolution warning when the skeletal density is narrower than the grid spacing,
+// and the spectrum source each part takes.
 #include <doctest/doctest.h>
 
 #include "pipeline/assembly_pair.h"
@@ -33,6 +34,29 @@ TEST_CASE("compute plan: 6-DOF scenes get part 2's deconvolved spectrum and a to
   const ComputePlan pt = plan_computation(line);
   CHECK_FALSE(pt.rotation);
   CHECK_FALSE(pt.torque);
+}
+
+TEST_CASE("compute plan: a part with spectra from balls is named, with the grid path recommended; grid scenes say so") {
+  Scene scene = load_scene(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/collision_only.json");
+  const ComputePlan grid = plan_computation(scene);
+  CHECK(grid.warnings.empty());
+  const auto has_line = [](const ComputePlan& plan, const std::string& text) {
+    for (const std::string& line : plan.lines)
+      if (line.find(text) != std::string::npos) return true;
+    return false;
+  };
+  CHECK(has_line(grid, "spectrum source: the grid for both parts"));
+
+  scene.part2.descriptor.source = SpectrumSource::spheres;
+  scene.part2.descriptor.method = "direct";
+  const ComputePlan balls = plan_computation(scene);
+  CHECK(has_line(balls, "part 2's spectrum: seed 001's balls (tolerance the grid spacing, protrusion 0.25)"));
+  CHECK(has_line(balls, "summed by the direct NDFT"));
+  CHECK_FALSE(has_line(balls, "part 1's spectrum"));
+  CHECK_FALSE(has_line(balls, "spectrum source: the grid for both parts"));
+  REQUIRE(balls.warnings.size() == 1);
+  CHECK(balls.warnings[0].find("part 2 takes its spectrum from balls") == 0);
+  CHECK(balls.warnings[0].find("\"source\": \"grid\" is recommended") != std::string::npos);
 }
 
 }  // namespace snapfit

@@ -104,6 +104,11 @@ TEST_CASE("sphere spectra: scene-check and query on a scene with two spheres par
   const test::Command check = test::run_command(cli + " scene-check " + scene);
   INFO(check.output);
   CHECK(check.status == 0);
+  // The plan names both parts' balls and recommends the grid path for each.
+  CHECK(check.output.find("part 1's spectrum: seed 001's balls (tolerance 2.5") != std::string::npos);
+  CHECK(check.output.find("part 2's spectrum: seed 001's balls (tolerance 2.5") != std::string::npos);
+  CHECK(check.output.find("warning: part 2 takes its spectrum from balls: \"source\": \"grid\" is recommended") !=
+        std::string::npos);
   const test::Command query = test::run_command(cli + " query " + scene + " --pose 0,0,8 --pose 12,0,-5", false);
   INFO(query.output);
   REQUIRE(query.status == 0);
