@@ -35,6 +35,7 @@ struct RunOptions {
   double margin = 0.25;
   bool retune = false;
   bool simulated_time = false;
+  std::string loop_wait = "spin";
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
@@ -103,6 +104,7 @@ void run_vps_job(const RunOptions& opt, const AssemblyPair& pair, std::chrono::s
               << " s of " << (opt.simulated_time ? "simulated" : "real") << " time, Voxmap PointShell)\n";
     SessionOptions session;
     session.simulated_time = opt.simulated_time;
+    session.wait = parse_loop_wait(opt.loop_wait);
     record.session = run_scripted_session(scene, pair.grids.spacing, vps_loop_config(scene, model, coupling),
                                           vps_evaluator(model), session);
     print_loop(scene, *record.session);
@@ -210,6 +212,7 @@ void run_main_job(const RunOptions& opt) {
               << ")\n";
     SessionOptions session;
     session.simulated_time = opt.simulated_time;
+    session.wait = parse_loop_wait(opt.loop_wait);
     record.session =
         run_scripted_assembly(scene, pair.part(2).mesh, pair.spectra.spacing, *loop_engine, record.tuning, session);
     if (record.session->priority.failed)
@@ -239,6 +242,10 @@ void add_run_command(CLI::App& app) {
   cmd->add_flag("--retune", opt->retune, "Measure m' again even when the tuning file matches");
   cmd->add_flag("--simulated-time", opt->simulated_time,
                 "Run the loop on simulated time: deterministic, as fast as the queries go, no timing meaning");
+  cmd->add_option("--loop-wait", opt->loop_wait,
+                  "How the loop waits for its tick: spin (default; keeps a core awake, fewest late frames on a "
+                  "virtual machine) or sleep (frees the core between frames; SCHED_FIFO where allowed)")
+      ->check(CLI::IsMember({"spin", "sleep"}));
   cmd->callback([opt] { run_main_job(*opt); });
 }
 

@@ -7,11 +7,14 @@
 //
 //   ./build/perf/bench_haptic_loop [--scene scenes/default.json] [--seconds 60]
 //                                  [--retune] [--margin 0.25] [--device SPEC] [--quick]
+//                                  [--wait spin|sleep]
 //                                  [--out results/bench_haptic_loop]
 // --device: the OpenCL device (as `snapfit --device`); default: PoCL's single-threaded
 // driver when there is one, which `snapfit run` picks for the loop, else the default.
 // --margin: the tuner keeps the p99 at most (1 - margin) of the frame budget (its own
 // tuning file per margin).
+// --wait: how the loop waits for its tick (snapfit/haptic_loop.h LoopWait; default spin,
+// as `snapfit run`).
 // --quick: 3 s of loop (CI proves it runs; no timing is checked).
 #include <filesystem>
 #include <fstream>
@@ -37,6 +40,7 @@ int main(int argc, char** argv) try {
   std::string scene_path = "scenes/default.json", out_dir = "results/bench_haptic_loop", device_spec;
   double seconds = 60, margin = 0.25;
   bool retune = false, quick = false;
+  LoopWait wait = LoopWait::spin;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (bench::is_option(a, "--scene"))
@@ -53,6 +57,8 @@ int main(int argc, char** argv) try {
       margin = std::stod(bench::option_value(argc, argv, i, "--margin"));
     else if (a == "--quick")
       quick = true;
+    else if (bench::is_option(a, "--wait"))
+      wait = parse_loop_wait(bench::option_value(argc, argv, i, "--wait"));
     else
       throw Error("unknown option " + a + " (see the comment at the top of perf/bench_haptic_loop.cpp)");
   }
@@ -84,6 +90,7 @@ int main(int argc, char** argv) try {
   session.duration_s = seconds;
   session.loop_back = true;
   session.keep_log = true;  // the missed frames' details below
+  session.wait = wait;
   auto major_faults = [] {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
@@ -107,7 +114,7 @@ int main(int argc, char** argv) try {
             << quantile(loop.wake_late_ms, 0.99) << ", max " << quantile(loop.wake_late_ms, 1.0) << "\n"
             << "m' tuned " << tuned.result.chosen_modes << ", final " << loop.final_modes << ", "
             << loop.mode_changes.size() << " changes; seed 000 (published, K20c, translation only): 4096\n"
-            << "thread priority: " << run.priority.describe()
+            << "loop wait: " << loop_wait_name(run.wait) << "; thread priority: " << run.priority.describe()
             << "; major page faults during the loop: " << loop_major_faults << "\n"
             << "load average: start " << load_start << ", end " << load_end << "\n";
 
@@ -174,6 +181,7 @@ int main(int argc, char** argv) try {
       {"missed_by_work",
        {{"woke_late", late}, {"within_1_5x_model", tail}, {"1_5x_to_4x", slow}, {"beyond_4x", stall}}},
       {"seed000_published_modes", 4096},
+      {"wait", loop_wait_name(run.wait)},
       {"priority",
        {{"threads_raised", run.priority.threads},
         {"realtime", run.priority.realtime},

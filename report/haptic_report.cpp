@@ -126,6 +126,7 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
           {"final_error", {{"position", run.final_error.position}, {"angle_deg", run.final_error.angle_deg}}},
           {"tolerance", {{"position", run.position_tolerance}, {"angle_deg", run.angle_tolerance_deg}}},
           {"assembled", run.assembled},
+          {"wait", loop_wait_name(run.wait)},
           {"priority",
            {{"threads_raised", run.priority.threads},
             {"realtime", run.priority.realtime},

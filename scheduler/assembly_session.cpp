@@ -38,7 +38,10 @@ SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfi
   part.pose = device.read(0).pose;  // the part starts in the user's hand
   const bool raise =
       (options.priority.nice_value != 0 || options.priority.realtime_priority > 0) && !options.simulated_time;
-  if (raise) out.priority = raise_process_priority(options.priority);
+  PriorityRequest priority = options.priority;
+  if (options.wait == LoopWait::spin) priority.realtime_priority = 0;  // a spinning SCHED_FIFO thread is throttled
+  if (raise) out.priority = raise_process_priority(priority);
+  out.wait = options.wait;
   {
     // Warm-up at the loop's m' and the first pose, as a haptics program does before it
     // engages the device: the runtime's threads, now at their new priority, and the
@@ -46,7 +49,7 @@ SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfi
     if (!options.simulated_time)
       for (int i = 0; i < options.warmup_queries; ++i) evaluator.evaluate(part.pose);
     HapticLoopThread loop(device, evaluator, config, part,
-                          options.simulated_time ? simulated_loop_clock() : steady_loop_clock());
+                          options.simulated_time ? simulated_loop_clock() : steady_loop_clock(options.wait));
     out.loop = loop.join();
   }
   if (raise) restore_process_priority(out.priority);

@@ -20,9 +20,12 @@ struct SessionOptions {
   bool loop_back = false;            // replay the trajectory back and forth (long runs)
   bool keep_log = true;
   bool simulated_time = false;  // snapfit/haptic_loop.h simulated_loop_clock (deterministic)
+  // How the loop waits for its tick (snapfit/haptic_loop.h LoopWait).
+  LoopWait wait = LoopWait::spin;
   // The run's threads during the loop (scheduler/thread_priority.h), restored after it:
-  // SCHED_FIFO 10 where allowed, else nice -10. {0, 0} leaves them.
-  PriorityRequest priority{-10, 10};
+  // nice -20 when the loop spins; when it sleeps, SCHED_FIFO 10 where allowed, else nice
+  // -20. {0, 0} leaves them.
+  PriorityRequest priority{-20, 10};
   int warmup_queries = 50;  // queries at the first pose before the loop starts
 };
 
@@ -38,6 +41,7 @@ struct SessionResult {
   double angle_tolerance_deg = 0;
   bool assembled = false;   // final_error within the tolerances
   PriorityChange priority;  // what raising the threads' priority did
+  LoopWait wait = LoopWait::spin;
 };
 
 // Runs the loop on its own thread on the steady clock and waits for it. Throws

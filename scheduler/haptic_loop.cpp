@@ -16,17 +16,30 @@
 
 namespace snapfit {
 
-LoopClock steady_loop_clock() {
+const char* loop_wait_name(LoopWait wait) { return wait == LoopWait::spin ? "spin" : "sleep"; }
+
+LoopWait parse_loop_wait(const std::string& name) {
+  if (name == "spin") return LoopWait::spin;
+  if (name == "sleep") return LoopWait::sleep;
+  throw Error("loop wait '" + name + "': expected spin or sleep");
+}
+
+LoopClock steady_loop_clock(LoopWait wait) {
   using Clock = std::chrono::steady_clock;
   const auto origin = Clock::now();
   LoopClock c;
   c.now = [origin] { return std::chrono::duration<double>(Clock::now() - origin).count(); };
-  c.wait_until = [origin](double t) {
+  c.wait_until = [origin, wait](double t) {
     const auto deadline = origin + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t));
-    // Sleep through most of the wait (the OS wakes us late by up to ~0.1 ms), spin the rest.
-    const auto wake = deadline - std::chrono::microseconds(200);
-    if (Clock::now() < wake) std::this_thread::sleep_until(wake);
-    while (Clock::now() < deadline) std::this_thread::yield();
+    if (wait == LoopWait::sleep) {
+      // Sleep through most of the wait (the OS wakes us late by up to ~0.1 ms), spin the rest.
+      const auto wake = deadline - std::chrono::microseconds(200);
+      if (Clock::now() < wake) std::this_thread::sleep_until(wake);
+      while (Clock::now() < deadline) std::this_thread::yield();
+      return;
+    }
+    while (Clock::now() < deadline) {
+    }
   };
   return c;
 }

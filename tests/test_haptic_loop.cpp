@@ -159,25 +159,43 @@ TEST_CASE("haptic loop: invalid configurations are refused with a reason") {
                        doctest::Contains("never end"), Error);
 }
 
-TEST_CASE("haptic loop: on the real clock, on its own thread, ticks follow absolute deadlines") {
-  FixedDevice device;
-  std::size_t calls = 0;
-  WrenchEvaluator cheap{[&calls](const Pose&) {
-                          ++calls;
-                          return QueryResult{};
-                        },
-                        nullptr};
-  HapticLoopThread loop(device, cheap, config(0.5), BodyState{});
-  const LoopReport r = loop.join();
-  // Absolute deadlines: exactly 500 ticks in 0.5 s, however late the thread wakes on a
-  // loaded machine (late frames are misses; how rare they are is measured by
-  // perf/bench_haptic_loop, not asserted here).
-  CHECK(r.ticks == 500);
-  CHECK(r.frames + r.skipped_ticks == 500);
-  CHECK(r.misses <= r.frames);
-  CHECK(r.elapsed_s >= 0.499);
-  CHECK(calls == r.frames);
-  CHECK(r.frame_ms.size() == r.frames);
+TEST_CASE("haptic loop: the steady clock's waits, spinning and sleeping, return at or after the deadline") {
+  for (const LoopWait wait : {LoopWait::spin, LoopWait::sleep}) {
+    CAPTURE(loop_wait_name(wait));
+    const LoopClock clock = steady_loop_clock(wait);
+    for (const double ahead : {0.0, 0.0001, 0.003}) {
+      const double deadline = clock.now() + ahead;
+      clock.wait_until(deadline);
+      CHECK(clock.now() >= deadline);
+    }
+    clock.wait_until(clock.now() - 1.0);  // a deadline already passed returns at once
+    CHECK(parse_loop_wait(loop_wait_name(wait)) == wait);
+  }
+  CHECK_THROWS_WITH_AS(parse_loop_wait("busy"), doctest::Contains("expected spin or sleep"), Error);
+}
+
+TEST_CASE("haptic loop: on the real clock, on its own thread, ticks follow absolute deadlines, spinning or sleeping") {
+  for (const LoopWait wait : {LoopWait::spin, LoopWait::sleep}) {
+    CAPTURE(loop_wait_name(wait));
+    FixedDevice device;
+    std::size_t calls = 0;
+    WrenchEvaluator cheap{[&calls](const Pose&) {
+                            ++calls;
+                            return QueryResult{};
+                          },
+                          nullptr};
+    HapticLoopThread loop(device, cheap, config(0.5), BodyState{}, steady_loop_clock(wait));
+    const LoopReport r = loop.join();
+    // Absolute deadlines: exactly 500 ticks in 0.5 s, however late the thread wakes on a
+    // loaded machine (late frames are misses; how rare they are is measured by
+    // perf/bench_haptic_loop, not asserted here).
+    CHECK(r.ticks == 500);
+    CHECK(r.frames + r.skipped_ticks == 500);
+    CHECK(r.misses <= r.frames);
+    CHECK(r.elapsed_s >= 0.499);
+    CHECK(calls == r.frames);
+    CHECK(r.frame_ms.size() == r.frames);
+  }
 }
 
 TEST_CASE("haptic loop: a scripted device pulls the part along its trajectory and holds it at the end") {

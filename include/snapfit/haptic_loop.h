@@ -68,8 +68,21 @@ struct LoopClock {
   std::function<void(double)> wait_until;  // returns at or after the given time
 };
 
-// std::chrono::steady_clock; waits sleep until ~0.2 ms before the deadline, then spin.
-LoopClock steady_loop_clock();
+// How a steady-clock loop waits for its next tick.
+//   spin:  polls the clock through the whole wait, so its CPU never idles. On a virtual
+//          machine an idle vCPU is halted, and the host can take a millisecond or more to
+//          resume it for a timer (docs/haptics.md "Waiting for the tick"), longer than a
+//          frame. Costs one core; run it at a nice value, not SCHED_FIFO (the kernel's
+//          real-time throttling stops a SCHED_FIFO thread that never sleeps for 50 ms of
+//          each second).
+//   sleep: sleeps until ~0.2 ms before the deadline, then spins: frees the core between
+//          frames, for machines whose timers wake a thread on time.
+enum class LoopWait { spin, sleep };
+const char* loop_wait_name(LoopWait wait);  // "spin" or "sleep"
+LoopWait parse_loop_wait(const std::string& name);  // throws snapfit::Error for another name
+
+// std::chrono::steady_clock, waiting as `wait` says.
+LoopClock steady_loop_clock(LoopWait wait = LoopWait::spin);
 
 // Simulated time: it moves only when the loop waits, so every frame takes no time and
 // the run is deterministic (offline runs and tests of the physics; no timing meaning).
