@@ -1,0 +1,207 @@
+// Which m' modes to keep: the truncation error of E, F and T when the retained modes of
+// the exact-rotation product (engine/rotated_product.h) are the lowest |w| (the engine's
+// mode order, a low-pass ball) or the largest per-mode weights. At each pose along the
+// scene's trajectory the product is made for the pose's own rotation over every mode and
+// read back; then, in double on the host, each mode's term (kernels/pose_query.cl
+// rotated_lines at dtheta = 0):
+//   f_k = W_k e^{i phi_k},  phi_k = 2 pi w_k . tau,  tau = t + R c2 - c1,
+//   E_k = -Re f_k,  F_k = Re(2 pi i f_k) w_k,  T_k = Re(G_k e^{i phi_k}),
+//   G_k = D_k + 2 pi i W_k (R c2 x w_k),
+// summed over each selection at each m'. Selections: "lowest frequency" (lowest |w|);
+// "largest product" (largest |W_k|: the energy's error is at most the sum of the dropped
+// |W_k|); "largest torque weight" (largest |G_k|, the same for the torque); "largest
+// normalised sum" (|W|, |w||W| and |G|, each divided by its sum over the modes). The reference is the
+// sum over every mode, checked against the engine's own all-mode query at each pose.
+// Error over the poses as scheduler/accuracy.h: sqrt(sum |x - ref|^2 / sum |ref|^2).
+//
+//   ./build/perf/bench_mode_selection [--scene scenes/default.json] [--poses 12] [--quick] [--out DIR]
+// --quick: 2 poses, m' up to 16,384.
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <numeric>
+
+#include "engine/device.h"
+#include "engine/mode_order.h"
+#include "engine/query_engine.h"
+#include "engine/rotated_product.h"
+#include "engine/translation_lines.h"
+#include "perf/bench_common.h"
+#include "pipeline/assembly_pair.h"
+#include "scheduler/accuracy.h"
+
+using namespace snapfit;
+using Cd = std::complex<double>;
+
+namespace {
+
+void usage(std::ostream& out) {
+  out << "bench_mode_selection [--scene FILE] [--poses N] [--quick] [--device SPEC] [--out DIR]\n";
+}
+
+struct Terms {
+  std::vector<double> e;
+  std::vector<Eigen::Vector3d> f, t;
+};
+
+// Per-mode score of each selection but the first (which keeps the mode order).
+constexpr int kSelections = 4;
+const char* const kSelectionNames[kSelections] = {"lowest frequency", "largest product", "largest torque weight",
+                                                  "largest normalised sum"};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bench::guarded_main("bench_mode_selection", [&] {
+    bool quick = false;
+    std::string device_spec, out_dir = "results/bench_mode_selection", scene_path = "scenes/default.json";
+    long pose_count = 12;
+    bench::parse_options(argc, argv, quick, device_spec, out_dir, usage, [&](const std::string&, auto value, auto is) {
+      if (is("--scene"))
+        scene_path = value("--scene");
+      else if (is("--poses"))
+        pose_count = bench::integer_option("--poses", value("--poses"), 1, 10000);
+      else
+        return false;
+      return true;
+    });
+    if (quick) pose_count = 2;
+    const std::string load_start = bench::read_loadavg();
+    const Scene scene = load_scene(scene_path);
+    if (scene.motion == Motion::translation) throw Error("bench_mode_selection: the scene must be 6-DOF");
+    const Device device = select_device(device_spec_from(device_spec));
+    const FftLibrary fft;
+    const ComputeContext ctx = make_compute_context(device);
+    const AssemblyPair pair = build_assembly_pair(scene, ctx, fft);
+    const PairSpectra& sp = pair.spectra;
+    const std::vector<Pose> poses = accuracy_poses(scene, std::size_t(pose_count));
+
+    const std::vector<std::size_t> order = mode_order(sp);
+    const std::size_t M = order.size();
+    std::vector<std::size_t> levels;
+    for (std::size_t m = 4096; m <= (quick ? 16384u : 262144u) && m < M; m *= 2) levels.push_back(m);
+
+    // The product over every mode, unfolded, so that each mode's node holds its own term.
+    const TranslationLines lines = build_translation_lines(sp.dims, order, false, M);
+    RotatedProduct product(ctx, sp, lines);
+    cl::Buffer box(ctx.context, CL_MEM_READ_WRITE, product.box_bytes());
+    cl::CommandQueue queue(ctx.context, ctx.device.device, 0);
+    std::vector<float> host(product.box_bytes() / sizeof(float));
+    std::vector<Eigen::Vector3d> w(M);
+    std::vector<std::size_t> node(M);
+    for (std::size_t i = 0; i < M; ++i) {
+      const std::array<int, 3> k = signed_node(sp.dims, order[i]);
+      w[i] = Eigen::Vector3d(k[0] / sp.length.x(), k[1] / sp.length.y(), k[2] / sp.length.z());
+      node[i] = box_node(lines, k[0], k[1], k[2]);
+    }
+    // The engine's all-mode exact query, to check the host sums against.
+    QueryVariant exact = query_variant_for(scene, Interpolation::tricubic);
+    exact.rotation = RotationMethod::exact_product;
+    exact.product_update = ProductUpdate::each_query;
+    exact.product_modes = M;
+    auto engine = make_query_engine(ctx, sp, exact);
+    engine->set_modes(engine->max_modes());
+
+    const std::size_t L = levels.size();
+    std::vector<double> dE(kSelections * L), dF(kSelections * L), dT(kSelections * L);
+    double rE = 0, rF = 0, rT = 0;
+    double largest_diff[3] = {0, 0, 0}, scale[3] = {0, 0, 0};  // host against engine, per output
+    Terms terms{std::vector<double>(M), std::vector<Eigen::Vector3d>(M), std::vector<Eigen::Vector3d>(M)};
+    std::vector<double> score[kSelections];
+    for (auto& s : score) s.resize(M);
+    std::vector<std::uint32_t> idx(M);
+    for (std::size_t p = 0; p < poses.size(); ++p) {
+      const Eigen::Matrix3d R = poses[p].rotation.normalized().toRotationMatrix();
+      product.compute(queue, R, M, box);
+      queue.enqueueReadBuffer(box, CL_TRUE, 0, product.box_bytes(), host.data());
+      const Eigen::Vector3d tau = poses[p].translation + R * sp.part2.centre - sp.part1.centre;
+      const Eigen::Vector3d Rc2 = R * sp.part2.centre;
+      double sums[3] = {0, 0, 0};
+      double E = 0;
+      Eigen::Vector3d F = Eigen::Vector3d::Zero(), T = Eigen::Vector3d::Zero();
+      for (std::size_t i = 0; i < M; ++i) {
+        const float* n = &host[8 * node[i]];
+        const Cd W(n[0], n[1]);
+        const Cd two_pi_i_W = Cd(0, 2 * M_PI) * W;
+        const Eigen::Vector3d a = Rc2.cross(w[i]);
+        const Cd G[3] = {Cd(n[2], n[3]) + two_pi_i_W * a.x(), Cd(n[4], n[5]) + two_pi_i_W * a.y(),
+                         Cd(n[6], n[7]) + two_pi_i_W * a.z()};
+        const double phi = 2 * M_PI * w[i].dot(tau);
+        const Cd e(std::cos(phi), std::sin(phi));
+        terms.e[i] = -(W * e).real();
+        terms.f[i] = (two_pi_i_W * e).real() * w[i];
+        terms.t[i] = Eigen::Vector3d((G[0] * e).real(), (G[1] * e).real(), (G[2] * e).real());
+        E += terms.e[i], F += terms.f[i], T += terms.t[i];
+        score[1][i] = std::abs(W);
+        score[2][i] = std::sqrt(std::norm(G[0]) + std::norm(G[1]) + std::norm(G[2]));
+        score[3][i] = std::abs(W) * w[i].norm();  // the force's weight, for the sum below
+        sums[0] += score[1][i], sums[1] += score[2][i], sums[2] += score[3][i];
+      }
+      for (std::size_t i = 0; i < M; ++i)
+        score[3][i] = score[1][i] / sums[0] + score[2][i] / sums[1] + score[3][i] / sums[2];
+      const QueryResult ref = engine->query(poses[p]);
+      const double diff[3] = {std::abs(ref.energy - E), (ref.force - F).norm(), (ref.torque - T).norm()},
+                   size[3] = {std::abs(E), F.norm(), T.norm()};
+      for (int q = 0; q < 3; ++q) largest_diff[q] = std::max(largest_diff[q], diff[q]), scale[q] = std::max(scale[q], size[q]);
+      rE += E * E, rF += F.squaredNorm(), rT += T.squaredNorm();
+      for (int s = 0; s < kSelections; ++s) {
+        std::iota(idx.begin(), idx.end(), 0u);
+        if (s > 0) {
+          const std::vector<double>& sc = score[s];
+          std::partial_sort(idx.begin(), idx.begin() + levels.back(), idx.end(),
+                            [&](std::uint32_t a, std::uint32_t b) { return sc[a] > sc[b]; });
+        }
+        double e = 0;
+        Eigen::Vector3d f = Eigen::Vector3d::Zero(), t = Eigen::Vector3d::Zero();
+        std::size_t done = 0;
+        for (std::size_t j = 0; j < L; ++j) {
+          for (; done < levels[j]; ++done) e += terms.e[idx[done]], f += terms.f[idx[done]], t += terms.t[idx[done]];
+          dE[s * L + j] += (e - E) * (e - E);
+          dF[s * L + j] += (f - F).squaredNorm();
+          dT[s * L + j] += (t - T).squaredNorm();
+        }
+      }
+      std::cerr << "\rpose " << p + 1 << "/" << poses.size() << std::flush;
+    }
+    std::cerr << "\n";
+    // Against each output's largest size over the poses (a torque that cancels at one pose
+    // differs there by float rounding of the terms of the others' size).
+    double check = 0;
+    for (int q = 0; q < 3; ++q) check = std::max(check, largest_diff[q] / std::max(scale[q], 1e-30));
+
+    std::filesystem::create_directories(out_dir);
+    std::ofstream csv(std::filesystem::path(out_dir) / "mode_selection.csv");
+    csv << "selection,modes,energy_error,force_error,torque_error\n";
+    nlohmann::json rows = nlohmann::json::array();
+    std::cout << "scene " << scene_path << ", " << poses.size() << " poses, " << M
+              << " modes in all; relative error against the sum over every mode\n"
+              << "host sums against the engine's all-mode query: largest difference, relative to the output's largest size, " << check << "\n\n"
+              << "| selection | m' | energy | force | torque |\n|---|---|---|---|---|\n";
+    for (int s = 0; s < kSelections; ++s)
+      for (std::size_t j = 0; j < L; ++j) {
+        const double e = std::sqrt(dE[s * L + j] / rE), f = std::sqrt(dF[s * L + j] / rF),
+                     t = std::sqrt(dT[s * L + j] / rT);
+        csv << '"' << kSelectionNames[s] << "\"," << levels[j] << ',' << e << ',' << f << ',' << t << "\n";
+        rows.push_back({{"selection", kSelectionNames[s]},
+                        {"modes", levels[j]},
+                        {"energy_error", e},
+                        {"force_error", f},
+                        {"torque_error", t}});
+        std::cout << "| " << kSelectionNames[s] << " | " << levels[j] << " | " << bench::fixed(100 * e, 2) << " % | "
+                  << bench::fixed(100 * f, 2) << " % | " << bench::fixed(100 * t, 2) << " % |\n";
+      }
+    nlohmann::json summary = bench::run_record(argc, argv, describe_device(device.info), load_start);
+    summary["scene"] = scene_path;
+    summary["poses"] = poses.size();
+    summary["modes_total"] = M;
+    summary["host_vs_engine_max_relative_difference"] = check;
+    summary["rows"] = rows;
+    std::ofstream(std::filesystem::path(out_dir) / "summary.json") << summary.dump(2) << "\n";
+    std::cout << "\nwrote " << out_dir << "/mode_selection.csv and summary.json\n";
+    // The host sums must reproduce the engine's: a float kernel against double sums.
+    return check < 1e-3 ? 0 : 1;
+  });
+}
