@@ -214,7 +214,7 @@ void run_main_job(const RunOptions& opt) {
     session.simulated_time = opt.simulated_time;
     session.wait = parse_loop_wait(opt.loop_wait);
     record.session =
-        run_scripted_assembly(scene, pair.part(2).mesh, pair.spectra.spacing, *loop_engine, record.tuning, session);
+        run_scripted_assembly(scene, pair.part(1).mesh, pair.part(2).mesh, pair.spectra.spacing, *loop_engine, record.tuning, session);
     if (record.session->priority.failed)
       note("could not raise the priority of " + std::to_string(record.session->priority.failed) +
            " threads for the loop (" + record.session->priority.reason + "); frames may be late on a busy machine");

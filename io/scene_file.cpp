@@ -431,7 +431,8 @@ HapticsParams read_haptics(const Ctx& c, const json& v, const std::string& path)
   check_fields(
       c, v, path,
       {"mass_kg", "stiffness_n_per_m", "rot_stiffness_nm_per_rad", "damping_ratio", "max_force_n", "max_torque_nm",
-       "geometry_gain", "geometry_strength", "settle_s", "success_position", "success_angle_deg"});
+       "geometry_gain", "geometry_strength", "settle_s", "success_position", "success_angle_deg", "contact",
+       "contact_stiffness_n_per_mm3", "contact_spacing"});
   HapticsParams h;
   if (const json* x = find(v, "mass_kg")) h.mass_kg = positive(c, *x, join(path, "mass_kg"));
   if (const json* x = find(v, "stiffness_n_per_m"))
@@ -448,6 +449,13 @@ HapticsParams read_haptics(const Ctx& c, const json& v, const std::string& path)
   if (const json* x = find(v, "success_position")) h.success_position = positive(c, *x, join(path, "success_position"));
   if (const json* x = find(v, "success_angle_deg"))
     h.success_angle_deg = positive(c, *x, join(path, "success_angle_deg"));
+  if (const json* x = find(v, "contact")) {
+    if (!x->is_boolean()) fail(c, join(path, "contact"), "must be true or false");
+    h.contact = x->get<bool>();
+  }
+  if (const json* x = find(v, "contact_stiffness_n_per_mm3"))
+    h.contact_stiffness_n_per_mm3 = positive(c, *x, join(path, "contact_stiffness_n_per_mm3"));
+  if (const json* x = find(v, "contact_spacing")) h.contact_spacing = positive(c, *x, join(path, "contact_spacing"));
   return h;
 }
 
@@ -751,6 +759,9 @@ std::string scene_to_json(const Scene& s) {
   hj["settle_s"] = h.settle_s;
   if (h.success_position) hj["success_position"] = *h.success_position;
   hj["success_angle_deg"] = h.success_angle_deg;
+  hj["contact"] = h.contact;
+  hj["contact_stiffness_n_per_mm3"] = h.contact_stiffness_n_per_mm3;
+  if (h.contact_spacing) hj["contact_spacing"] = *h.contact_spacing;
   j["haptics"] = hj;
   j["method"] = s.method == Method::vps ? "vps" : "snapfit";
   ordered_json vj;

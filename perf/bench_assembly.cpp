@@ -23,9 +23,11 @@
 //   ./build/perf/bench_assembly [--quick] [--trials 20] [--seed 1] [--modes 16384]
 //       [--clearances 0,0.02,0.05,0.1,0.25,0.5,1] [--voxels 0.1,0.25,0.5]
 //       [--methods snapfit,translation,vps] [--no-three-pegs] [--penetration-stride 10]
-//       [--geometry-strength G] [--lambda-in P] [--device SPEC] [--out results/bench_assembly]
+//       [--geometry-strength G] [--lambda-in P] [--no-contact] [--device SPEC] [--out results/bench_assembly]
 // --geometry-strength and --lambda-in override the scenes' haptics.geometry_strength and
-// descriptor.lambda_in (the penalty factor with lambda_out 1) for snapfit's methods.
+// descriptor.lambda_in (the penalty factor with lambda_out 1) for snapfit's methods;
+// --no-contact renders seed 000's energy alone, without the rigid contact
+// (scheduler/rigid_contact.h).
 // --quick: clearance 0.5 only (the shipped scene), no three-peg pair, 2 trials, VPS at 0.25 mm, m' 4096.
 // Writes trials.csv (one row per trial), summary.csv and summary.md (per cell),
 // wrench_vs_depth.csv (one trial per method), summary.json and charts.html.
@@ -47,6 +49,7 @@
 #include "pipeline/assembly_pair.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/haptic_setup.h"
+#include "scheduler/rigid_contact.h"
 #include "scheduler/vps_method.h"
 
 using namespace snapfit;
@@ -57,7 +60,7 @@ namespace {
 void usage(std::ostream& os) {
   os << "bench_assembly [--quick] [--trials N] [--seed S] [--modes M] [--clearances LIST] [--voxels LIST]\n"
         "               [--methods snapfit,translation,vps] [--no-three-pegs] [--penetration-stride K]\n"
-        "               [--geometry-strength G] [--lambda-in P]\n"
+        "               [--geometry-strength G] [--lambda-in P] [--no-contact]\n"
         "               [--device SPEC] [--out DIR]\n"
         "Scripted imprecise-user insertions: success, errors and true interpenetration against clearance,\n"
         "for snapfit (6-DOF, translation-only) and Voxmap PointShell (see perf/bench_assembly.cpp).\n";
@@ -198,6 +201,22 @@ WrenchEvaluator timed(const WrenchEvaluator& inner, FrameWork& work) {
   return e;
 }
 
+// The rigid contact's time goes to the same frame's work as the engine's query (it
+// runs right after it in the loop).
+std::function<ContactWrench(const Pose&)> timed_contact(std::function<ContactWrench(const Pose&)> inner,
+                                                        FrameWork& work) {
+  return [inner = std::move(inner), &work](const Pose& p) {
+    const auto wall = std::chrono::steady_clock::now();
+    const double cpu = thread_cpu_s();
+    ContactWrench c = inner(p);
+    if (!work.cpu_ms.empty()) {
+      work.cpu_ms.back() += 1e3 * (thread_cpu_s() - cpu);
+      work.wall_ms.back() += 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
+    }
+    return c;
+  };
+}
+
 TrialResult measure(const Cell& cell, const SessionResult& run, const FrameWork& work, const Mesh& m1,
                     const MeshDistanceIndex& i1, const Mesh& m2, const MeshDistanceIndex& i2, std::size_t stride) {
   TrialResult r;
@@ -241,7 +260,7 @@ Scene translation_scene(Scene s) {
 
 int main(int argc, char** argv) {
   return bench::guarded_main("bench_assembly", [&] {
-    bool quick = false, three_pegs = true;
+    bool quick = false, three_pegs = true, contact = true;
     std::string device_spec, out_dir = "results/bench_assembly";
     long trials = 20, seed = 1, modes = 16384, stride = 10;
     std::vector<double> clearances = {0, 0.02, 0.05, 0.1, 0.25, 0.5, 1}, voxels = {0.1, 0.25, 0.5};
@@ -264,6 +283,7 @@ int main(int argc, char** argv) {
             return geometry_strength = number_list("--geometry-strength", value("--geometry-strength")).at(0), true;
           if (is("--lambda-in")) return lambda_in = number_list("--lambda-in", value("--lambda-in")).at(0), true;
           if (s == "--no-three-pegs") return three_pegs = false, true;
+          if (s == "--no-contact") return contact = false, true;
           return false;
         });
     if (quick) {
@@ -364,6 +384,7 @@ int main(int argc, char** argv) {
         std::optional<AssemblyPair> pair;
         std::unique_ptr<QueryEngine> engine;
         std::optional<VpsModel> vps;
+        std::shared_ptr<const RigidContactModel> rigid;
         CouplingParams coupling;
         const auto build_start = std::chrono::steady_clock::now();
         if (method.kind == BenchMethod::vps) {
@@ -375,6 +396,8 @@ int main(int argc, char** argv) {
           options.note = [](const std::string& m) { std::cerr << "  " << m << "\n"; };
           pair = build_assembly_pair(scene, *ctx, *fft, options);
           engine = make_query_engine(*ctx, pair->spectra, query_variant_for(scene, Interpolation::tricubic));
+          scene.haptics.contact = scene.haptics.contact && contact;
+          rigid = rigid_contact_for(scene, m1, m2, spacing);
         }
         std::cout << "  " << bench::padr(method.name, 20) << " built in "
                   << bench::fixed(bench::seconds_since(build_start), 1) << " s" << std::flush;
@@ -398,7 +421,8 @@ int main(int argc, char** argv) {
                 pick_modes({TimingPoint{std::min<std::size_t>(modes, engine->max_modes()), 0, 0, 0, 1}},
                            scene.frame_budget_ms, 0.25);
             double force_scale = 0;
-            const LoopConfig config = loop_config_for(scene, pair->part(2).mesh, spacing, *engine, fixed, force_scale);
+            LoopConfig config = loop_config_for(scene, pair->part(2).mesh, spacing, *engine, fixed, force_scale, rigid);
+            if (config.contact) config.contact = timed_contact(config.contact, work);
             run = run_scripted_session(scene, spacing, config, timed(wrench_evaluator(*engine), work), options);
           }
           const TrialResult r = measure(cell, run, work, m1, i1, m2, i2, static_cast<std::size_t>(stride));

@@ -98,7 +98,7 @@ int main(int argc, char** argv) try {
   };
   const long faults_before = major_faults();
   const SessionResult run =
-      run_scripted_assembly(scene, pair.parts.part2.mesh, pair.spectra.spacing, *engine, tuned.result, session);
+      run_scripted_assembly(scene, pair.parts.part1.mesh, pair.parts.part2.mesh, pair.spectra.spacing, *engine, tuned.result, session);
   const long loop_major_faults = major_faults() - faults_before;
   const LoopReport& loop = run.loop;
   const std::string load_end = bench::read_loadavg();

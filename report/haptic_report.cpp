@@ -16,7 +16,8 @@ std::string loop_csv(const LoopReport& loop) {
   csv.precision(9);
   csv << "time_s,frame_ms,missed,modes,flags,device_x,device_y,device_z,part_x,part_y,part_z,part_qw,part_qx,"
          "part_qy,part_qz,energy,geo_fx,geo_fy,geo_fz,geo_tx,geo_ty,geo_tz,sent_fx,sent_fy,sent_fz,sent_tx,"
-         "sent_ty,sent_tz,energy_error_est,geo_force_error_est,geo_torque_error_est\n";
+         "sent_ty,sent_tz,energy_error_est,geo_force_error_est,geo_torque_error_est,contact_fx,contact_fy,contact_fz,"
+         "contact_tx,contact_ty,contact_tz,contact_depth\n";
   for (const FrameRecord& f : loop.log) {
     const Eigen::Vector3d& d = f.device.translation;
     const Eigen::Vector3d& p = f.part.translation;
@@ -26,7 +27,9 @@ std::string loop_csv(const LoopReport& loop) {
         << q.y() << ',' << q.z() << ',' << f.energy;
     for (const Eigen::Vector3d* v : {&f.geometric.force, &f.geometric.torque, &f.sent.force, &f.sent.torque})
       csv << ',' << v->x() << ',' << v->y() << ',' << v->z();
-    csv << ',' << f.geometric_error.energy << ',' << f.geometric_error.force << ',' << f.geometric_error.torque << '\n';
+    csv << ',' << f.geometric_error.energy << ',' << f.geometric_error.force << ',' << f.geometric_error.torque;
+    for (const Eigen::Vector3d* v : {&f.contact.force, &f.contact.torque}) csv << ',' << v->x() << ',' << v->y() << ',' << v->z();
+    csv << ',' << f.contact_depth << '\n';
   }
   return csv.str();
 }
@@ -90,6 +93,39 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
     return {{"p50", quantile(v, 0.5)}, {"p95", quantile(v, 0.95)}, {"max", quantile(v, 1.0)}};
   };
   const auto& fp = run.loop.final_part.pose;
+  // The rigid contact (scheduler/rigid_contact.h) and the stiffness the user feels at the fit.
+  nlohmann::json contact = nullptr;
+  if (run.contact) {
+    const RigidContactModel& m = *run.contact;
+    std::size_t frames_in_contact = 0;
+    double deepest = 0;
+    for (const FrameRecord& f : loop.log) {
+      frames_in_contact += f.contact_depth > 0;
+      deepest = std::max(deepest, f.contact_depth);
+    }
+    contact = {{"pressure_stiffness_n_per_mm3", m.pressure_stiffness * 1e-9},
+               {"sample_spacing", m.part2_samples.spacing},
+               {"distance_spacing", m.part1_distance.fine_spacing()},
+               {"skin", m.skin},
+               {"part1_edge_points", m.part1_samples.points.size()},
+               {"part2_points", m.part2_samples.points.size()},
+               {"build_s", run.contact_build_s},
+               {"frames_in_contact", frames_in_contact},
+               {"deepest", deepest}};
+  }
+  nlohmann::json fit_stiffness = nullptr;
+  if (run.fit_stiffness) {
+    const RenderedStiffness& k = *run.fit_stiffness;
+    const auto six = [](const std::array<double, 6>& v) {
+      return nlohmann::json{{"+x", v[0]}, {"-x", v[1]}, {"+y", v[2]}, {"-y", v[3]}, {"+z", v[4]}, {"-z", v[5]}};
+    };
+    fit_stiffness = {{"step_mm", k.step_mm},
+                     {"tilt_deg", k.tilt_deg},
+                     {"force_n_per_mm", six(k.force_n_per_mm)},
+                     {"torque_nm_per_deg", six(k.torque_nm_per_deg)},
+                     {"coupling_n_per_mm", k.coupling_n_per_mm},
+                     {"coupling_nm_per_deg", k.coupling_nm_per_deg}};
+  }
   return {{"rate_hz", loop.rate_hz},
           {"measured_rate_hz", loop.measured_rate_hz},
           {"elapsed_s", loop.elapsed_s},
@@ -112,6 +148,8 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
           {"modes", {{"tuned", tuning.chosen_modes}, {"final", loop.final_modes}, {"changes", changes}}},
           {"geometric_error_estimate", {{"force_n", spread(force_error)}, {"torque_nm", spread(torque_error)}}},
           {"geometry_gain", run.geometry_gain},
+          {"rigid_contact", contact},
+          {"stiffness_at_fit", fit_stiffness},
           {"force_scale", run.force_scale},
           {"coupling",
            {{"stiffness_n_per_m", run.coupling.stiffness},

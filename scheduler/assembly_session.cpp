@@ -1,20 +1,30 @@
 #include "scheduler/assembly_session.h"
 
 #include <algorithm>
+#include <chrono>
 
 #include "scheduler/scripted_device.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
 
-SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
-                                    const TuningResult& tuning, const SessionOptions& options) {
+SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part1_mesh, const Mesh& part2_mesh, double spacing,
+                                    QueryEngine& engine, const TuningResult& tuning, const SessionOptions& options) {
   if (scene.trajectory.keyframes.empty())
     throw Error(scene.source_path + ": no trajectory: a scripted assembly needs one (or use a real device)");
+  const auto built = std::chrono::steady_clock::now();
+  std::shared_ptr<const RigidContactModel> contact = rigid_contact_for(scene, part1_mesh, part2_mesh, spacing);
+  const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
   double force_scale = 0;
-  const LoopConfig config = loop_config_for(scene, part2_mesh, spacing, engine, tuning, force_scale);
+  const LoopConfig config = loop_config_for(scene, part2_mesh, spacing, engine, tuning, force_scale, contact);
   SessionResult out = run_scripted_session(scene, spacing, config, wrench_evaluator(engine), options);
   out.force_scale = force_scale;
+  out.contact = std::move(contact);
+  out.contact_build_s = build_s;
+  if (scene.assembled_pose)
+    out.fit_stiffness =
+        rendered_stiffness(wrench_evaluator(engine), config.geometry_gain, config.contact, config.coupling,
+                           *scene.assembled_pose);
   return out;
 }
 

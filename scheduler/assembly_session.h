@@ -8,6 +8,8 @@
 #include "mesh/mesh.h"
 #include "scheduler/auto_tune.h"
 #include "scheduler/haptic_setup.h"
+#include "scheduler/rendered_wrench.h"
+#include "scheduler/rigid_contact.h"
 #include "scheduler/thread_priority.h"
 #include "snapfit/haptic_loop.h"
 #include "snapfit/query.h"
@@ -41,13 +43,19 @@ struct SessionResult {
   double angle_tolerance_deg = 0;
   bool assembled = false;   // final_error within the tolerances
   PriorityChange priority;  // what raising the threads' priority did
+  std::shared_ptr<const RigidContactModel> contact;  // null: the loop rendered no rigid contact
+  double contact_build_s = 0;
+  std::optional<RenderedStiffness> fit_stiffness;  // at the assembled pose, when the scene has one
   LoopWait wait = LoopWait::spin;
 };
 
 // Runs the loop on its own thread on the steady clock and waits for it. Throws
 // snapfit::Error when the scene has no trajectory or its haptics cannot be set up.
-SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
-                                    const TuningResult& tuning, const SessionOptions& options = {});
+// The scene's rigid contact (scheduler/rigid_contact.h) is built from both meshes and
+// added to the engine's wrench unless the scene turns it off.
+SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part1_mesh, const Mesh& part2_mesh, double spacing,
+                                    QueryEngine& engine, const TuningResult& tuning,
+                                    const SessionOptions& options = {});
 
 // The same for any method's evaluator and loop configuration (a Voxmap PointShell run:
 // scheduler/vps_method.h); `spacing` is the default position tolerance.

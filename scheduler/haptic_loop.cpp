@@ -247,7 +247,9 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
   report.frame_ms.reserve(expected);
   if (config.keep_log) report.log.reserve(expected);
 
-  Wrench geometric;  // held over missed ticks
+  Wrench geometric, external;  // the engine's wrench; with the contact, held over missed ticks
+  ContactWrench contact;
+  ImplicitExtras extra;
   PassivityController passivity(config);
   std::optional<BodyState> last_good_handle;
   std::size_t tick = 0, frame = 0;
@@ -279,11 +281,17 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     } else {
       ++report.flagged_frames;
     }
+    // Rigid contact: its own potential and exact stiffness, so it is integrated
+    // implicitly and left out of the observer (which checks the explicit wrench).
+    if (config.contact) contact = config.contact(queried);
+    external.force = geometric.force + contact.wrench.force;
+    external.torque = geometric.torque + contact.wrench.torque;
     // 3. One fixed step (with the passivity controller's damping); 4. the coupling's
     // reaction to the device.
     passivity.observe(part.pose, q, geometric);
-    const ImplicitExtras extra = passivity.extras(part);
-    step_body(part, handle, geometric, config.coupling, period, extra);
+    extra = passivity.extras(part);
+    extra.contact_stiffness = contact.stiffness;
+    step_body(part, handle, external, config.coupling, period, extra);
     limit_speed(part, queried, config, period);
     if (const double removed = passivity.stepped(part, extra); removed > 0) {
       ++report.passivity_frames;
@@ -316,8 +324,8 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     report.frame_ms.push_back(frame_ms);
     report.wake_late_ms.push_back(1e3 * (woke - tick_time));
     if (config.keep_log)
-      report.log.push_back(FrameRecord{tick_time, frame_ms, handle.pose, queried, q.energy, geometric, geometric_error,
-                                       sent, q.modes, q.flags, missed});
+      report.log.push_back(FrameRecord{tick_time, frame_ms, handle.pose, queried, q.energy, geometric, contact.wrench,
+                                       contact.depth, geometric_error, sent, q.modes, q.flags, missed});
     ++report.frames;
     if (missed) ++report.misses;
 
@@ -329,7 +337,9 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
       for (std::size_t t = tick + 1; t < next; ++t) {
         if (config.duration_s > 0 && t * period >= config.duration_s - 1e-12) break;
         const Pose before = part.pose;
-        step_body(part, device.read(t * period), geometric, config.coupling, period);
+        ImplicitExtras held;
+        held.contact_stiffness = contact.stiffness;
+        step_body(part, device.read(t * period), external, config.coupling, period, held);
         limit_speed(part, before, config, period);
         ++report.skipped_ticks;
         passivity.invalidate();

@@ -65,8 +65,10 @@ LoopConfig scene_loop_config(const Scene& scene, const CouplingParams& coupling)
 }
 
 LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
-                           const TuningResult& tuning, double& force_scale) {
+                           const TuningResult& tuning, double& force_scale,
+                           std::shared_ptr<const RigidContactModel> contact) {
   LoopConfig config = scene_loop_config(scene, coupling_for(scene, part2_mesh));
+  config.contact = contact_evaluator(std::move(contact));
   engine.set_modes(tuning.chosen_modes);
   force_scale = 0;
   for (const QueryResult& r : engine.query_batch(gain_probe_poses(scene, spacing)))
@@ -81,7 +83,8 @@ LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double sp
 LoopConfig loop_config(const Assembly& assembly, QueryEngine& engine, const TuningResult& tuning) {
   const AssemblyPair& pair = assembly.pair();
   double force_scale = 0;
-  return loop_config_for(pair.scene, pair.part(2).mesh, pair.grids.spacing, engine, tuning, force_scale);
+  return loop_config_for(pair.scene, pair.part(2).mesh, pair.grids.spacing, engine, tuning, force_scale,
+                         rigid_contact_for(pair.scene, pair.part(1).mesh, pair.part(2).mesh, pair.grids.spacing));
 }
 
 }  // namespace snapfit

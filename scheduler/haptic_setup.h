@@ -2,9 +2,11 @@
 // From a scene's `haptics` section (snapfit/scene.h HapticsParams) to what the haptic loop
 // needs: the virtual coupling, the device limits, the geometric gain, and the test of
 // whether a run ended assembled.
+#include <memory>
 #include <vector>
 
 #include "mesh/mesh.h"
+#include "scheduler/rigid_contact.h"
 #include "scheduler/virtual_coupling.h"
 #include "snapfit/haptic_device.h"
 #include "snapfit/haptic_loop.h"
@@ -43,8 +45,10 @@ LoopConfig scene_loop_config(const Scene& scene, const CouplingParams& coupling)
 // The loop's configuration for `scene` (include/snapfit/haptic_loop.h loop_config):
 // `engine` is set to the tuned m' and probed at gain_probe_poses for the gain; the
 // largest force it saw goes to `force_scale`.
+// `contact`, when not null, is the rigid contact the loop adds (scheduler/rigid_contact.h).
 LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
-                           const TuningResult& tuning, double& force_scale);
+                           const TuningResult& tuning, double& force_scale,
+                           std::shared_ptr<const RigidContactModel> contact = nullptr);
 
 struct PoseError {
   double position = 0;  // scene units

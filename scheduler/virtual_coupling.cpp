@@ -1,5 +1,6 @@
 #include "scheduler/virtual_coupling.h"
 
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <string>
 
@@ -73,25 +74,41 @@ double coupling_energy(const BodyState& part, const BodyState& device, const Cou
 void step_body(BodyState& part, const BodyState& device, const Wrench& external, const CouplingParams& c, double dt,
                const ImplicitExtras& extra) {
   const double u = c.metres_per_unit;
-  // Translation, backward Euler with x' = x + dt v' (beta, K: the extras' damping and
-  // external stiffness, F(x') ~ F(x) - K dt v'):
+  // Backward Euler with x' = x + dt v' in translation (beta, K: the extras' damping and
+  // isotropic external stiffness, F(x') ~ F(x) - K dt v'):
   //   m (v' - v) = dt [k (x_d - x') - b (v' - v_d) - beta v' + F(x')]
   //   v' (m + dt (b + beta) + dt^2 (k + K)) = m v + dt [k (x_d - x) + b v_d + F(x)]      (SI units)
+  // and the same in rotation with the rotation error linearised over the step,
+  // theta' ~ theta - dt w':  w' (I + dt b_R + dt^2 k_R) = I w + dt [k_R theta + b_R w_d + tau].
+  // A contact stiffness C couples the two: [diag(...) + dt^2 C] (v', w') = (right-hand sides).
   const Eigen::Vector3d v = u * part.velocity;
   const Eigen::Vector3d d = u * (device.pose.translation - part.pose.translation);
-  const Eigen::Vector3d v_new =
-      (c.mass_kg * v + dt * (c.stiffness * d + c.damping * u * device.velocity + external.force)) /
-      (c.mass_kg + dt * (c.damping + extra.damping) + dt * dt * (c.stiffness + extra.stiffness));
+  const Eigen::Vector3d theta = rotation_between(part.pose.rotation, device.pose.rotation);
+  const Eigen::Vector3d rhs_t = c.mass_kg * v + dt * (c.stiffness * d + c.damping * u * device.velocity + external.force);
+  const Eigen::Vector3d rhs_r =
+      c.inertia_kg_m2 * part.angular_velocity +
+      dt * (c.rot_stiffness * theta + c.rot_damping * device.angular_velocity + external.torque);
+  const double diag_t =
+      c.mass_kg + dt * (c.damping + extra.damping) + dt * dt * (c.stiffness + extra.stiffness);
+  const double diag_r = c.inertia_kg_m2 + dt * (c.rot_damping + extra.rot_damping) +
+                        dt * dt * (c.rot_stiffness + extra.rot_stiffness);
+  Eigen::Vector3d v_new, w_new;
+  if (extra.contact_stiffness.isZero(0)) {
+    v_new = rhs_t / diag_t;
+    w_new = rhs_r / diag_r;
+  } else {
+    Eigen::Matrix<double, 6, 6> a = dt * dt * extra.contact_stiffness;
+    a.diagonal().head<3>().array() += diag_t;
+    a.diagonal().tail<3>().array() += diag_r;
+    Eigen::Matrix<double, 6, 1> rhs;
+    rhs << rhs_t, rhs_r;
+    const Eigen::Matrix<double, 6, 1> x = a.ldlt().solve(rhs);
+    v_new = x.head<3>();
+    w_new = x.tail<3>();
+  }
   part.velocity = v_new / u;
   part.pose.translation += dt * part.velocity;
-
-  // Rotation, the same with the rotation error linearised over the step,
-  // theta' ~ theta - dt w':  w' (I + dt b_R + dt^2 k_R) = I w + dt [k_R theta + b_R w_d + tau].
-  const Eigen::Vector3d theta = rotation_between(part.pose.rotation, device.pose.rotation);
-  part.angular_velocity =
-      (c.inertia_kg_m2 * part.angular_velocity +
-       dt * (c.rot_stiffness * theta + c.rot_damping * device.angular_velocity + external.torque)) /
-      (c.inertia_kg_m2 + dt * (c.rot_damping + extra.rot_damping) + dt * dt * (c.rot_stiffness + extra.rot_stiffness));
+  part.angular_velocity = w_new;
   part.pose.rotation = (rotation_exp(dt * part.angular_velocity) * part.pose.rotation).normalized();
 }
 

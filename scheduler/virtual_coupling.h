@@ -55,6 +55,9 @@ struct ImplicitExtras {
   double rot_damping = 0;    // N m s / rad
   double stiffness = 0;      // N / m
   double rot_stiffness = 0;  // N m / rad
+  // The full stiffness of a contact wrench (snapfit/haptic_loop.h ContactWrench), on
+  // translation (m) and rotation (rad) together; symmetric positive semi-definite.
+  Eigen::Matrix<double, 6, 6> contact_stiffness = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 // Advances the part by dt seconds under the coupling to `device` (implicit) and the

@@ -2,9 +2,9 @@
 // engine and the haptic loop (scheduler/assembly_session.h), in simulated time so the
 // physics is deterministic: the part must end assembled, within the stated tolerance
 // (one grid spacing, 1 degree), centred in the hole and upright, having felt the
-// geometry on the way in. Measured: the truncated energy's minimum lies ~1.25 mm below
-// the blind hole's bottom (the skeletal-density penalty is soft at lambda_in/lambda_out
-// = 3), so the part ends ~0.4 mm deep, where the coupling balances that pull.
+// geometry on the way in. The truncated energy's minimum lies below the blind hole's
+// bottom (the skeletal-density penalty is soft at lambda_in/lambda_out = 3); the rigid
+// contact (scheduler/rigid_contact.h) holds the part at the floor.
 #include <doctest/doctest.h>
 #include <iostream>
 
@@ -29,7 +29,7 @@ SessionResult insert(const std::string& scene_file, std::size_t modes, std::opti
   const TuningResult fixed = pick_modes({TimingPoint{modes, 0, 0, 0, 1}}, scene.frame_budget_ms, 0.25);
   SessionOptions session;
   session.simulated_time = true;
-  return run_scripted_assembly(scene, pair.parts.part2.mesh, pair.spectra.spacing, *engine, fixed, session);
+  return run_scripted_assembly(scene, pair.parts.part1.mesh, pair.parts.part2.mesh, pair.spectra.spacing, *engine, fixed, session);
 }
 
 double peak_geometric_force(const SessionResult& r) {
@@ -59,10 +59,15 @@ TEST_CASE("scripted assembly: the zero-clearance peg ends assembled, 6-DOF and t
     const Eigen::Vector3d offset = r.loop.final_part.pose.translation - r.target.translation;
     CHECK(offset.head<2>().norm() < 0.05);
     CHECK(r.final_error.angle_deg < 0.1);
-    // At rest the coupling balances the geometric pull: k d = gain F_engine.
+    // At rest the coupling balances the geometric pull and the floor's contact:
+    // k d + gain F_engine + F_contact = 0.
     const FrameRecord& last = r.loop.log.back();
     const Eigen::Vector3d stretch = 800 * 1e-3 * (last.device.translation - last.part.translation);
-    CHECK((stretch + last.geometric.force).norm() < 1e-3 * last.geometric.force.norm() + 1e-6);
+    CHECK((stretch + last.geometric.force + last.contact.force).norm() <
+          1e-3 * (last.geometric.force.norm() + last.contact.force.norm()) + 1e-6);
+    // The rigid contact holds the part at the fit: within the contact's skin (0.07 mm)
+    // and a few hundredths more, not sunk where the truncated energy is lowest.
+    CHECK(std::abs(offset.z()) < 0.1);
     // The geometry was felt: the peak geometric force is a sizeable fraction of the
     // coupling force at one grid spacing (0.48 N), not a negligible one.
     CHECK(peak_geometric_force(r) > 0.1 * 800 * 0.6e-3);

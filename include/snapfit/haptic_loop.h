@@ -97,6 +97,19 @@ struct WrenchEvaluator {
   std::function<QueryResult(const BodyState&)> evaluate_state;
 };
 
+// Rigid contact between the parts at a pose (scheduler/rigid_contact.h): the wrench on
+// part 2, the potential it derives from, and its stiffness, which the loop integrates
+// implicitly so that a contact far stiffer than the coupling stays stable at 1 kHz.
+struct ContactWrench {
+  double energy_j = 0;  // the contact potential
+  Wrench wrench;        // on part 2: N, and N m about its reference point
+  // -d(force, torque) / d(translation in m, rotation in rad), symmetric positive
+  // semi-definite (Gauss-Newton): blocks N/m, N/rad; N m/m, N m/rad.
+  Eigen::Matrix<double, 6, 6> stiffness = Eigen::Matrix<double, 6, 6>::Zero();
+  std::size_t points = 0;  // surface points in contact
+  double depth = 0;        // the deepest point's interpenetration, scene units
+};
+
 struct ModePolicy {
   std::vector<std::size_t> levels;                  // increasing m' values; the last one is the tuned m'
   std::function<double(std::size_t)> predicted_ms;  // cost model for step-up; null: proportional to m'
@@ -121,6 +134,9 @@ struct LoopConfig {
   double max_rotation = 0;
   bool keep_log = true;  // one FrameRecord per frame
   const std::atomic<bool>* stop = nullptr;
+  // Rigid contact at the part's pose, added to the geometric wrench each frame, its
+  // stiffness integrated implicitly; null: none (seed 000's energy alone).
+  std::function<ContactWrench(const Pose&)> contact;
 };
 
 struct FrameRecord {
@@ -129,7 +145,9 @@ struct FrameRecord {
   Pose device;          // the device's pose read this frame
   Pose part;            // the part's pose the engine was queried at (before this frame's step)
   double energy = 0;    // engine energy at `part`
-  Wrench geometric;     // scaled to N, N m
+  Wrench geometric;     // scaled to N, N m (the engine's; rigid contact is `contact`)
+  Wrench contact;       // rigid contact (LoopConfig::contact), N, N m
+  double contact_depth = 0;  // its deepest point's interpenetration, scene units
   // The engine's error estimate for `energy` and `geometric` (same units as they).
   ErrorEstimate geometric_error;
   Wrench sent;  // to the device, after clamping

@@ -110,6 +110,11 @@ struct HapticsParams {
   double settle_s = 1.0;                   // loop time after the last keyframe
   std::optional<double> success_position;  // scene units; default one grid spacing (the descriptors' resolution)
   double success_angle_deg = 1.0;
+  // Rigid contact between the parts' surfaces, added to the geometric wrench in the loop
+  // (scheduler/rigid_contact.h); false renders seed 000's energy alone.
+  bool contact = true;
+  double contact_stiffness_n_per_mm3 = 16;  // contact pressure per unit of interpenetration depth
+  std::optional<double> contact_spacing;    // surface samples, scene units (distance grid: a third); default h
 };
 
 // Which haptic rendering method a scene's run uses.

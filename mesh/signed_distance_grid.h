@@ -1,0 +1,47 @@
+#pragma once
+// A part's signed distance (negative inside) sampled on a regular grid, exact near the
+// surface and coarse away from it, for per-frame contact queries: a point's distance and
+// gradient by trilinear interpolation in O(1).
+//
+// Two levels: coarse nodes (spacing `coarse`) over the part's box grown by a margin, and
+// a fine brick (spacing coarse / refine) in each coarse cell whose corners' |d| allow the
+// surface within `band` of the cell. Node values are exact point-to-mesh signed distances
+// (mesh/mesh_distance.h). Since d is 1-Lipschitz, a cell whose corners all have
+// |d| > band + its diagonal holds no point within `band` of the surface, so the fine level
+// covers every point that close; farther out the coarse trilinear value is used.
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "mesh/mesh.h"
+
+namespace snapfit {
+
+struct SignedDistanceGrid {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // coarse node (0, 0, 0)
+  double coarse = 1;                                 // coarse spacing, scene units
+  int refine = 1;                                    // fine cells per coarse cell along an axis
+  Eigen::Vector3i dims = Eigen::Vector3i::Zero();    // coarse nodes per axis
+  std::vector<float> coarse_values;                  // x fastest
+  std::vector<std::int32_t> brick_of_cell;           // per coarse cell: index of its fine brick, or -1
+  std::vector<float> brick_values;                   // (refine + 1)^3 nodes per brick, x fastest
+  Eigen::Vector3d part_min = Eigen::Vector3d::Zero(), part_max = Eigen::Vector3d::Zero();  // the mesh's box
+  double band = 0;  // the fine level covers every point within `band` of the surface
+
+  std::size_t bricks() const { return brick_of_cell.empty() ? 0 : brick_values.size() / brick_nodes(); }
+  std::size_t brick_nodes() const { return std::size_t(refine + 1) * (refine + 1) * (refine + 1); }
+  double fine_spacing() const { return coarse / refine; }
+};
+
+// Samples `mesh` (closed, outward-oriented) with fine spacing `spacing` (coarse spacing
+// `spacing * refine`) and a coarse margin of at least `margin` around its box. Throws
+// snapfit::Error for an empty mesh or a spacing, band or margin that is not positive.
+SignedDistanceGrid build_signed_distance_grid(const Mesh& mesh, double spacing, double band, double margin,
+                                              int refine = 4);
+
+// The interpolated signed distance at p and its gradient (the trilinear interpolant's,
+// in scene units per scene unit). Outside the grid: a lower bound of the distance, the
+// distance to the mesh's box, with the gradient pointing away from it.
+double sample_signed_distance(const SignedDistanceGrid& grid, const Eigen::Vector3d& p, Eigen::Vector3d* gradient);
+
+}  // namespace snapfit
