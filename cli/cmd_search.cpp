@@ -1,7 +1,9 @@
 // `snapfit search SCENE`: where part 2 fits part 1 over all rotations. One full
 // translational energy map per rotation of a uniform SO(3) grid (core/so3_grid.h,
 // engine/rotation_search.h), the best poses of all maps merged, each refined by a
-// local 6-DOF descent with the query engine (engine/pose_descent.h). Under mpirun the
+// local 6-DOF descent with the query engine (engine/pose_descent.h) and, with the
+// scene's rigid contact, of the potential the haptic loop renders
+// (scheduler/rendered_wrench.h). Under mpirun the
 // ranks share the rotations cyclically, each on its own OpenCL device
 // (cli/search_ranks.h); rank 0 merges, refines and reports.
 #include <chrono>
@@ -25,6 +27,10 @@
 #include "io/atomic_write.h"
 #include "pipeline/assembly_pair.h"
 #include "report/chart_spec.h"
+#include "scheduler/auto_tune.h"
+#include "scheduler/haptic_setup.h"
+#include "scheduler/rendered_wrench.h"
+#include "scheduler/rigid_contact.h"
 #include "snapfit/error.h"
 
 namespace snapfit::cli {
@@ -222,16 +228,30 @@ void run_search(const SearchOptions& opt, const SearchRanks& ranks) {
   const std::vector<PoseCandidate> top =
       merge_candidates(unpack(all_candidates, grid), opt.top, 2 * pair.spectra.spacing, grid.step_rad);
 
-  // Refinement on rank 0's device with the per-frame query engine.
+  // Refinement on rank 0's device with the per-frame query engine: a descent of the
+  // energy, then (with the scene's rigid contact) of the potential the haptic loop
+  // renders, the energy times the loop's gain plus the contact, from where the first
+  // ended. The energy alone may be lowest inside part 1 (below a blind hole's floor);
+  // the rendered potential rests where the parts touch.
   QueryVariant variant;
   variant.force = variant.torque = true;
   variant.interpolation = Interpolation::tricubic;
   auto engine = make_query_engine(*ctx, pair.spectra, variant);
+  const double spacing = pair.spectra.spacing;
+  std::shared_ptr<const RigidContactModel> contact;
+  LoopConfig loop;
+  if (pair.scene.haptics.contact) {
+    contact = rigid_contact_for(pair.scene, pair.part(1).mesh, pair.part(2).mesh, spacing);
+    const TuningResult at_refine_modes =
+        pick_modes({TimingPoint{opt.refine_modes, 0, 0, 0, 1}}, pair.scene.frame_budget_ms, 0.25);
+    double force_scale = 0;
+    loop = loop_config_for(pair.scene, pair.part(2).mesh, spacing, *engine, at_refine_modes, force_scale, contact);
+  }
   engine->set_modes(opt.refine_modes);
   DescentOptions descent;
   descent.length = pair.spectra.part2.half_extent.norm();
-  descent.step = pair.spectra.spacing;
-  descent.min_step = pair.spectra.spacing / 100;
+  descent.step = spacing;
+  descent.min_step = spacing / 100;
   descent.max_queries = opt.refine_queries;
   std::ostringstream lines;
   for (std::size_t k = 0; k < top.size(); ++k) {
@@ -241,9 +261,21 @@ void run_search(const SearchOptions& opt, const SearchRanks& ranks) {
     line["map_fft"] = map_fft_name(mapper->fft());
     try {
       const DescentResult refined = descend_pose(*engine, top[k].pose, descent);
-      nlohmann::json r = pose_json(refined.pose);
-      r["energy"] = refined.energy;
-      r["queries"] = refined.queries;
+      nlohmann::json by_energy = pose_json(refined.pose);
+      by_energy["energy"] = refined.energy;
+      by_energy["queries"] = refined.queries;
+      nlohmann::json r = by_energy;
+      r["by"] = "energy";
+      if (contact) {
+        const RestPoint rest =
+            descend_rendered(wrench_evaluator(*engine), loop.geometry_gain, loop.contact, loop.coupling, refined.pose);
+        r = pose_json(rest.pose);
+        r["by"] = "rendered potential (energy x gain + rigid contact)";
+        r["energy"] = engine->query(rest.pose).energy;
+        r["potential_j"] = rest.potential_j;
+        r["newton_steps"] = rest.steps;
+        r["energy_minimum"] = by_energy;
+      }
       r["modes"] = engine->modes();
       line["refined"] = r;
     } catch (const Error& e) {
