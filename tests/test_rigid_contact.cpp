@@ -240,3 +240,85 @@ TEST_CASE("rigid contact: a hand pushing through the floor is held at it, stably
   CHECK(r.log.back().sent.force.z() == doctest::Approx(pull).epsilon(0.05));  // the hand feels the wall
   CHECK(r.part_resets == 0);
 }
+
+namespace {
+
+// The default scene's loop as `snapfit run` configures it (seed 000's energy at m' 8192
+// times its gain, the coupling, the rigid contact), for scripted hands.
+struct DefaultLoop {
+  AssemblyPair pair;
+  std::unique_ptr<QueryEngine> engine;
+  LoopConfig config;
+};
+
+DefaultLoop& default_loop() {
+  static DefaultLoop d = [] {
+    DefaultLoop l;
+    const Scene scene = load_scene(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/default.json");
+    const FftLibrary fft;
+    PairOptions options;
+    options.note = [](const std::string&) {};
+    l.pair = build_assembly_pair(scene, test::test_context(), fft, options);
+    l.engine = make_query_engine(test::test_context(), l.pair.spectra, query_variant_for(scene),
+                                 test::test_program_cache());
+    const TuningResult fixed = pick_modes({TimingPoint{8192, 0, 0, 0, 1}}, scene.frame_budget_ms, 0.25);
+    double force_scale = 0;
+    l.config = loop_config_for(scene, l.pair.part(2).mesh, l.pair.spectra.spacing, *l.engine, fixed, force_scale,
+                               rigid_contact_for(scene, l.pair.part(1).mesh, l.pair.part(2).mesh,
+                                                 l.pair.spectra.spacing));
+    return l;
+  }();
+  return d;
+}
+
+// Runs the default loop for a hand moving through `keys` from part 2 at keys[0]; the
+// deepest contact interpenetration on the way goes to `deepest`.
+LoopReport run_hand(const std::vector<Keyframe>& keys, double& deepest) {
+  DefaultLoop& l = default_loop();
+  ScriptedDevice device(Trajectory{keys}, DeviceLimits{l.pair.scene.haptics.max_force_n, l.pair.scene.haptics.max_torque_nm});
+  LoopConfig config = l.config;
+  config.duration_s = keys.back().time_s;
+  config.keep_log = true;
+  BodyState part;
+  part.pose = keys.front().pose;
+  const LoopReport r = run_haptic_loop(device, wrench_evaluator(*l.engine), config, simulated_loop_clock(), part);
+  deepest = 0;
+  for (const FrameRecord& f : r.log) deepest = std::max(deepest, f.contact_depth);
+  return r;
+}
+
+}  // namespace
+
+// The hand can take the part back out: the fit's attraction (seed 000's energy times the
+// loop's gain) stays weaker than the hand, the walls hold on the way. The peg's end is
+// at the block's top face 20 mm above the fit.
+TEST_CASE("rigid contact: a hand pulling the peg out of the fit gets it out") {
+  const Pose fit = *default_loop().pair.scene.assembled_pose;
+  const Pose out = moved(fit, Eigen::Vector3d(0, 0, 26), Eigen::Vector3d::Zero());
+  double deepest = 0;
+  const LoopReport r = run_hand({{0.0, fit}, {0.3, fit}, {1.3, out}, {1.8, out}}, deepest);
+  const Eigen::Vector3d lag = r.final_part.pose.translation - out.translation;
+  MESSAGE("part ends " << lag.transpose() << " mm from the hand, deepest contact " << deepest << " mm, largest force "
+                       << r.log.back().sent.force.norm() << " N at the end");
+  CHECK(r.final_part.pose.translation.z() - fit.translation.z() >= 20 + 5);  // clear of the block
+  CHECK(lag.norm() <= 0.5);  // the coupling alone holds it, the fit no longer pulls
+  CHECK(deepest <= 0.3);
+  CHECK(r.part_resets == 0);
+}
+
+// From a shallow engagement (the peg 2 mm into the hole), a hand moving 10 mm sideways
+// and 4 mm up: the wall stops the sideways motion until the peg has lifted out (it may
+// tilt), then the part follows the hand.
+TEST_CASE("rigid contact: a hand pulling sideways out of a shallow engagement gets the peg out") {
+  const Pose fit = *default_loop().pair.scene.assembled_pose;
+  const Pose shallow = moved(fit, Eigen::Vector3d(0, 0, 18), Eigen::Vector3d::Zero());
+  const Pose away = moved(fit, Eigen::Vector3d(10, 0, 22), Eigen::Vector3d::Zero());
+  double deepest = 0;
+  const LoopReport r = run_hand({{0.0, shallow}, {0.3, shallow}, {1.3, away}, {2.0, away}}, deepest);
+  const Eigen::Vector3d lag = r.final_part.pose.translation - away.translation;
+  MESSAGE("part ends " << lag.transpose() << " mm from the hand, deepest contact " << deepest << " mm");
+  CHECK(r.final_part.pose.translation.x() - fit.translation.x() >= 9);  // beside the hole, out of it
+  CHECK(lag.norm() <= 0.5);
+  CHECK(deepest <= 0.3);
+  CHECK(r.part_resets == 0);
+}
