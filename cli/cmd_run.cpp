@@ -44,6 +44,10 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 void print_loop(const Scene& scene, const SessionResult& session) {
   const LoopReport& loop = session.loop;
+  if (session.contact)
+    std::cout << "    rigid contact: built in " << session.contact_build_s << " s, " << session.contact_ms
+              << " ms a frame (p99 near the fit) left out of the query's budget: the loop starts at m' "
+              << session.start_modes << "\n";
   std::cout << "    " << loop.frames << " frames, measured " << loop.measured_rate_hz << " Hz; frame time p50 "
             << quantile(loop.frame_ms, 0.5) << " ms, p99 " << quantile(loop.frame_ms, 0.99) << " ms, max "
             << quantile(loop.frame_ms, 1.0) << " ms; " << loop.misses << " misses (" << 100 * loop.miss_rate() << " %; "

@@ -76,6 +76,18 @@ Chart tuning_chart(const TuningResult& t, const std::string& device_name) {
   return c;
 }
 
+nlohmann::json stiffness_json(const RenderedStiffness& k) {
+  const auto six = [](const std::array<double, 6>& v) {
+    return nlohmann::json{{"+x", v[0]}, {"-x", v[1]}, {"+y", v[2]}, {"-y", v[3]}, {"+z", v[4]}, {"-z", v[5]}};
+  };
+  return {{"step_mm", k.step_mm},
+          {"tilt_deg", k.tilt_deg},
+          {"force_n_per_mm", six(k.force_n_per_mm)},
+          {"torque_nm_per_deg", six(k.torque_nm_per_deg)},
+          {"coupling_n_per_mm", k.coupling_n_per_mm},
+          {"coupling_nm_per_deg", k.coupling_nm_per_deg}};
+}
+
 nlohmann::json write_haptic_report(const std::filesystem::path& out, const SessionResult& run,
                                    const TuningResult& tuning) {
   const LoopReport& loop = run.loop;
@@ -110,22 +122,11 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
                {"part1_edge_points", m.part1_samples.points.size()},
                {"part2_points", m.part2_samples.points.size()},
                {"build_s", run.contact_build_s},
+               {"time_ms_p99", run.contact_ms},
                {"frames_in_contact", frames_in_contact},
                {"deepest", deepest}};
   }
-  nlohmann::json fit_stiffness = nullptr;
-  if (run.fit_stiffness) {
-    const RenderedStiffness& k = *run.fit_stiffness;
-    const auto six = [](const std::array<double, 6>& v) {
-      return nlohmann::json{{"+x", v[0]}, {"-x", v[1]}, {"+y", v[2]}, {"-y", v[3]}, {"+z", v[4]}, {"-z", v[5]}};
-    };
-    fit_stiffness = {{"step_mm", k.step_mm},
-                     {"tilt_deg", k.tilt_deg},
-                     {"force_n_per_mm", six(k.force_n_per_mm)},
-                     {"torque_nm_per_deg", six(k.torque_nm_per_deg)},
-                     {"coupling_n_per_mm", k.coupling_n_per_mm},
-                     {"coupling_nm_per_deg", k.coupling_nm_per_deg}};
-  }
+  const nlohmann::json fit_stiffness = run.fit_stiffness ? stiffness_json(*run.fit_stiffness) : nullptr;
   return {{"rate_hz", loop.rate_hz},
           {"measured_rate_hz", loop.measured_rate_hz},
           {"elapsed_s", loop.elapsed_s},
@@ -145,7 +146,11 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
            {{"p50", quantile(loop.frame_ms, 0.5)},
             {"p99", quantile(loop.frame_ms, 0.99)},
             {"max", quantile(loop.frame_ms, 1.0)}}},
-          {"modes", {{"tuned", tuning.chosen_modes}, {"final", loop.final_modes}, {"changes", changes}}},
+          {"modes",
+           {{"tuned", tuning.chosen_modes},
+            {"start", run.start_modes},
+            {"final", loop.final_modes},
+            {"changes", changes}}},
           {"geometric_error_estimate", {{"force_n", spread(force_error)}, {"torque_nm", spread(torque_error)}}},
           {"geometry_gain", run.geometry_gain},
           {"rigid_contact", contact},

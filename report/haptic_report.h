@@ -14,6 +14,10 @@ namespace snapfit {
 nlohmann::json write_haptic_report(const std::filesystem::path& out, const SessionResult& run,
                                    const TuningResult& tuning);
 
+// The rendered stiffness at a pose (scheduler/rendered_wrench.h) as JSON: N/mm along
+// and N m/degree about +-x, +-y, +-z, beside the coupling's.
+nlohmann::json stiffness_json(const RenderedStiffness& stiffness);
+
 // The tuning sweep as a chart: p50 and p99 against m', the budget, the chosen m'.
 Chart tuning_chart(const TuningResult& tuning, const std::string& device_name);
 

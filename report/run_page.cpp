@@ -55,7 +55,8 @@ nlohmann::json summary_json(const RunRecord& run) {
                       {"misses", nullptr},
                       {"miss_rate", nullptr},
                       {"assembled", nullptr},
-                      {"final_error", nullptr}};
+                      {"final_error", nullptr},
+                      {"stiffness_at_fit", nullptr}};
   if (run.session) {
     const LoopReport& loop = run.session->loop;
     s["frames"] = loop.frames;
@@ -64,6 +65,7 @@ nlohmann::json summary_json(const RunRecord& run) {
     s["assembled"] = run.session->assembled;
     s["final_error"] = {{"position", run.session->final_error.position},
                         {"angle_deg", run.session->final_error.angle_deg}};
+    if (run.session->fit_stiffness) s["stiffness_at_fit"] = stiffness_json(*run.session->fit_stiffness);
   }
   return s;
 }

@@ -39,6 +39,8 @@ SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfi
   out.angle_tolerance_deg = scene.haptics.success_angle_deg;
   out.coupling = config.coupling;
   out.geometry_gain = config.geometry_gain;
+  out.contact_ms = config.contact_ms;
+  out.start_modes = config.modes.levels.empty() ? 0 : config.modes.levels.back();
   const Trajectory& t = scene.trajectory;
   if (options.duration_s) config.duration_s = *options.duration_s;
   config.keep_log = options.keep_log;

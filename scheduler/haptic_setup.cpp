@@ -1,8 +1,10 @@
 #include "scheduler/haptic_setup.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
+#include "core/quantile.h"
 #include "mesh/mesh_mass_properties.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/auto_tune.h"
@@ -64,10 +66,44 @@ LoopConfig scene_loop_config(const Scene& scene, const CouplingParams& coupling)
   return config;
 }
 
+double contact_cost_ms(const RigidContactModel& contact, const Scene& scene, double spacing, int repetitions) {
+  std::vector<Pose> poses = gain_probe_poses(scene, spacing);
+  poses.push_back(gain_reference_pose(scene));
+  std::vector<double> ms;
+  ms.reserve(poses.size() * std::size_t(std::max(1, repetitions)));
+  volatile double kept = 0;  // the result is used, so the call is timed
+  for (int r = 0; r < std::max(1, repetitions); ++r)
+    for (const Pose& pose : poses) {
+      const auto start = std::chrono::steady_clock::now();
+      kept = contact_wrench(contact, pose).energy_j;
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+  return quantile(ms, 0.99);
+}
+
+TuningResult tuning_beside_contact(const TuningResult& tuning, double contact_ms) {
+  if (!(contact_ms > 0) || tuning.points.empty()) return tuning;
+  // The frame's work is the query plus the contact: the query's target shrinks by the
+  // contact's time, (budget - b)(1 - margin) = budget (1 - margin) - contact.
+  const double budget = tuning.budget_ms - contact_ms / (1.0 - tuning.margin);
+  if (!(budget > 0)) {  // the contact alone fills the frame: the smallest m' measured
+    TuningResult r = pick_modes(tuning.points, tuning.budget_ms, tuning.margin);
+    r.chosen_modes = r.points.front().modes;
+    r.fits = false;
+    return r;
+  }
+  TuningResult r = pick_modes(tuning.points, budget, tuning.margin);
+  r.budget_ms = tuning.budget_ms;  // the frame's budget stays the scene's
+  r.created = tuning.created;
+  return r;
+}
+
 LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
-                           const TuningResult& tuning, double& force_scale,
+                           const TuningResult& tuned, double& force_scale,
                            std::shared_ptr<const RigidContactModel> contact) {
   LoopConfig config = scene_loop_config(scene, coupling_for(scene, part2_mesh));
+  if (contact) config.contact_ms = contact_cost_ms(*contact, scene, spacing);
+  const TuningResult tuning = tuning_beside_contact(tuned, config.contact_ms);
   config.contact = contact_evaluator(std::move(contact));
   engine.set_modes(tuning.chosen_modes);
   force_scale = 0;

@@ -42,10 +42,21 @@ std::vector<Pose> gain_probe_poses(const Scene& scene, double spacing);
 // the duration (the trajectory's length plus haptics.settle_s; 0 without a trajectory).
 LoopConfig scene_loop_config(const Scene& scene, const CouplingParams& coupling);
 
+// The rigid contact's time per frame where it is busiest: p99 of contact_wrench over
+// `repetitions` rounds of the gain's probe poses and its reference pose (ms).
+double contact_cost_ms(const RigidContactModel& contact, const Scene& scene, double spacing, int repetitions = 30);
+
+// The tuning with the contact's time taken out of the frame: m' picked again from the
+// measured points so that query + contact fit the budget with the tuning's margin (the
+// smallest m' measured when the contact alone fills it). Unchanged for contact_ms 0.
+TuningResult tuning_beside_contact(const TuningResult& tuning, double contact_ms);
+
 // The loop's configuration for `scene` (include/snapfit/haptic_loop.h loop_config):
 // `engine` is set to the tuned m' and probed at gain_probe_poses for the gain; the
 // largest force it saw goes to `force_scale`.
-// `contact`, when not null, is the rigid contact the loop adds (scheduler/rigid_contact.h).
+// `contact`, when not null, is the rigid contact the loop adds (scheduler/rigid_contact.h);
+// its measured time (contact_cost_ms, in LoopConfig::contact_ms) is taken out of the
+// frame's budget before the loop's m' levels are set (tuning_beside_contact).
 LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
                            const TuningResult& tuning, double& force_scale,
                            std::shared_ptr<const RigidContactModel> contact = nullptr);

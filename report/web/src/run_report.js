@@ -15,6 +15,18 @@ function summaryItem(key, label, value, text, tone) {
   return element('div', {}, element('dt', { text: label }), dd);
 }
 
+// What the user feels at the fit (scheduler/rendered_wrench.h): the rendered stiffness
+// over the six directions of part 1's axes, beside the coupling's (the hand's spring).
+function stiffnessItem(k) {
+  const range = (six) => {
+    const v = Object.values(six);
+    return `${formatNumber(Math.min(...v), 3)}-${formatNumber(Math.max(...v), 3)}`;
+  };
+  const text = `${range(k.force_n_per_mm)} N/mm, ${range(k.torque_nm_per_deg)} N m/deg ` +
+               `(coupling ${formatNumber(k.coupling_n_per_mm, 3)} N/mm, ${formatNumber(k.coupling_nm_per_deg, 3)} N m/deg)`;
+  return summaryItem('stiffness_at_fit', `stiffness at the fit (over ${k.step_mm} mm, ${k.tilt_deg} deg)`, k, text);
+}
+
 function renderSummary(root, s) {
   const list = element('dl', { class: 'summary', id: 'summary' });
   list.append(summaryItem('scene', 'scene', s.scene, s.scene));
@@ -29,6 +41,7 @@ function renderSummary(root, s) {
                             s.assembled ? 'good' : 'bad'));
     list.append(summaryItem('final_error', 'final pose error', s.final_error,
                             `${formatNumber(s.final_error.position)} ${s.units}, ${formatNumber(s.final_error.angle_deg)} deg`));
+    if (s.stiffness_at_fit) list.append(stiffnessItem(s.stiffness_at_fit));
   } else {
     list.append(summaryItem('misses', 'missed frames', null, 'no loop (the scene has no trajectory)'));
     list.append(summaryItem('assembled', 'success', null, 'no loop'));

@@ -34,6 +34,15 @@ try {
             `misses: ${loop.misses} of ${loop.frames}`);
     t.check(dom.assembled && dom.assembled.value === loop.assembled &&
             dom.assembled.text === (loop.assembled ? 'ASSEMBLED' : 'NOT assembled'), `success: ${loop.assembled}`);
+    const stiff = loop.stiffness_at_fit;
+    if (stiff) {
+      const lowest = Math.min(...Object.values(stiff.force_n_per_mm));
+      t.check(dom.stiffness_at_fit && JSON.stringify(dom.stiffness_at_fit.value) === JSON.stringify(stiff) &&
+              dom.stiffness_at_fit.text.includes('N/mm') && dom.stiffness_at_fit.text.includes('coupling'),
+              `stiffness at the fit as in summary.json (lowest ${lowest} N/mm)`);
+    } else {
+      t.check(!dom.stiffness_at_fit, 'no stiffness at the fit in summary.json: none on the page');
+    }
   } else {
     t.check(dom.misses && dom.misses.value === null && dom.misses.text.includes('no loop'), 'no loop: misses say so');
     t.check(await page.locator('#play').isDisabled(), 'no loop: the play button is disabled');
