@@ -23,9 +23,11 @@
 //   ./build/perf/bench_assembly [--quick] [--trials 20] [--seed 1] [--modes 16384]
 //       [--clearances 0,0.02,0.05,0.1,0.25,0.5,1] [--voxels 0.1,0.25,0.5]
 //       [--methods snapfit,translation,vps] [--no-three-pegs] [--penetration-stride 10]
-//       [--geometry-strength G] [--lambda-in P] [--no-contact] [--device SPEC] [--out results/bench_assembly]
+//       [--geometry-strength G] [--lambda-in P] [--contact-stiffness K] [--no-contact] [--device SPEC]
+//       [--out results/bench_assembly]
 // --geometry-strength and --lambda-in override the scenes' haptics.geometry_strength and
 // descriptor.lambda_in (the penalty factor with lambda_out 1) for snapfit's methods;
+// --contact-stiffness overrides haptics.contact_stiffness_n_per_mm3 (N/mm^3; must be > 0);
 // --no-contact renders seed 000's energy alone, without the rigid contact
 // (scheduler/rigid_contact.h).
 // --quick: clearance 0.5 only (the shipped scene), no three-peg pair, 2 trials, VPS at 0.25 mm, m' 4096.
@@ -60,7 +62,7 @@ namespace {
 void usage(std::ostream& os) {
   os << "bench_assembly [--quick] [--trials N] [--seed S] [--modes M] [--clearances LIST] [--voxels LIST]\n"
         "               [--methods snapfit,translation,vps] [--no-three-pegs] [--penetration-stride K]\n"
-        "               [--geometry-strength G] [--lambda-in P] [--no-contact]\n"
+        "               [--geometry-strength G] [--lambda-in P] [--contact-stiffness K] [--no-contact]\n"
         "               [--device SPEC] [--out DIR]\n"
         "Scripted imprecise-user insertions: success, errors and true interpenetration against clearance,\n"
         "for snapfit (6-DOF, translation-only) and Voxmap PointShell (see perf/bench_assembly.cpp).\n";
@@ -267,7 +269,7 @@ int main(int argc, char** argv) {
     std::string methods_text = "snapfit,translation,vps";
     std::optional<long> trials_set, modes_set;
     std::optional<std::vector<double>> clearances_set, voxels_set;
-    std::optional<double> geometry_strength, lambda_in;  // overrides of the scenes' values
+    std::optional<double> geometry_strength, lambda_in, contact_stiffness;  // overrides of the scenes' values
     bench::parse_options(
         argc, argv, quick, device_spec, out_dir, usage, [&](const std::string& s, auto value, auto is) {
           if (is("--trials")) return trials_set = bench::integer_option("--trials", value("--trials"), 1, 100000), true;
@@ -282,6 +284,8 @@ int main(int argc, char** argv) {
           if (is("--geometry-strength"))
             return geometry_strength = number_list("--geometry-strength", value("--geometry-strength")).at(0), true;
           if (is("--lambda-in")) return lambda_in = number_list("--lambda-in", value("--lambda-in")).at(0), true;
+          if (is("--contact-stiffness"))
+            return contact_stiffness = number_list("--contact-stiffness", value("--contact-stiffness")).at(0), true;
           if (s == "--no-three-pegs") return three_pegs = false, true;
           if (s == "--no-contact") return contact = false, true;
           return false;
@@ -381,6 +385,7 @@ int main(int argc, char** argv) {
         scene.haptics.settle_s = 1;
         if (geometry_strength) scene.haptics.geometry_strength = *geometry_strength;
         if (lambda_in) scene.descriptor.lambda_in = *lambda_in;
+        if (contact_stiffness) scene.haptics.contact_stiffness_n_per_mm3 = *contact_stiffness;
         std::optional<AssemblyPair> pair;
         std::unique_ptr<QueryEngine> engine;
         std::optional<VpsModel> vps;

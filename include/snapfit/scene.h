@@ -113,7 +113,7 @@ struct HapticsParams {
   // Rigid contact between the parts' surfaces, added to the geometric wrench in the loop
   // (scheduler/rigid_contact.h); false renders seed 000's energy alone.
   bool contact = true;
-  double contact_stiffness_n_per_mm3 = 16;  // contact pressure per unit of interpenetration depth
+  double contact_stiffness_n_per_mm3 = 4;  // contact pressure per unit of interpenetration depth
   std::optional<double> contact_spacing;    // surface samples, scene units (distance grid: a third); default h
 };
 
