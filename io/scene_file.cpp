@@ -432,7 +432,7 @@ HapticsParams read_haptics(const Ctx& c, const json& v, const std::string& path)
       c, v, path,
       {"mass_kg", "stiffness_n_per_m", "rot_stiffness_nm_per_rad", "damping_ratio", "max_force_n", "max_torque_nm",
        "geometry_gain", "geometry_strength", "settle_s", "success_position", "success_angle_deg", "contact",
-       "contact_stiffness_n_per_mm3", "contact_spacing"});
+       "contact_stiffness_n_per_mm3", "contact_spacing", "max_force_rate_n_per_s"});
   HapticsParams h;
   if (const json* x = find(v, "mass_kg")) h.mass_kg = positive(c, *x, join(path, "mass_kg"));
   if (const json* x = find(v, "stiffness_n_per_m"))
@@ -456,6 +456,8 @@ HapticsParams read_haptics(const Ctx& c, const json& v, const std::string& path)
   if (const json* x = find(v, "contact_stiffness_n_per_mm3"))
     h.contact_stiffness_n_per_mm3 = positive(c, *x, join(path, "contact_stiffness_n_per_mm3"));
   if (const json* x = find(v, "contact_spacing")) h.contact_spacing = positive(c, *x, join(path, "contact_spacing"));
+  if (const json* x = find(v, "max_force_rate_n_per_s"))
+    h.max_force_rate_n_per_s = non_negative(c, *x, join(path, "max_force_rate_n_per_s"));
   return h;
 }
 
@@ -762,6 +764,7 @@ std::string scene_to_json(const Scene& s) {
   hj["contact"] = h.contact;
   hj["contact_stiffness_n_per_mm3"] = h.contact_stiffness_n_per_mm3;
   if (h.contact_spacing) hj["contact_spacing"] = *h.contact_spacing;
+  hj["max_force_rate_n_per_s"] = h.max_force_rate_n_per_s;
   j["haptics"] = hj;
   j["method"] = s.method == Method::vps ? "vps" : "snapfit";
   ordered_json vj;

@@ -40,6 +40,7 @@ SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfi
   out.coupling = config.coupling;
   out.geometry_gain = config.geometry_gain;
   out.contact_ms = config.contact_ms;
+  out.max_force_rate_n_per_s = config.max_force_rate_n_per_s;
   out.start_modes = config.modes.levels.empty() ? 0 : config.modes.levels.back();
   const Trajectory& t = scene.trajectory;
   if (options.duration_s) config.duration_s = *options.duration_s;

@@ -36,6 +36,7 @@ struct SessionResult {
   CouplingParams coupling;
   DeviceLimits limits;
   double geometry_gain = 0;
+  double max_force_rate_n_per_s = 0;  // the loop's bound on the sent force's rate (0: none)
   double force_scale = 0;  // largest engine force at the gain's probe poses
   Pose target;             // the assembled pose (else the last keyframe)
   PoseError final_error;

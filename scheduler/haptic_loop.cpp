@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "core/quantile.h"
+#include "scheduler/force_rate_limit.h"
 #include "scheduler/virtual_coupling.h"
 #include "snapfit/error.h"
 
@@ -64,6 +65,8 @@ void check_config(const LoopConfig& c) {
   if (c.duration_s <= 0 && !c.stop) throw Error("haptic loop: no duration and no stop flag: it would never end");
   if (!(std::isfinite(c.max_travel) && c.max_travel >= 0 && std::isfinite(c.max_rotation) && c.max_rotation >= 0))
     throw Error("haptic loop: the speed limits must be >= 0");
+  if (!(std::isfinite(c.max_force_rate_n_per_s) && c.max_force_rate_n_per_s >= 0))
+    throw Error("haptic loop: the force-rate bound must be >= 0 N/s");
   if (c.modes.levels.empty()) throw Error("haptic loop: the m' ladder is empty");
   if (!std::is_sorted(c.modes.levels.begin(), c.modes.levels.end()) || c.modes.levels.front() == 0)
     throw Error("haptic loop: the m' ladder must be positive and increasing");
@@ -252,6 +255,7 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
   ImplicitExtras extra;
   PassivityController passivity(config);
   std::optional<BodyState> last_good_handle;
+  std::optional<Eigen::Vector3d> last_coupling_force;  // what the device felt last frame, before its limits
   std::size_t tick = 0, frame = 0;
   const double start = clock.now();
   while (true) {
@@ -291,8 +295,16 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     passivity.observe(part.pose, q, geometric);
     extra = passivity.extras(part);
     extra.contact_stiffness = contact.stiffness;
-    step_body(part, handle, external, config.coupling, period, extra);
+    ImplicitExtras stepped = extra;
+    if (config.max_force_rate_n_per_s > 0 && last_coupling_force)
+      stepped.damping += rate_limiting_damping(part, handle, external, config.coupling, period, extra,
+                                               *last_coupling_force, config.max_force_rate_n_per_s * period);
+    step_body(part, handle, external, config.coupling, period, stepped);
     limit_speed(part, queried, config, period);
+    if (const double beta = stepped.damping - extra.damping; beta > 0) {
+      ++report.rate_limited_frames;
+      report.rate_limit_dissipated_j += period * beta * (config.coupling.metres_per_unit * part.velocity).squaredNorm();
+    }
     if (const double removed = passivity.stepped(part, extra); removed > 0) {
       ++report.passivity_frames;
       report.passivity_dissipated_j += removed;
@@ -303,6 +315,7 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
       passivity.invalidate();
     }
     const Wrench on_part = coupling_wrench(part, handle, config.coupling);
+    last_coupling_force = on_part.force;
     const Wrench sent = clamp_to_limits(Wrench{-on_part.force, -on_part.torque}, limits);
     device.send(sent, tick_time);
 

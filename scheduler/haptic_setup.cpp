@@ -63,6 +63,7 @@ LoopConfig scene_loop_config(const Scene& scene, const CouplingParams& coupling)
       t.keyframes.empty() ? 0.0 : t.keyframes.back().time_s - t.keyframes.front().time_s + scene.haptics.settle_s;
   config.budget_ms = scene.frame_budget_ms;
   config.coupling = coupling;
+  config.max_force_rate_n_per_s = scene.haptics.max_force_rate_n_per_s;
   return config;
 }
 

@@ -122,6 +122,7 @@ LoopConfig vps_loop_config(const Scene& scene, const VpsModel& model, const Coup
   // Speed limit (McNeely 1999): no shell point moves more than half a voxel per frame.
   config.max_travel = 0.5 * model.voxmap.voxel_size;
   config.max_rotation = model.shell.radius > 0 ? config.max_travel / model.shell.radius : 0.0;
+  config.max_force_rate_n_per_s = 0;  // the peer as published: no bound on the force's rate
   return config;
 }
 

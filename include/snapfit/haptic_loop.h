@@ -138,6 +138,10 @@ struct LoopConfig {
   // stiffness integrated implicitly; null: none (seed 000's energy alone).
   std::function<ContactWrench(const Pose&)> contact;
   double contact_ms = 0;  // its measured time per frame (p99), left out of the query's share of the budget
+  // The most the coupling's force on the device may change per second (N/s; 0: no bound):
+  // a frame that would change it faster damps the part instead (passive: the energy is
+  // dissipated, not sent to the hand). See scheduler/force_rate_limit.h.
+  double max_force_rate_n_per_s = 0;
 };
 
 struct FrameRecord {
@@ -177,6 +181,8 @@ struct LoopReport {
   std::size_t part_resets = 0;         // non-finite part states, reset to the device state
   std::size_t passivity_frames = 0;    // frames in which the passivity controller damped the part
   double passivity_dissipated_j = 0;   // energy its damping removed, J
+  std::size_t rate_limited_frames = 0;  // frames the force-rate bound damped the part
+  double rate_limit_dissipated_j = 0;    // energy that damping removed, J
   std::size_t late_wakeup_misses = 0;  // misses whose own work fit: the thread woke late
   std::size_t stall_misses = 0;        // misses whose work was far beyond the model (ModePolicy::stall_factor)
   std::vector<double> frame_ms;        // every frame: tick to wrench sent

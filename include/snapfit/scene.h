@@ -115,6 +115,9 @@ struct HapticsParams {
   bool contact = true;
   double contact_stiffness_n_per_mm3 = 4;  // contact pressure per unit of interpenetration depth
   std::optional<double> contact_spacing;    // surface samples, scene units (distance grid: a third); default h
+  // The most the force sent may change per second, N/s (0: no bound); the loop damps the
+  // part instead (scheduler/force_rate_limit.h). 200 N/s = 0.2 N between 1 kHz frames.
+  double max_force_rate_n_per_s = 200;
 };
 
 // Which haptic rendering method a scene's run uses.
