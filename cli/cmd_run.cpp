@@ -44,6 +44,7 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 void print_loop(const Scene& scene, const SessionResult& session) {
   const LoopReport& loop = session.loop;
+  if (!session.contact_off.empty()) std::cerr << "snapfit: " << session.contact_off << "\n";
   if (session.contact)
     std::cout << "    rigid contact: built in " << session.contact_build_s << " s, " << session.contact_ms
               << " ms a frame (p99 near the fit) left out of the query's budget: the loop starts at m' "

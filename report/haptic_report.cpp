@@ -107,6 +107,7 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
   const auto& fp = run.loop.final_part.pose;
   // The rigid contact (scheduler/rigid_contact.h) and the stiffness the user feels at the fit.
   nlohmann::json contact = nullptr;
+  if (!run.contact_off.empty()) contact = {{"off", run.contact_off}};
   if (run.contact) {
     const RigidContactModel& m = *run.contact;
     std::size_t frames_in_contact = 0;

@@ -13,7 +13,9 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part1_mesh, 
   if (scene.trajectory.keyframes.empty())
     throw Error(scene.source_path + ": no trajectory: a scripted assembly needs one (or use a real device)");
   const auto built = std::chrono::steady_clock::now();
-  std::shared_ptr<const RigidContactModel> contact = rigid_contact_for(scene, part1_mesh, part2_mesh, spacing);
+  std::string contact_off;
+  std::shared_ptr<const RigidContactModel> contact =
+      rigid_contact_for(scene, part1_mesh, part2_mesh, spacing, &contact_off);
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
   double force_scale = 0;
   const LoopConfig config = loop_config_for(scene, part2_mesh, spacing, engine, tuning, force_scale, contact);
@@ -21,6 +23,7 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part1_mesh, 
   out.force_scale = force_scale;
   out.contact = std::move(contact);
   out.contact_build_s = build_s;
+  out.contact_off = contact_off;
   if (scene.assembled_pose)
     out.fit_stiffness =
         rendered_stiffness(wrench_evaluator(engine), config.geometry_gain, config.contact, config.coupling,

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "mesh/mesh_report.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -29,8 +30,20 @@ RigidContactModel build_rigid_contact(const Mesh& part1, const Mesh& part2, doub
 }
 
 std::shared_ptr<const RigidContactModel> rigid_contact_for(const Scene& scene, const Mesh& part1, const Mesh& part2,
-                                                           double grid_spacing) {
+                                                           double grid_spacing, std::string* why_off) {
+  if (why_off) why_off->clear();
   if (!scene.haptics.contact || scene.method != Method::snapfit) return nullptr;
+  for (int part = 1; part <= 2; ++part) {
+    const MeshReport r = validate_mesh(part == 1 ? part1 : part2);
+    if (r.watertight()) continue;
+    if (why_off)
+      *why_off = "rigid contact off: part " + std::to_string(part) + " is not watertight (" +
+                 std::to_string(r.boundary_edges) + " open, " + std::to_string(r.non_manifold_edges) +
+                 " non-manifold and " + std::to_string(r.inconsistent_edges) +
+                 " inconsistently oriented edges), so its inside is not defined; seed 000's energy alone is "
+                 "rendered (close the mesh, or set haptics.contact to false to silence this)";
+    return nullptr;
+  }
   const double samples = scene.haptics.contact_spacing.value_or(grid_spacing);
   const double distance = samples / 3;
   const double u = metres_per_unit(scene.units);

@@ -22,6 +22,7 @@
 // -dE/d(t, theta), and the stiffness the Gauss-Newton Hessian sum k A_i J_i J_i^T
 // (positive semi-definite), which the loop integrates implicitly.
 #include <memory>
+#include <string>
 
 #include "mesh/contact_samples.h"
 #include "mesh/mesh.h"
@@ -53,9 +54,11 @@ RigidContactModel build_rigid_contact(const Mesh& part1, const Mesh& part2, doub
 
 // The scene's model (haptics.contact_*): samples at contact_spacing (default the grid
 // spacing h), distances at a third of it within two sample spacings of the surface; or
-// null when the scene turns contact off or renders with another method.
+// null when the scene turns contact off or renders with another method, or when a part
+// is not watertight (its inside, and so the sign of its distance, is not defined):
+// `why_off`, when given, then says which part and why (empty otherwise).
 std::shared_ptr<const RigidContactModel> rigid_contact_for(const Scene& scene, const Mesh& part1, const Mesh& part2,
-                                                           double grid_spacing);
+                                                           double grid_spacing, std::string* why_off = nullptr);
 
 // The contact at part 2's pose `pose` (relative to part 1). No heap allocation.
 ContactWrench contact_wrench(const RigidContactModel& model, const Pose& pose);

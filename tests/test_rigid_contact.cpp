@@ -322,3 +322,21 @@ TEST_CASE("rigid contact: a hand pulling sideways out of a shallow engagement ge
   CHECK(deepest <= 0.3);
   CHECK(r.part_resets == 0);
 }
+
+// A part that is not watertight has no defined inside: the contact is off, and says
+// which part and why, instead of pushing by a meaningless sign.
+TEST_CASE("rigid contact: an open part turns the contact off with a reason") {
+  const ShippedPair& p = default_pair();
+  Mesh open = p.pair.part(2).mesh;
+  open.triangles.pop_back();
+  std::string why;
+  CHECK(rigid_contact_for(p.scene, p.pair.part(1).mesh, open, p.pair.grids.spacing, &why) == nullptr);
+  MESSAGE(why);
+  CHECK(why.find("part 2 is not watertight") != std::string::npos);
+  CHECK(why.find("haptics.contact") != std::string::npos);
+  std::string none = "stale";
+  Scene off = p.scene;
+  off.haptics.contact = false;
+  CHECK(rigid_contact_for(off, p.pair.part(1).mesh, open, p.pair.grids.spacing, &none) == nullptr);
+  CHECK(none.empty());  // turned off by the scene: nothing to explain
+}
