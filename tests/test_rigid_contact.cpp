@@ -17,7 +17,7 @@
 #include "scheduler/haptic_setup.h"
 #include "scheduler/rendered_wrench.h"
 #include "scheduler/rigid_contact.h"
-#include "tests/test_engine_support.h"
+#include "tests/shipped_engine.h"
 #include "scheduler/scripted_device.h"
 #include "scheduler/virtual_coupling.h"
 
@@ -174,13 +174,10 @@ TEST_CASE("rigid contact: the wrench is minus the gradient of the contact energy
 // the same descent sinks below the blind hole's floor, where the truncated energy is lowest.
 TEST_CASE("rigid contact: the rendered potential rests at the fit of the shipped scenes (m' 8192)") {
   for (const char* file : {"default.json", "peg_hole_clearance_0p5.json", "three_pegs.json"}) {
-    const Scene scene = load_scene(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/" + file);
-    const FftLibrary fft;
-    PairOptions options;
-    options.note = [](const std::string&) {};
-    const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, options);
-    auto engine =
-        make_query_engine(test::test_context(), pair.spectra, query_variant_for(scene), test::test_program_cache());
+    const Scene scene = test::shipped_scene(file);
+    const test::ShippedEngine shipped = test::shipped_engine(scene);
+    const AssemblyPair& pair = shipped.pair;
+    QueryEngine* engine = shipped.engine.get();
     const TuningResult fixed = pick_modes({TimingPoint{8192, 0, 0, 0, 1}}, scene.frame_budget_ms, 0.25);
     const auto contact = rigid_contact_for(scene, pair.part(1).mesh, pair.part(2).mesh, pair.spectra.spacing);
     REQUIRE(contact);
@@ -254,13 +251,10 @@ struct DefaultLoop {
 DefaultLoop& default_loop() {
   static DefaultLoop d = [] {
     DefaultLoop l;
-    const Scene scene = load_scene(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/default.json");
-    const FftLibrary fft;
-    PairOptions options;
-    options.note = [](const std::string&) {};
-    l.pair = build_assembly_pair(scene, test::test_context(), fft, options);
-    l.engine = make_query_engine(test::test_context(), l.pair.spectra, query_variant_for(scene),
-                                 test::test_program_cache());
+    const Scene scene = test::shipped_scene("default.json");
+    test::ShippedEngine shipped = test::shipped_engine(scene);
+    l.pair = std::move(shipped.pair);
+    l.engine = std::move(shipped.engine);
     const TuningResult fixed = pick_modes({TimingPoint{8192, 0, 0, 0, 1}}, scene.frame_budget_ms, 0.25);
     double force_scale = 0;
     l.config = loop_config_for(scene, l.pair.part(2).mesh, l.pair.spectra.spacing, *l.engine, fixed, force_scale,

@@ -11,21 +11,18 @@
 #include "engine/query_engine.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/assembly_session.h"
-#include "tests/test_engine_support.h"
+#include "tests/shipped_engine.h"
 
 using namespace snapfit;
 
 namespace {
 
 SessionResult insert(const std::string& scene_file, std::size_t modes, std::optional<double> gain = std::nullopt) {
-  Scene scene = load_scene(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/" + scene_file);
+  Scene scene = test::shipped_scene(scene_file);
   if (gain) scene.haptics.geometry_gain = *gain;
-  const FftLibrary fft;
-  PairOptions options;
-  options.note = [](const std::string&) {};
-  const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, options);
-  auto engine =
-      make_query_engine(test::test_context(), pair.spectra, query_variant_for(scene), test::test_program_cache());
+  const test::ShippedEngine shipped = test::shipped_engine(scene);
+  const AssemblyPair& pair = shipped.pair;
+  QueryEngine* engine = shipped.engine.get();
   const TuningResult fixed = pick_modes({TimingPoint{modes, 0, 0, 0, 1}}, scene.frame_budget_ms, 0.25);
   SessionOptions session;
   session.simulated_time = true;
