@@ -67,8 +67,10 @@ LoopConfig scene_loop_config(const Scene& scene, const CouplingParams& coupling)
   return config;
 }
 
-double contact_cost_ms(const RigidContactModel& contact, const Scene& scene, double spacing, int repetitions) {
-  std::vector<Pose> poses = gain_probe_poses(scene, spacing);
+double contact_cost_ms(const RigidContactModel& contact, const Scene& scene, int repetitions) {
+  // The reference pose and the reference moved by one fine distance spacing along each
+  // axis: as deep into part 1 as the loop's part goes (the contact holds it within ~1).
+  std::vector<Pose> poses = gain_probe_poses(scene, 0.5 * contact.part1_distance.fine_spacing());
   poses.push_back(gain_reference_pose(scene));
   std::vector<double> ms;
   ms.reserve(poses.size() * std::size_t(std::max(1, repetitions)));
@@ -103,7 +105,7 @@ LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double sp
                            const TuningResult& tuned, double& force_scale,
                            std::shared_ptr<const RigidContactModel> contact) {
   LoopConfig config = scene_loop_config(scene, coupling_for(scene, part2_mesh));
-  if (contact) config.contact_ms = contact_cost_ms(*contact, scene, spacing);
+  if (contact) config.contact_ms = contact_cost_ms(*contact, scene);
   const TuningResult tuning = tuning_beside_contact(tuned, config.contact_ms);
   config.contact = contact_evaluator(std::move(contact));
   engine.set_modes(tuning.chosen_modes);

@@ -42,9 +42,11 @@ std::vector<Pose> gain_probe_poses(const Scene& scene, double spacing);
 // the duration (the trajectory's length plus haptics.settle_s; 0 without a trajectory).
 LoopConfig scene_loop_config(const Scene& scene, const CouplingParams& coupling);
 
-// The rigid contact's time per frame where it is busiest: p99 of contact_wrench over
-// `repetitions` rounds of the gain's probe poses and its reference pose (ms).
-double contact_cost_ms(const RigidContactModel& contact, const Scene& scene, double spacing, int repetitions = 30);
+// The rigid contact's time per frame near the fit: p99 of contact_wrench (ms) over
+// `repetitions` rounds of the gain's reference pose and that pose moved by one fine
+// distance spacing along +-x, +-y, +-z (into part 1 about as deep as the contact lets
+// the loop's part go).
+double contact_cost_ms(const RigidContactModel& contact, const Scene& scene, int repetitions = 30);
 
 // The tuning with the contact's time taken out of the frame: m' picked again from the
 // measured points so that query + contact fit the budget with the tuning's margin (the
