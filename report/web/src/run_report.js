@@ -20,7 +20,7 @@ function summaryItem(key, label, value, text, tone) {
 function stiffnessItem(k) {
   const range = (six) => {
     const v = Object.values(six);
-    return `${formatNumber(Math.min(...v), 3)}-${formatNumber(Math.max(...v), 3)}`;
+    return `${formatNumber(Math.min(...v), 3)} to ${formatNumber(Math.max(...v), 3)}`;
   };
   const text = `${range(k.force_n_per_mm)} N/mm, ${range(k.torque_nm_per_deg)} N m/deg ` +
                `(coupling ${formatNumber(k.coupling_n_per_mm, 3)} N/mm, ${formatNumber(k.coupling_nm_per_deg, 3)} N m/deg)`;
