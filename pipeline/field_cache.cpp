@@ -7,6 +7,7 @@
 #include "core/hash.h"
 #include "engine/kernel_sources.h"
 #include "io/cache_file.h"
+#include "mesh/mesh_hash.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -17,11 +18,6 @@ constexpr std::uint32_t kFieldCacheVersion = 3;
 // Mask bit (above the field bits) set when w came from sign propagation.
 constexpr std::uint32_t kSignPropagationBit = 1u << 16;
 constexpr const char* kKind = "descriptor-fields";
-
-std::uint64_t mesh_hash(const Mesh& mesh) {
-  std::uint64_t h = fnv1a64(mesh.vertices.data(), mesh.vertices.size() * sizeof(Eigen::Vector3d));
-  return fnv1a64(mesh.triangles.data(), mesh.triangles.size() * sizeof(Eigen::Vector3i), h);
-}
 
 // Payload: u64 point count, u32 mask of present fields (plus kSignPropagationBit), then
 // each present field's floats, in this order.
