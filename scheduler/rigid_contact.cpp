@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "mesh/mesh_report.h"
+#include "scheduler/contact_cache.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -12,20 +13,30 @@ namespace snapfit {
 // was 0.29 spacings (tests/test_rigid_contact.cpp); touching surfaces must not push.
 constexpr double kSkinPerSpacing = 0.35;
 
-RigidContactModel build_rigid_contact(const Mesh& part1, const Mesh& part2, double sample_spacing,
-                                      double distance_spacing, double band, double pressure_stiffness_n_per_m3,
-                                      double metres_per_unit) {
+namespace {
+
+// What the geometry does not decide: stiffness, skin (from the distance spacing) and units.
+void set_contact_parameters(RigidContactModel& m, double distance_spacing, double pressure_stiffness_n_per_m3,
+                            double metres_per_unit) {
   if (!(std::isfinite(pressure_stiffness_n_per_m3) && pressure_stiffness_n_per_m3 > 0))
     throw Error("rigid contact: the contact stiffness must be > 0");
   if (!(std::isfinite(metres_per_unit) && metres_per_unit > 0)) throw Error("rigid contact: bad length unit");
+  m.pressure_stiffness = pressure_stiffness_n_per_m3;
+  m.skin = kSkinPerSpacing * distance_spacing;
+  m.metres_per_unit = metres_per_unit;
+}
+
+}  // namespace
+
+RigidContactModel build_rigid_contact(const Mesh& part1, const Mesh& part2, double sample_spacing,
+                                      double distance_spacing, double band, double pressure_stiffness_n_per_m3,
+                                      double metres_per_unit) {
   RigidContactModel m;
+  set_contact_parameters(m, distance_spacing, pressure_stiffness_n_per_m3, metres_per_unit);
   m.part1_distance = build_signed_distance_grid(part1, distance_spacing, band, band);
   m.part2_distance = build_signed_distance_grid(part2, distance_spacing, band, band);
   m.part1_samples = build_contact_samples(part1, sample_spacing, true);
   m.part2_samples = build_contact_samples(part2, sample_spacing, false);
-  m.pressure_stiffness = pressure_stiffness_n_per_m3;
-  m.skin = kSkinPerSpacing * distance_spacing;
-  m.metres_per_unit = metres_per_unit;
   return m;
 }
 
@@ -46,9 +57,19 @@ std::shared_ptr<const RigidContactModel> rigid_contact_for(const Scene& scene, c
   }
   const double samples = scene.haptics.contact_spacing.value_or(grid_spacing);
   const double distance = samples / 3;
+  const double band = 2 * samples;
   const double u = metres_per_unit(scene.units);
-  RigidContactModel model = build_rigid_contact(part1, part2, samples, distance, 2 * samples,
-                                                scene.haptics.contact_stiffness_n_per_mm3 * 1e9, u);
+  const double k = scene.haptics.contact_stiffness_n_per_mm3 * 1e9;
+  // The geometry from the contact cache (scheduler/contact_cache.h) when it has it.
+  const std::string key = contact_cache_key(part1, part2, samples, distance, band);
+  RigidContactModel model;
+  if (std::optional<RigidContactModel> cached = load_cached_contact(key)) {
+    model = std::move(*cached);
+    set_contact_parameters(model, distance, k, u);
+  } else {
+    model = build_rigid_contact(part1, part2, samples, distance, band, k, u);
+    save_cached_contact(key, model);  // not cached (unwritable folder, full disk): rebuilt next time
+  }
   model.translation_only = scene.motion == Motion::translation;
   return std::make_shared<const RigidContactModel>(std::move(model));
 }

@@ -54,6 +54,7 @@ RigidContactModel build_rigid_contact(const Mesh& part1, const Mesh& part2, doub
 
 // The scene's model (haptics.contact_*): samples at contact_spacing (default the grid
 // spacing h), distances at a third of it within two sample spacings of the surface; or
+// the geometry comes from the contact cache when it holds it (scheduler/contact_cache.h);
 // null when the scene turns contact off or renders with another method, or when a part
 // is not watertight (its inside, and so the sign of its distance, is not defined):
 // `why_off`, when given, then says which part and why (empty otherwise).
