@@ -296,10 +296,21 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     extra = passivity.extras(part);
     extra.contact_stiffness = contact.stiffness;
     ImplicitExtras stepped = extra;
-    if (config.max_force_rate_n_per_s > 0 && last_coupling_force)
-      stepped.damping += rate_limiting_damping(part, handle, external, config.coupling, period, extra,
-                                               *last_coupling_force, config.max_force_rate_n_per_s * period);
+    const BodyState before_step = part;
     step_body(part, handle, external, config.coupling, period, stepped);
+    // The force-rate bound: only a frame whose step changes the coupling's force faster
+    // looks for damping, and is stepped again with it.
+    const double max_change = config.max_force_rate_n_per_s * period;
+    if (max_change > 0 && last_coupling_force &&
+        (coupling_wrench(part, handle, config.coupling).force - *last_coupling_force).norm() > max_change) {
+      if (const double beta = rate_limiting_damping(before_step, handle, external, config.coupling, period, extra,
+                                                    *last_coupling_force, max_change);
+          beta > 0) {
+        stepped.damping += beta;
+        part = before_step;
+        step_body(part, handle, external, config.coupling, period, stepped);
+      }
+    }
     limit_speed(part, queried, config, period);
     if (const double beta = stepped.damping - extra.damping; beta > 0) {
       ++report.rate_limited_frames;
