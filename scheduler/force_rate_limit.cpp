@@ -58,4 +58,38 @@ double rate_limiting_damping(const BodyState& part, const BodyState& device, con
   return std::min(f1, f2) < best_step ? bottom : best;
 }
 
+Eigen::Vector3d slewed_sent_force(SentForceSlew& slew, const Eigen::Vector3d& coupling_force,
+                                  const Eigen::Vector3d& hand_m, double max_step, double dissipated_j) {
+  if (!slew.started) {
+    slew.started = true;
+    slew.last_hand = hand_m;
+    slew.last_sent = coupling_force;
+    return coupling_force;
+  }
+  // The work last frame's offset did on the hand while it moved.
+  const Eigen::Vector3d hand_step = hand_m - slew.last_hand;
+  const double work = slew.last_offset.dot(hand_step);
+  slew.tank_j = std::min(slew.capacity_j, slew.tank_j + std::max(dissipated_j, 0.0)) - work;
+  slew.spent_j += work;
+  slew.last_hand = hand_m;
+  slew.last_hand_step = hand_step;
+
+  Eigen::Vector3d sent = coupling_force;
+  const Eigen::Vector3d change = coupling_force - slew.last_sent;
+  if (max_step > 0 && change.norm() > max_step) {
+    const Eigen::Vector3d slewed = slew.last_sent + change * (max_step / change.norm());
+    const Eigen::Vector3d offset = slewed - coupling_force;
+    // The hand's next displacement is not known yet: estimate it by the last one, with
+    // a margin of 2 (and 1 um at least, for a hand at rest that starts moving).
+    const double reach = std::max(2 * slew.last_hand_step.norm(), 1e-6);
+    if (slew.tank_j >= offset.norm() * reach) {
+      sent = slewed;
+      ++slew.slewed_frames;
+    }
+  }
+  slew.last_offset = sent - coupling_force;
+  slew.last_sent = sent;
+  return sent;
+}
+
 }  // namespace snapfit

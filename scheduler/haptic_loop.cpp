@@ -52,6 +52,11 @@ LoopClock simulated_loop_clock() {
 
 namespace {
 
+// The force-rate slew's energy tank holds at most this much of the energy the bound's
+// damping removed (J): about what a 0.2 N offset does over 5 mm of hand travel, so
+// energy stored long ago is not handed back in one go.
+constexpr double kSlewTankCapacityJ = 1e-3;
+
 bool finite_state(const BodyState& s) {
   return s.pose.is_finite() && s.velocity.allFinite() && s.angular_velocity.allFinite() &&
          std::abs(s.pose.rotation.norm() - 1.0) < 1e-3;
@@ -255,7 +260,9 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
   ImplicitExtras extra;
   PassivityController passivity(config);
   std::optional<BodyState> last_good_handle;
-  std::optional<Eigen::Vector3d> last_coupling_force;  // what the device felt last frame, before its limits
+  std::optional<Eigen::Vector3d> last_coupling_force;  // the coupling's force on the part last frame
+  SentForceSlew slew;
+  slew.capacity_j = kSlewTankCapacityJ;
   std::size_t tick = 0, frame = 0;
   const double start = clock.now();
   while (true) {
@@ -312,9 +319,11 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
       }
     }
     limit_speed(part, queried, config, period);
+    double rate_dissipated_j = 0;
     if (const double beta = stepped.damping - extra.damping; beta > 0) {
       ++report.rate_limited_frames;
-      report.rate_limit_dissipated_j += period * beta * (config.coupling.metres_per_unit * part.velocity).squaredNorm();
+      rate_dissipated_j = period * beta * (config.coupling.metres_per_unit * part.velocity).squaredNorm();
+      report.rate_limit_dissipated_j += rate_dissipated_j;
     }
     if (const double removed = passivity.stepped(part, extra); removed > 0) {
       ++report.passivity_frames;
@@ -327,7 +336,11 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     }
     const Wrench on_part = coupling_wrench(part, handle, config.coupling);
     last_coupling_force = on_part.force;
-    const Wrench sent = clamp_to_limits(Wrench{-on_part.force, -on_part.torque}, limits);
+    const Eigen::Vector3d reaction =
+        max_change > 0 ? slewed_sent_force(slew, -on_part.force, config.coupling.metres_per_unit * handle.pose.translation,
+                                           max_change, rate_dissipated_j)
+                       : Eigen::Vector3d(-on_part.force);
+    const Wrench sent = clamp_to_limits(Wrench{reaction, -on_part.torque}, limits);
     device.send(sent, tick_time);
 
     const double end = clock.now() - start;
@@ -380,6 +393,8 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
   }
   report.ticks = report.frames + report.skipped_ticks;
   report.elapsed_s = clock.now() - start;
+  report.rate_slewed_frames = slew.slewed_frames;
+  report.rate_slew_work_j = slew.spent_j;
   report.measured_rate_hz = report.elapsed_s > 0 ? report.frames / report.elapsed_s : 0;
   report.final_part = part;
   report.final_modes = governor.modes();

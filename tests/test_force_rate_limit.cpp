@@ -2,7 +2,8 @@
 // released from a stretched coupling (the pop-in of a peg that rested on a rim) hands the
 // force back within the bound, by damping alone (the coupling's energy never rises), with
 // the least damping that does it; free motion is never damped; a change that comes from
-// the hand is left alone.
+// the hand is left alone. Where damping cannot help (a part sliding off a ledge drops),
+// the sent force is slewed, paid only from the energy the damping removed.
 #include <cmath>
 #include <doctest/doctest.h>
 
@@ -50,8 +51,10 @@ class MovingDevice : public HapticDevice {
   std::function<Vector3d(double)> at_;
 };
 
-LoopReport run(HapticDevice& device, const BodyState& part, double bound, double seconds) {
+LoopReport run(HapticDevice& device, const BodyState& part, double bound, double seconds,
+               std::function<ContactWrench(const Pose&)> contact = {}) {
   LoopConfig config;
+  config.contact = std::move(contact);
   config.duration_s = seconds;
   config.coupling = coupling();
   config.modes.levels = {1};
@@ -125,4 +128,67 @@ TEST_CASE("force rate: free motion behind a moving hand is never damped") {
   const LoopReport r = run(moving, at(Vector3d::Zero()), 200, 2.0);
   MESSAGE("largest step " << largest_step(r) << " N, " << r.rate_limited_frames << " frames damped");
   CHECK(r.rate_limited_frames == 0);
+}
+
+TEST_CASE("force rate: the sent force's slew pays its work from the tank and only from it") {
+  SentForceSlew slew;
+  slew.capacity_j = 1e-3;
+  const Vector3d hand0(0, 0, 0);
+  CHECK(slewed_sent_force(slew, Vector3d(0, 0, 1), hand0, 0.2, 0).isApprox(Vector3d(0, 0, 1)));
+  // An empty tank: a 1 N jump goes out as it is.
+  CHECK(slewed_sent_force(slew, Vector3d(0, 0, 2), hand0, 0.2, 0).isApprox(Vector3d(0, 0, 2)));
+  CHECK(slew.slewed_frames == 0);
+  // With energy in the tank the sent force moves by the bound towards the coupling's.
+  const Vector3d sent = slewed_sent_force(slew, Vector3d(0, 0, 1), hand0, 0.2, 1e-4);
+  CHECK(sent.isApprox(Vector3d(0, 0, 1.8)));
+  CHECK(slew.slewed_frames == 1);
+  // The hand moves 1 mm down while the 0.8 N offset is held: it took 0.8 mJ... from the
+  // hand (the offset points up, the hand moves down), so the tank grows by that work.
+  const double tank = slew.tank_j;
+  slewed_sent_force(slew, Vector3d(0, 0, 1), Vector3d(0, 0, -1e-3), 0.2, 0);
+  CHECK(slew.spent_j == doctest::Approx(0.8 * -1e-3));
+  CHECK(slew.tank_j == doctest::Approx(std::min(1e-3, tank + 0.8e-3)));
+  // Capacity bounds what is stored.
+  SentForceSlew full;
+  full.capacity_j = 1e-3;
+  slewed_sent_force(full, Vector3d::Zero(), hand0, 0.2, 0);
+  slewed_sent_force(full, Vector3d::Zero(), hand0, 0.2, 1.0);
+  CHECK(full.tank_j == doctest::Approx(1e-3));
+}
+
+TEST_CASE("force rate: a released part stopped by a floor stays within the bound, passively") {
+  // The part held 8 mm above the hand (6.4 N) is released while the hand moves down at
+  // 5 mm/s; a stiff floor at
+  // z = 4 mm (2e5 N/m, integrated implicitly) stops it on the way. The release is slowed
+  // by damping; the stop is not something damping can slow (it would take energy), so
+  // the sent force is slewed there, paid from the energy the damping removed.
+  const auto floor = [](const Pose& p) {
+    ContactWrench c;
+    const double depth = 4 - p.translation.z();
+    if (depth > 0) {
+      const double k = 2e5;  // N/m
+      c.depth = depth;
+      c.wrench.force = Vector3d(0, 0, k * 1e-3 * depth);
+      c.energy_j = 0.5 * k * 1e-6 * depth * depth;
+      c.stiffness(2, 2) = k;
+      c.points = 1;
+    }
+    return c;
+  };
+  MovingDevice hand([](double t) { return Vector3d(0, 0, -5 * t); });
+  const BodyState released = at(Vector3d(0, 0, 8));
+  const LoopReport unbounded = run(hand, released, 0, 0.5, floor);
+  const LoopReport bounded = run(hand, released, 200, 0.5, floor);
+  MESSAGE("largest step " << largest_step(unbounded) << " N unbounded, " << largest_step(bounded) << " N bounded; "
+                          << bounded.rate_limited_frames << " frames damped (" << bounded.rate_limit_dissipated_j
+                          << " J), " << bounded.rate_slewed_frames << " slewed (" << bounded.rate_slew_work_j
+                          << " J on the hand); final z " << bounded.final_part.pose.translation.z() << " mm");
+  CHECK(largest_step(unbounded) > 1.0);
+  CHECK(largest_step(bounded) <= 0.2 + 1e-9);
+  CHECK(bounded.rate_slewed_frames > 0);
+  CHECK(bounded.rate_slew_work_j <= bounded.rate_limit_dissipated_j);
+  // Resting on it: the coupling's 800 N/m over 6.5 mm, plus its damper's 0.06 N at the
+  // hand's speed, on the floor's 2e5 N/m.
+  const double expected = 4 - 1e3 * (800 * 6.5e-3 + coupling().damping * 5e-3) / 2e5;
+  CHECK(bounded.final_part.pose.translation.z() == doctest::Approx(expected).epsilon(1e-4));
 }

@@ -183,6 +183,8 @@ struct LoopReport {
   double passivity_dissipated_j = 0;   // energy its damping removed, J
   std::size_t rate_limited_frames = 0;  // frames the force-rate bound damped the part
   double rate_limit_dissipated_j = 0;    // energy that damping removed, J
+  std::size_t rate_slewed_frames = 0;   // frames whose sent force was slewed (paid from that energy)
+  double rate_slew_work_j = 0;          // net work the slewed force's offset did on the hand, J
   std::size_t late_wakeup_misses = 0;  // misses whose own work fit: the thread woke late
   std::size_t stall_misses = 0;        // misses whose work was far beyond the model (ModePolicy::stall_factor)
   std::vector<double> frame_ms;        // every frame: tick to wrench sent
