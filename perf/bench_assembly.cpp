@@ -172,7 +172,8 @@ double penetration_at(const Pose& pose, const Mesh& m1, const MeshDistanceIndex&
 
 // Per-frame work of the method's query, on the wall clock and as the loop thread's CPU
 // time (the loop runs on simulated time; on a loaded machine the wall clock also counts
-// the time the thread waited for a core, the CPU time only its own work).
+// the time the thread waited for a core, the CPU time only its own work); the rigid
+// contact's wall time is added to both (see timed_contact).
 struct FrameWork {
   std::vector<double> wall_ms, cpu_ms;
 };
@@ -204,16 +205,18 @@ WrenchEvaluator timed(const WrenchEvaluator& inner, FrameWork& work) {
 }
 
 // The rigid contact's time goes to the same frame's work as the engine's query (it
-// runs right after it in the loop).
+// runs right after it in the loop). It may run on helper threads
+// (scheduler/parallel_contact.h) while the loop's thread waits: its wall time is what
+// the frame spends on it, and counts in both.
 std::function<ContactWrench(const Pose&)> timed_contact(std::function<ContactWrench(const Pose&)> inner,
                                                         FrameWork& work) {
   return [inner = std::move(inner), &work](const Pose& p) {
     const auto wall = std::chrono::steady_clock::now();
-    const double cpu = thread_cpu_s();
     ContactWrench c = inner(p);
     if (!work.cpu_ms.empty()) {
-      work.cpu_ms.back() += 1e3 * (thread_cpu_s() - cpu);
-      work.wall_ms.back() += 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
+      const double ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
+      work.cpu_ms.back() += ms;
+      work.wall_ms.back() += ms;
     }
     return c;
   };

@@ -8,6 +8,7 @@
 #include "mesh/mesh_mass_properties.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/auto_tune.h"
+#include "scheduler/parallel_contact.h"
 #include "snapfit/assembly.h"
 #include "snapfit/error.h"
 
@@ -67,10 +68,11 @@ LoopConfig scene_loop_config(const Scene& scene, const CouplingParams& coupling)
   return config;
 }
 
-double contact_cost_ms(const RigidContactModel& contact, const Scene& scene, int repetitions) {
+double contact_cost_ms(const std::function<ContactWrench(const Pose&)>& contact, const RigidContactModel& model,
+                       const Scene& scene, int repetitions) {
   // The reference pose and the reference moved by one fine distance spacing along each
   // axis: as deep into part 1 as the loop's part goes (the contact holds it within ~1).
-  std::vector<Pose> poses = gain_probe_poses(scene, 0.5 * contact.part1_distance.fine_spacing());
+  std::vector<Pose> poses = gain_probe_poses(scene, 0.5 * model.part1_distance.fine_spacing());
   poses.push_back(gain_reference_pose(scene));
   std::vector<double> ms;
   ms.reserve(poses.size() * std::size_t(std::max(1, repetitions)));
@@ -78,7 +80,7 @@ double contact_cost_ms(const RigidContactModel& contact, const Scene& scene, int
   for (int r = 0; r < std::max(1, repetitions); ++r)
     for (const Pose& pose : poses) {
       const auto start = std::chrono::steady_clock::now();
-      kept = contact_wrench(contact, pose).energy_j;
+      kept = contact(pose).energy_j;
       ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     }
   return quantile(ms, 0.99);
@@ -105,9 +107,11 @@ LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double sp
                            const TuningResult& tuned, double& force_scale,
                            std::shared_ptr<const RigidContactModel> contact) {
   LoopConfig config = scene_loop_config(scene, coupling_for(scene, part2_mesh));
-  if (contact) config.contact_ms = contact_cost_ms(*contact, scene);
+  if (contact) {
+    config.contact = contact_evaluator(contact);
+    config.contact_ms = contact_cost_ms(config.contact, *contact, scene);
+  }
   const TuningResult tuning = tuning_beside_contact(tuned, config.contact_ms);
-  config.contact = contact_evaluator(std::move(contact));
   engine.set_modes(tuning.chosen_modes);
   force_scale = 0;
   for (const QueryResult& r : engine.query_batch(gain_probe_poses(scene, spacing)))

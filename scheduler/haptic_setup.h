@@ -42,11 +42,13 @@ std::vector<Pose> gain_probe_poses(const Scene& scene, double spacing);
 // the duration (the trajectory's length plus haptics.settle_s; 0 without a trajectory).
 LoopConfig scene_loop_config(const Scene& scene, const CouplingParams& coupling);
 
-// The rigid contact's time per frame near the fit: p99 of contact_wrench (ms) over
+// The rigid contact's time per frame near the fit: p99 of `contact` (the evaluator of
+// `model` the loop calls, scheduler/parallel_contact.h) in ms over
 // `repetitions` rounds of the gain's reference pose and that pose moved by one fine
 // distance spacing along +-x, +-y, +-z (into part 1 about as deep as the contact lets
 // the loop's part go).
-double contact_cost_ms(const RigidContactModel& contact, const Scene& scene, int repetitions = 30);
+double contact_cost_ms(const std::function<ContactWrench(const Pose&)>& contact, const RigidContactModel& model,
+                       const Scene& scene, int repetitions = 30);
 
 // The tuning with the contact's time taken out of the frame: m' picked again from the
 // measured points so that query + contact fit the budget with the tuning's margin (the

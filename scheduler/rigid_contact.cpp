@@ -93,16 +93,22 @@ void add_term(ContactWrench& c, double phi, double skin, const Eigen::Vector3d& 
 
 }  // namespace
 
-ContactWrench contact_wrench(const RigidContactModel& m, const Pose& pose) {
+ContactWrench contact_wrench_share(const RigidContactModel& m, const Pose& pose, std::size_t share,
+                                   std::size_t shares) {
   ContactWrench c;
   const double u = m.metres_per_unit;
   const double k_area = m.pressure_stiffness * u * u;  // N / m per m of depth, per scene unit^2 of area
   const Eigen::Matrix3d r = pose.rotation.toRotationMatrix();
   const Eigen::Vector3d& t = pose.translation;
+  // Chunks are dealt out in turn (chunk i to share i mod shares): a contact is
+  // concentrated in space, and so in consecutive chunks.
+  std::size_t chunk_index = 0;
+  const auto mine = [&] { return chunk_index++ % shares == share; };
   // Part 2's points in part 1's distance field.
   const ContactSamples& s2 = m.part2_samples;
   const double skin2 = m.part1_distance.fine_spacing();
   for (const ShellChunk& chunk : s2.chunks) {
+    if (!mine()) continue;
     if (sample_signed_distance(m.part1_distance, r * chunk.centre + t, nullptr) > chunk.radius + skin2) continue;
     for (std::size_t i = chunk.begin; i < chunk.end; ++i) {
       const Eigen::Vector3d arm = r * s2.points[i];
@@ -116,6 +122,7 @@ ContactWrench contact_wrench(const RigidContactModel& m, const Pose& pose) {
   const Eigen::Matrix3d rt = r.transpose();
   const double skin1 = m.part2_distance.fine_spacing();
   for (const ShellChunk& chunk : s1.chunks) {
+    if (!mine()) continue;
     if (sample_signed_distance(m.part2_distance, rt * (chunk.centre - t), nullptr) > chunk.radius + skin1) continue;
     for (std::size_t i = chunk.begin; i < chunk.end; ++i) {
       const Eigen::Vector3d arm = s1.points[i] - t;
@@ -127,18 +134,31 @@ ContactWrench contact_wrench(const RigidContactModel& m, const Pose& pose) {
       }
     }
   }
+  return c;
+}
+
+void add_contact_share(ContactWrench& sum, const ContactWrench& share) {
+  sum.energy_j += share.energy_j;
+  sum.wrench.force += share.wrench.force;
+  sum.wrench.torque += share.wrench.torque;
+  sum.stiffness += share.stiffness;
+  sum.points += share.points;
+  sum.depth = std::max(sum.depth, share.depth);
+}
+
+void finish_contact(const RigidContactModel& m, ContactWrench& c) {
   c.stiffness.triangularView<Eigen::StrictlyUpper>() = c.stiffness.transpose();
   if (m.translation_only) {  // the part cannot turn: the wrench's rotational part is not rendered
     c.wrench.torque.setZero();
     c.stiffness.rightCols<3>().setZero();
     c.stiffness.bottomRows<3>().setZero();
   }
-  return c;
 }
 
-std::function<ContactWrench(const Pose&)> contact_evaluator(std::shared_ptr<const RigidContactModel> model) {
-  if (!model) return nullptr;
-  return [model](const Pose& pose) { return contact_wrench(*model, pose); };
+ContactWrench contact_wrench(const RigidContactModel& m, const Pose& pose) {
+  ContactWrench c = contact_wrench_share(m, pose, 0, 1);
+  finish_contact(m, c);
+  return c;
 }
 
 }  // namespace snapfit

@@ -64,7 +64,13 @@ std::shared_ptr<const RigidContactModel> rigid_contact_for(const Scene& scene, c
 // The contact at part 2's pose `pose` (relative to part 1). No heap allocation.
 ContactWrench contact_wrench(const RigidContactModel& model, const Pose& pose);
 
-// The loop's view of a model (LoopConfig::contact); it keeps the model alive.
-std::function<ContactWrench(const Pose&)> contact_evaluator(std::shared_ptr<const RigidContactModel> model);
+// One of `shares` disjoint shares of contact_wrench's sum (share in [0, shares)), for
+// evaluating it on several threads: the shares' sum (add_contact_share), finished by
+// finish_contact, equals contact_wrench. The stiffness holds its lower triangle only.
+ContactWrench contact_wrench_share(const RigidContactModel& model, const Pose& pose, std::size_t share,
+                                   std::size_t shares);
+void add_contact_share(ContactWrench& sum, const ContactWrench& share);
+// Fills the stiffness's upper triangle; drops the rotational part when translation-only.
+void finish_contact(const RigidContactModel& model, ContactWrench& contact);
 
 }  // namespace snapfit

@@ -15,6 +15,7 @@
 #include "pipeline/assembly_pair.h"
 #include "scheduler/auto_tune.h"
 #include "scheduler/haptic_setup.h"
+#include "scheduler/parallel_contact.h"
 #include "scheduler/rendered_wrench.h"
 #include "scheduler/rigid_contact.h"
 #include "tests/shipped_engine.h"
@@ -172,6 +173,34 @@ TEST_CASE("rigid contact: the wrench is minus the gradient of the contact energy
 // The rest point: descending the potential the loop renders (seed 000's energy times the
 // gain, plus the contact) from the assembled pose stays at the fit. Without the contact
 // the same descent sinks below the blind hole's floor, where the truncated energy is lowest.
+TEST_CASE("rigid contact: evaluated on several threads it equals the single-threaded sum") {
+  // Shared models: a copy per thread count, helpers woken frame after frame.
+  const RigidContactModel& m = default_contact();
+  const auto model = std::make_shared<const RigidContactModel>(m);
+  // Above the zero-clearance fit (nothing), tilted into the rim and wall, and free.
+  const std::vector<Pose> poses = {at(0, 0, -19.9), at(0.1, -0.05, -19.8, Eigen::Vector3d(1, 1, 0), 0.4),
+                                   at(0.3, 0, -15, Eigen::Vector3d::UnitX(), 1.0), at(0, 0, 5)};
+  for (unsigned threads : {2u, 3u, 5u}) {
+    const auto evaluate = contact_evaluator(model, threads);
+    for (int round = 0; round < 3; ++round)
+      for (const Pose& pose : poses) {
+        const ContactWrench one = contact_wrench(m, pose), many = evaluate(pose);
+        CAPTURE(threads);
+        CAPTURE(pose.translation.transpose());
+        CHECK(many.points == one.points);
+        CHECK(many.depth == one.depth);
+        CHECK(many.energy_j == doctest::Approx(one.energy_j).epsilon(1e-12));
+        CHECK((many.wrench.force - one.wrench.force).norm() <= 1e-12 * (1 + one.wrench.force.norm()));
+        CHECK((many.wrench.torque - one.wrench.torque).norm() <= 1e-12 * (1 + one.wrench.torque.norm()));
+        CHECK((many.stiffness - one.stiffness).norm() <= 1e-12 * (1 + one.stiffness.norm()));
+        CHECK(many.stiffness.isApprox(many.stiffness.transpose()));
+      }
+  }
+  CHECK(contact_wrench(m, poses[1]).points > 100);  // tilted and lowered into the rim and the wall
+  CHECK(contact_wrench(m, poses[2]).points > 100);
+  CHECK(contact_threads_for(m, 1) == 1);
+}
+
 TEST_CASE("rigid contact: the rendered potential rests at the fit of the shipped scenes (m' 8192)") {
   for (const char* file : {"default.json", "peg_hole_clearance_0p5.json", "three_pegs.json"}) {
     const Scene scene = test::shipped_scene(file);
