@@ -15,6 +15,8 @@
 #include "report/accuracy_json.h"
 #include "scheduler/accuracy.h"
 #include "scheduler/loop_devices.h"
+#include "scheduler/query_strategy.h"
+#include "scheduler/strategy_file.h"
 #include "snapfit/error.h"
 
 namespace snapfit::cli {
@@ -67,6 +69,15 @@ void run_accuracy(const AccuracyCommandOptions& opt) {
   options.note = note;
   options.progress = pass_progress_bars();
   const AccuracyReport report = measure_accuracy(loop_ctx, scene, pair.spectra, options);
+  // `snapfit run` renders what this measured (scheduler/query_strategy.h).
+  Scene at_budget = scene;
+  at_budget.frame_budget_ms = budget;
+  const std::string key = strategy_key(loop_ctx.device.info, at_budget, pair.spectra, options);
+  try {
+    save_strategy(key, report);
+  } catch (const Error& e) {
+    note(std::string("the strategy was not saved: ") + e.what());
+  }
 
   const StrategyAccuracy& loop = report.strategies[report.loop];
   nlohmann::json j = strategy_accuracy_json(loop);
@@ -85,6 +96,8 @@ void run_accuracy(const AccuracyCommandOptions& opt) {
   for (const StrategyAccuracy& s : report.strategies) all.push_back(strategy_accuracy_json(s));
   j["strategies"] = all;
   j["lowest_error_within_budget"] = report.strategies[report.best].name;
+  j["why"] = report.why;
+  j["strategy_file"] = strategy_file_path(key);
   std::cout << j.dump() << std::endl;
 }
 

@@ -6,6 +6,7 @@
 // scripted trajectory through the 1 kHz haptic loop in real time, and writes the report
 // folder (report/run_report.h).
 #include <chrono>
+#include <cstdio>
 #include <iostream>
 #include <optional>
 
@@ -21,6 +22,7 @@
 #include "report/web_assets.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/loop_devices.h"
+#include "scheduler/query_strategy.h"
 #include "scheduler/vps_method.h"
 #include "snapfit/error.h"
 
@@ -36,7 +38,38 @@ struct RunOptions {
   bool retune = false;
   bool simulated_time = false;
   std::string loop_wait = "spin";
+  std::string strategy = "auto";  // auto | tricubic | trilinear | exact-product
 };
+
+// The variant --strategy names for `scene` (auto: the scene's tricubic variant, the
+// starting point of the measured choice).
+QueryVariant named_strategy(const Scene& scene, const std::string& name) {
+  QueryVariant v = query_variant_for(scene, Interpolation::tricubic);
+  if (v.translation_only) {
+    if (name != "auto" && name != "tricubic")
+      throw Error("--strategy " + name + ": a translation-only scene has one strategy, the translation lines");
+    return v;
+  }
+  if (name == "trilinear") v.interpolation = Interpolation::trilinear;
+  if (name == "exact-product") {
+    v.rotation = RotationMethod::exact_product;
+    v.product_update = ProductUpdate::background;
+  }
+  return v;
+}
+
+void print_strategies(const StrategyChoice& choice) {
+  std::cout << "    " << (choice.from_file ? "from the strategy file " : "measured and saved to ") << choice.path
+            << "\n    strategy                                                m'   p99 ms   energy    force   torque\n"
+            << std::flush;
+  for (std::size_t i = 0; i < choice.report.strategies.size(); ++i) {
+    const StrategyAccuracy& s = choice.report.strategies[i];
+    std::printf("    %-50s %9zu %8.3f %7.2f%% %7.2f%% %7.2f%%%s%s\n", s.name.c_str(), s.modes, s.frame_ms_p99,
+                100 * s.energy_error, 100 * s.force_error, 100 * s.torque_error, s.fits ? "" : "  does not fit",
+                i == choice.report.best ? "  <- chosen" : "");
+  }
+  std::cout << std::flush << "    " << choice.report.why << "\n";
+}
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -157,14 +190,14 @@ void run_main_job(const RunOptions& opt) {
   std::cout << "[5/7] spectra (from the spectra cache when present) and the query engine\n";
   const FftLibrary fft;
   compute_assembly_spectra(pair, ctx, fft, pair_options);
-  const QueryVariant variant = query_variant_for(scene, Interpolation::tricubic);
+  const QueryVariant variant = named_strategy(scene, opt.strategy);
   const auto& dims = pair.spectra.dims;
   std::cout << "    FFT grid " << dims[0] << " x " << dims[1] << " x " << dims[2]
-            << (pair.spectra_from_cache ? " (cached)" : "") << ", kernel variant: " << variant_name(variant) << "\n";
+            << (pair.spectra_from_cache ? " (cached)" : "") << ", query variant tuned first: " << variant_name(variant) << "\n";
 
   // m' for this device: the tuning file, else a measured sweep; with several devices the
   // loop goes to the one scheduler/device_choice.h picks.
-  std::cout << "[6/7] m' for a " << scene.frame_budget_ms << " ms frame on this device\n";
+  std::cout << "[6/7] the query strategy and m' for a " << scene.frame_budget_ms << " ms frame on this device\n";
   RunRecord record;
   record.pair = &pair;
   record.device = device.info;
@@ -178,7 +211,9 @@ void run_main_job(const RunOptions& opt) {
                                scene.frame_budget_ms, opt.margin);
     record.loop_device = device.info;
     loop_engine = fixed_engine.get();
-    std::cout << "    m' = " << record.tuning.chosen_modes << " (--modes; not tuned)\n";
+    record.strategy = variant_name(variant);
+    record.strategy_chosen_by = opt.strategy == "auto" ? "--modes (not measured)" : "--strategy";
+    std::cout << "    " << record.strategy << ", m' = " << record.tuning.chosen_modes << " (--modes; not tuned)\n";
   } else {
     LoopDeviceOptions tune;
     tune.margin = opt.margin;
@@ -196,7 +231,27 @@ void run_main_job(const RunOptions& opt) {
                 << tuning_table(d.tuning.result);
     };
     devices = tune_loop_devices(ctx, scene, pair.spectra, variant, tune);
+    record.strategy_chosen_by = "--strategy";
+    if (opt.strategy == "auto") {
+      // Every strategy the scene allows, measured against the exact reference on the
+      // loop's device (once; then the strategy file), and the most accurate that fits.
+      AccuracyOptions accuracy;
+      accuracy.budget_ms = scene.frame_budget_ms;
+      accuracy.margin = opt.margin;
+      accuracy.retune = opt.retune;
+      accuracy.note = note;
+      accuracy.progress = pass_progress_bars();
+      const StrategyChoice choice = choose_query_strategy(devices->loop().ctx, scene, pair.spectra, accuracy);
+      print_strategies(choice);
+      record.strategies = choice.report;
+      record.strategy_file = choice.path;
+      record.strategy_chosen_by =
+          std::string("lowest error that fits (") + (choice.from_file ? "strategy file" : "measured") + ")";
+      if (variant_name(choice.chosen().variant) != variant_name(variant))
+        use_variant_on_loop_device(*devices, scene, pair.spectra, choice.chosen().variant, tune);
+    }
     const TunedDevice& chosen = devices->loop();
+    record.strategy = variant_name(chosen.engine->variant());
     if (devices->devices.size() > 1)
       std::cout << "    the loop runs on " << chosen.ctx.device.info.name << " (of " << devices->devices.size()
                 << " tuned devices: "
@@ -244,7 +299,12 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--modes", opt->modes, "m': a fixed number of Fourier modes instead of the tuned one");
   cmd->add_option("--margin", opt->margin, "Tuning safety margin: p99 at most (1 - margin) of the frame budget")
       ->check(CLI::Range(0.0, 0.95));
-  cmd->add_flag("--retune", opt->retune, "Measure m' again even when the tuning file matches");
+  cmd->add_flag("--retune", opt->retune,
+                "Measure m' and the strategies' errors again even when the tuning and strategy files match");
+  cmd->add_option("--strategy", opt->strategy,
+                  "Query strategy: auto (default: the lowest error that fits the frame, measured once per scene and "
+                  "device against the exact reference; tricubic with --modes), tricubic, trilinear or exact-product")
+      ->check(CLI::IsMember({"auto", "tricubic", "trilinear", "exact-product"}));
   cmd->add_flag("--simulated-time", opt->simulated_time,
                 "Run the loop on simulated time: deterministic, as fast as the queries go, no timing meaning");
   cmd->add_option("--loop-wait", opt->loop_wait,

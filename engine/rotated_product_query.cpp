@@ -21,9 +21,6 @@
 namespace snapfit {
 namespace {
 
-// The product modes by default: enough for every m' a CPU frame can sum (the product
-// itself costs time in proportion to m' only).
-constexpr std::size_t kDefaultProductModes = std::size_t(1) << 19;
 // Rotations closer than this (radians) share a product.
 constexpr double kSameRotation = 1e-9;
 // The worker extrapolates the rotation by at most this angle (radians).
@@ -66,8 +63,10 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
       : variant_(variant), c2_(spectra.part2.centre) {
     if (variant.translation_only) throw Error("the exact rotation is for 6-DOF queries");
     const std::vector<std::size_t> order = mode_order(spectra);
-    const std::size_t cap = variant.product_modes > 0 ? variant.product_modes : kDefaultProductModes;
-    const std::size_t product_modes = std::min(order.size(), cap);
+    // Every mode by default: the product costs time in proportion to the m' in use only,
+    // so the tuner may go as far as the device's frame allows.
+    const std::size_t product_modes = variant.product_modes > 0 ? std::min(order.size(), variant.product_modes)
+                                                                : order.size();
     reach_ = mode_reach(spectra.dims, order);
     reach_.resize(product_modes);
     lines_ = build_translation_lines(spectra.dims, order,

@@ -56,7 +56,12 @@ nlohmann::json summary_json(const RunRecord& run) {
                       {"miss_rate", nullptr},
                       {"assembled", nullptr},
                       {"final_error", nullptr},
-                      {"stiffness_at_fit", nullptr}};
+                      {"stiffness_at_fit", nullptr},
+                      {"query_strategy", nullptr}};
+  if (!run.strategy.empty())
+    s["query_strategy"] = {{"name", run.strategy},
+                           {"chosen_by", run.strategy_chosen_by},
+                           {"why", run.strategies ? nlohmann::json(run.strategies->why) : nlohmann::json(nullptr)}};
   if (run.session) {
     const LoopReport& loop = run.session->loop;
     s["frames"] = loop.frames;

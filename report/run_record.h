@@ -6,6 +6,7 @@
 #include "engine/device.h"
 #include "engine/device_check.h"
 #include "pipeline/assembly_pair.h"
+#include "scheduler/accuracy.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/auto_tune.h"
 
@@ -26,6 +27,12 @@ struct RunRecord {
   DeviceCheckResult check;
   TuningResult tuning;
   std::string tuning_key;                // "" when m' was fixed by the user
+  // The query strategy the loop renders and why (scheduler/query_strategy.h): the
+  // measured candidates when it was chosen by error, else none.
+  std::string strategy;                     // variant_name() of the loop's engine
+  std::string strategy_chosen_by;           // "lowest error that fits (measured)", "... (strategy file)", "--strategy", "--modes"
+  std::optional<AccuracyReport> strategies;  // the candidates, when chosen by error
+  std::string strategy_file;                // where the choice is kept
   std::optional<SessionResult> session;  // the scripted assembly, when the scene has a trajectory
   double seconds = 0;                    // the whole job so far
   std::optional<VpsFacts> vps;           // set for a scene whose method is "vps" (no fields, spectra or tuning)

@@ -8,6 +8,7 @@
 #include "io/mesh_export.h"
 #include "mesh/mesh_report.h"
 #include "mesh/mesh_slice.h"
+#include "report/accuracy_json.h"
 #include "report/haptic_report.h"
 #include "report/run_page.h"
 #include "report/slice_figure.h"
@@ -85,6 +86,19 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
     tuning = nlohmann::json::parse(tuning_to_json(run.tuning));
     tuning["key"] = run.tuning_key;
   }
+  nlohmann::json strategy = nullptr;
+  if (!run.vps && !run.strategy.empty()) {
+    strategy = {{"name", run.strategy}, {"chosen_by", run.strategy_chosen_by}, {"why", nullptr},
+                {"strategy_file", run.strategy_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.strategy_file)},
+                {"candidates", nullptr}};
+    if (run.strategies) {
+      strategy["why"] = run.strategies->why;
+      nlohmann::json candidates = nlohmann::json::array();
+      for (const StrategyAccuracy& s : run.strategies->strategies) candidates.push_back(strategy_accuracy_json(s));
+      strategy["candidates"] = candidates;
+      strategy["reference"] = {{"poses", run.strategies->poses}, {"modes", run.strategies->reference_modes}};
+    }
+  }
   nlohmann::json vps = nullptr;
   if (run.vps) {
     const VpsFacts& v = *run.vps;
@@ -126,6 +140,7 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
       {"spacing", pair.grids.spacing},
       {"fft_dims", run.vps ? nlohmann::json(nullptr) : nlohmann::json(pair.spectra.dims)},
       {"fields", fields},
+      {"query_strategy", strategy},
       {"tuning", tuning},
       {"haptic_loop", loop},
       {"report_html", report_html},

@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 #include "core/quantile.h"
 #include "engine/query_engine.h"
@@ -24,7 +26,75 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+std::string percent(double x) {
+  std::ostringstream s;
+  s.precision(x < 0.1 ? 2 : 3);
+  s << 100 * x << " %";
+  return s.str();
+}
+
+std::string errors_text(const StrategyAccuracy& s) {
+  std::string t = "E " + percent(s.energy_error);
+  if (s.variant.force) t += ", F " + percent(s.force_error);
+  if (s.variant.torque) t += ", T " + percent(s.torque_error);
+  return t;
+}
+
 }  // namespace
+
+QueryVariant accuracy_base_variant(const Scene& scene) {
+  const bool rotation = scene.motion != Motion::translation;
+  QueryVariant base;
+  base.force = true;
+  base.torque = rotation && scene.outputs.torque;
+  base.translation_only = !rotation;
+  base.interpolation = Interpolation::tricubic;
+  return base;
+}
+
+std::vector<QueryVariant> accuracy_candidates(const QueryVariant& base) {
+  if (base.translation_only) return {base};
+  QueryVariant trilinear = base;
+  trilinear.interpolation = Interpolation::trilinear;
+  return {base, trilinear, exact_product(base, ProductUpdate::background, 0)};
+}
+
+double rendered_error(const StrategyAccuracy& s) {
+  if (!s.variant.force && !s.variant.torque) return s.energy_error;
+  return std::max(s.variant.force ? s.force_error : 0.0, s.variant.torque ? s.torque_error : 0.0);
+}
+
+std::size_t lowest_error_that_fits(const std::vector<StrategyAccuracy>& strategies) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < strategies.size(); ++i) {
+    const StrategyAccuracy &a = strategies[i], &b = strategies[best];
+    if ((a.fits && !b.fits) || (a.fits == b.fits && rendered_error(a) < rendered_error(b))) best = i;
+  }
+  return best;
+}
+
+std::string strategy_reason(const std::vector<StrategyAccuracy>& strategies, std::size_t chosen) {
+  if (strategies.empty()) return "";
+  const StrategyAccuracy& c = strategies[chosen];
+  std::ostringstream why;
+  if (strategies.size() == 1) {
+    why << "the only strategy for this scene; " << errors_text(c) << " at m' " << c.modes;
+    return why.str();
+  }
+  why << (c.fits ? "the lowest error of the rendered wrench among the strategies that fit the frame: "
+                 : "no strategy fits the frame; the lowest error of the rendered wrench: ")
+      << c.name << " at m' " << c.modes << " (" << errors_text(c) << ", p99 " << std::fixed << std::setprecision(3)
+      << c.frame_ms_p99 << " ms); against";
+  bool first = true;
+  for (std::size_t i = 0; i < strategies.size(); ++i) {
+    if (i == chosen) continue;
+    const StrategyAccuracy& o = strategies[i];
+    why << (first ? " " : "; ") << o.name << " at m' " << o.modes << " (" << errors_text(o)
+        << (o.fits ? "" : ", does not fit") << ")";
+    first = false;
+  }
+  return why.str();
+}
 
 void RelativeErrors::add(const QueryResult& x, const QueryResult& ref) {
   d[0] += std::pow(x.energy - ref.energy, 2), r[0] += ref.energy * ref.energy;
@@ -58,11 +128,7 @@ AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, c
     throw Error(
         "accuracy: the spectra have no deconvolved part 2, which the exact-rotation reference needs "
         "(SpectrumOptions::exact_rotation_width > 0 and oversampling >= 2)");
-  QueryVariant base;
-  base.force = true;
-  base.torque = rotation && scene.outputs.torque;
-  base.translation_only = !rotation;
-  base.interpolation = Interpolation::tricubic;
+  const QueryVariant base = accuracy_base_variant(scene);
 
   AccuracyReport report;
   const std::vector<Pose> poses = accuracy_poses(scene, options.poses);
@@ -83,8 +149,7 @@ AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, c
   }
   report.reference_seconds = seconds_since(reference_start);
 
-  std::vector<QueryVariant> strategies = {base};
-  if (rotation) strategies.push_back(exact_product(base, ProductUpdate::background, 0));
+  std::vector<QueryVariant> strategies = accuracy_candidates(base);
   const std::vector<Pose> timing_poses = tuning_poses(scene);
   for (const QueryVariant& timed : strategies) {
     StrategyAccuracy s;
@@ -104,6 +169,10 @@ AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, c
         engine_query_timer(*engine, timing_poses, scene.loop_rate_hz)(s.modes, options.repetitions);
     s.frame_ms_p50 = quantile(times, 0.5);
     s.frame_ms_p99 = quantile(times, 0.99);
+    // It fits when the tuner said so and the frame measured now, at the chosen m', is
+    // within the budget (the tuner's margin is its own safety; a strategy whose frame
+    // takes longer than the budget would miss frames, whatever its tuning file says).
+    s.fits = s.fits && s.frame_ms_p99 <= options.budget_ms;
 
     // Errors: the interpolated sum as timed; the exact product made for each pose.
     std::unique_ptr<QueryEngine> measured;
@@ -152,13 +221,9 @@ AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, c
     report.strategies.push_back(s);
   }
 
-  report.loop = 0;
-  report.best = 0;
-  const auto key_error = [&](const StrategyAccuracy& s) { return base.torque ? s.torque_error : s.energy_error; };
-  for (std::size_t i = 1; i < report.strategies.size(); ++i) {
-    const StrategyAccuracy &a = report.strategies[i], &b = report.strategies[report.best];
-    if ((a.fits && !b.fits) || (a.fits == b.fits && key_error(a) < key_error(b))) report.best = i;
-  }
+  report.best = lowest_error_that_fits(report.strategies);
+  report.loop = report.best;
+  report.why = strategy_reason(report.strategies, report.best);
   return report;
 }
 

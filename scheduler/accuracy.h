@@ -42,7 +42,7 @@ struct StrategyAccuracy {
   std::string name;  // variant_name(): "6dof energy force torque tricubic", ...
   QueryVariant variant;
   std::size_t modes = 0;  // m' tuned for the budget
-  bool fits = false;      // its p99 meets the budget with the margin
+  bool fits = false;      // the tuner fitted its p99 within the margin, and the frame p99 below is within the budget
   double frame_ms_p50 = 0, frame_ms_p99 = 0;
   double energy_error = 0, force_error = 0, torque_error = 0;
   // The per-query error estimate (QueryResult::error_estimate) against the true error
@@ -61,17 +61,37 @@ struct AccuracyReport {
   std::size_t reference_modes = 0;
   double reference_seconds = 0;
   std::vector<StrategyAccuracy> strategies;
-  std::size_t loop = 0;  // the strategy snapfit run's loop uses (tricubic interpolation)
-  std::size_t best = 0;  // the lowest torque error (else energy error) among those that fit
+  std::size_t best = 0;  // lowest_error_that_fits(strategies)
+  std::size_t loop = 0;  // the strategy snapfit run's loop uses: the best
+  std::string why;       // strategy_reason(strategies, best)
 };
+
+// The loop's variant of `scene` the strategies start from: energy and force, the torque
+// when the scene turns and asks for it, tricubic interpolation.
+QueryVariant accuracy_base_variant(const Scene& scene);
+
+// The strategies measured for a scene whose loop variant is `base` (6-DOF: the
+// interpolated sum with base's interpolation, the same trilinear, and the exact product
+// with background updates over every mode; translation-only: the translation lines).
+std::vector<QueryVariant> accuracy_candidates(const QueryVariant& base);
+
+// The error of what the loop renders: the larger relative error of force and torque
+// (of those the variant computes; the energy's when it computes neither).
+double rendered_error(const StrategyAccuracy& s);
+
+// The index of the strategy with the lowest rendered_error among those that fit the
+// frame (among all when none fits); the first on a tie. strategies must not be empty.
+std::size_t lowest_error_that_fits(const std::vector<StrategyAccuracy>& strategies);
+
+// One sentence saying which strategy was chosen and why, with the others' errors.
+std::string strategy_reason(const std::vector<StrategyAccuracy>& strategies, std::size_t chosen);
 
 // The poses the reference is computed at: the scene's trajectory at `count` evenly spaced
 // times (both ends included), else part 2's scene pose.
 std::vector<Pose> accuracy_poses(const Scene& scene, std::size_t count);
 
-// Tunes and measures each strategy the scene allows on ctx's device: 6-DOF scenes the
-// interpolated tricubic sum and the exact product with background updates; translation-
-// only scenes the translation lines. Throws snapfit::Error when the spectra cannot carry
+// Tunes and measures each strategy the scene allows on ctx's device
+// (accuracy_candidates of the scene's tricubic variant) and picks the best. Throws snapfit::Error when the spectra cannot carry
 // a strategy's reference (no deconvolved spectrum for a 6-DOF scene) or the device fails.
 AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, const PairSpectra& spectra,
                                 const AccuracyOptions& options);

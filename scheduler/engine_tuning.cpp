@@ -40,6 +40,9 @@ TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, 
   features << "fft " << spectra.dims[0] << "x" << spectra.dims[1] << "x" << spectra.dims[2] << " exact_rotation "
            << spectra.part2.deconvolved_width << " spacing " << spectra.spacing << " kernels "
            << hex64(fnv1a64(kernels));
+  // The exact product's ladder ends at its max_modes().
+  if (variant.rotation == RotationMethod::exact_product)
+    features << " product_modes " << (variant.product_modes ? std::to_string(variant.product_modes) : "every");
   key.scene_features = features.str();
   key.budget_ms = budget_ms;
   key.margin = margin;

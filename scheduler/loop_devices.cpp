@@ -57,4 +57,16 @@ LoopDevices tune_loop_devices(const ComputeContext& ctx, const Scene& scene, con
   return out;
 }
 
+void use_variant_on_loop_device(LoopDevices& devices, const Scene& scene, const PairSpectra& spectra,
+                                const QueryVariant& variant, const LoopDeviceOptions& options) {
+  TunedDevice& loop = devices.devices[devices.pick];
+  const ComputeContext ctx = loop.ctx;
+  loop.engine.reset();  // one engine per device at a time: free its buffers first
+  // Measured just before for the choice: read back from the tuning file, not re-measured.
+  LoopDeviceOptions reuse = options;
+  reuse.retune = false;
+  reuse.on_start = nullptr;
+  loop = tune_device(ctx, scene, spectra, variant, tuning_poses(scene), reuse);
+}
+
 }  // namespace snapfit

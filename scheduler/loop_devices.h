@@ -47,4 +47,10 @@ struct LoopDevices {
 LoopDevices tune_loop_devices(const ComputeContext& ctx, const Scene& scene, const PairSpectra& spectra,
                               const QueryVariant& variant, const LoopDeviceOptions& options);
 
+// Makes the loop's device render `variant` instead: a new engine on it, tuned for the
+// scene from the tuning file when one matches (as after scheduler/accuracy.h measured
+// it; options.retune is ignored), else measured.
+void use_variant_on_loop_device(LoopDevices& devices, const Scene& scene, const PairSpectra& spectra,
+                                const QueryVariant& variant, const LoopDeviceOptions& options);
+
 }  // namespace snapfit

@@ -64,8 +64,9 @@ struct QueryVariant {
   bool fold_conjugate_pairs = true;
   RotationMethod rotation = RotationMethod::interpolated;    // 6-DOF only
   ProductUpdate product_update = ProductUpdate::each_query;  // exact_product only
-  // exact_product: the most modes an engine can sum, its max_modes() (0: 2^19 or every
-  // mode, whichever is fewer). A product costs time in proportion to the m' in use.
+  // exact_product: the most modes an engine can sum, its max_modes() (0: every mode). A
+  // product costs time in proportion to the m' in use, its buffers memory in proportion
+  // to this.
   std::size_t product_modes = 0;
 };
 

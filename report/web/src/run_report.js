@@ -32,6 +32,11 @@ function renderSummary(root, s) {
   list.append(summaryItem('scene', 'scene', s.scene, s.scene));
   list.append(summaryItem('device', 'device (fields, spectra)', s.device, s.device));
   list.append(summaryItem('loop_device', 'loop device', s.loop_device, s.loop_device));
+  if (s.query_strategy) {
+    const q = s.query_strategy;
+    list.append(summaryItem('query_strategy', 'query strategy', q, `${q.name} (${q.chosen_by})`));
+    if (q.why) list.append(summaryItem('strategy_why', 'why this strategy', q.why, q.why));
+  }
   list.append(summaryItem('modes', "m' (Fourier modes)", s.modes, `${s.modes} (${s.modes_source})`));
   if (s.frames !== null) {
     list.append(summaryItem('misses', 'missed frames', s.misses,

@@ -29,6 +29,16 @@ try {
   t.check(dom.loop_device && dom.loop_device.value === summary.loop_device, 'loop device as in summary.json');
   t.check(dom.modes && dom.modes.value === summary.tuning.chosen_modes &&
           dom.modes.text.startsWith(String(summary.tuning.chosen_modes)), `m' is ${summary.tuning.chosen_modes}`);
+  const strategy = summary.query_strategy;
+  if (strategy) {
+    t.check(dom.query_strategy && dom.query_strategy.value.name === strategy.name &&
+            dom.query_strategy.text.includes(strategy.name) && dom.query_strategy.text.includes(strategy.chosen_by),
+            `query strategy "${strategy.name}" (${strategy.chosen_by})`);
+    t.check(strategy.why ? dom.strategy_why && dom.strategy_why.text === strategy.why : !dom.strategy_why,
+            strategy.why ? 'why this strategy, as in summary.json' : 'not chosen by error: no reason shown');
+  } else {
+    t.check(!dom.query_strategy, 'no query strategy in summary.json: none on the page');
+  }
   if (loop) {
     t.check(dom.misses && dom.misses.value === loop.misses && dom.misses.text.startsWith(`${loop.misses} of ${loop.frames}`),
             `misses: ${loop.misses} of ${loop.frames}`);

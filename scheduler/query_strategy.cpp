@@ -1,0 +1,42 @@
+#include "scheduler/query_strategy.h"
+
+#include <sstream>
+
+#include "scheduler/engine_tuning.h"
+#include "scheduler/strategy_file.h"
+#include "snapfit/error.h"
+
+namespace snapfit {
+
+std::string strategy_key(const DeviceInfo& device, const Scene& scene, const PairSpectra& spectra,
+                         const AccuracyOptions& options) {
+  std::ostringstream key;
+  key << "poses=" << options.poses;
+  for (const QueryVariant& v : accuracy_candidates(accuracy_base_variant(scene)))
+    key << "\n--\n"
+        << tuning_key_for(device, v, spectra, options.budget_ms, options.margin, scene.loop_rate_hz).text();
+  return key.str();
+}
+
+StrategyChoice choose_query_strategy(const ComputeContext& ctx, const Scene& scene, const PairSpectra& spectra,
+                                     const AccuracyOptions& options) {
+  StrategyChoice choice;
+  const std::string key = strategy_key(ctx.device.info, scene, spectra, options);
+  choice.path = strategy_file_path(key);
+  if (!options.retune) {
+    if (auto stored = load_strategy(key, accuracy_base_variant(scene), options.note)) {
+      choice.report = std::move(*stored);
+      choice.from_file = true;
+      return choice;
+    }
+  }
+  choice.report = measure_accuracy(ctx, scene, spectra, options);
+  try {
+    save_strategy(key, choice.report);
+  } catch (const Error& e) {
+    if (options.note) options.note(std::string("the strategy was not saved: ") + e.what());
+  }
+  return choice;
+}
+
+}  // namespace snapfit

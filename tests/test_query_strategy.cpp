@@ -1,0 +1,182 @@
+// Which query strategy the loop renders (scheduler/query_strategy.h): the rule (the
+// lowest error of the rendered wrench among the strategies that fit), the strategy
+// file that keeps the choice, and `snapfit run` choosing, saying why, and reading the
+// choice back, checked from its summary.json as a user would.
+#include <doctest/doctest.h>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "scheduler/accuracy.h"
+#include "scheduler/engine_tuning.h"
+#include "scheduler/strategy_file.h"
+#include "tests/test_support.h"
+
+using namespace snapfit;
+namespace fs = std::filesystem;
+
+namespace {
+
+StrategyAccuracy candidate(Interpolation interpolation, bool exact, std::size_t modes, bool fits, double e, double f,
+                           double t) {
+  StrategyAccuracy s;
+  s.variant.force = true;
+  s.variant.torque = true;
+  s.variant.interpolation = interpolation;
+  if (exact) {
+    s.variant.rotation = RotationMethod::exact_product;
+    s.variant.product_update = ProductUpdate::background;
+  }
+  s.name = variant_name(s.variant);
+  s.modes = modes;
+  s.fits = fits;
+  s.frame_ms_p50 = 0.3, s.frame_ms_p99 = 0.6;
+  s.energy_error = e, s.force_error = f, s.torque_error = t;
+  s.estimate_coverage[0] = 0.9, s.estimate_ratio_median[2] = 3.5;
+  s.product_ms = exact ? 12.5 : 0;
+  return s;
+}
+
+AccuracyReport report_of(std::vector<StrategyAccuracy> strategies) {
+  AccuracyReport r;
+  r.poses = 24;
+  r.reference_modes = 2744000;
+  r.reference_seconds = 6.1;
+  r.strategies = std::move(strategies);
+  r.best = r.loop = lowest_error_that_fits(r.strategies);
+  r.why = strategy_reason(r.strategies, r.best);
+  return r;
+}
+
+nlohmann::json read_json(const fs::path& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+TEST_CASE("query strategy: the lowest error of the rendered wrench among those that fit") {
+  const StrategyAccuracy tricubic = candidate(Interpolation::tricubic, false, 16384, true, 0.09, 0.19, 0.40);
+  const StrategyAccuracy trilinear = candidate(Interpolation::trilinear, false, 46336, true, 0.04, 0.15, 10.2);
+  const StrategyAccuracy exact = candidate(Interpolation::tricubic, true, 92672, true, 0.03, 0.14, 0.49);
+  // The rendered wrench's error is the larger of force and torque: the trilinear sum's
+  // small energy error does not make up for its torque.
+  CHECK(rendered_error(trilinear) == doctest::Approx(10.2));
+  CHECK(rendered_error(exact) == doctest::Approx(0.49));
+  CHECK(lowest_error_that_fits({tricubic, trilinear, exact}) == 0);
+  // On a device where the product reaches far more modes it wins.
+  StrategyAccuracy every_mode = exact;
+  every_mode.modes = 2744000, every_mode.force_error = 0.01, every_mode.torque_error = 0.02;
+  CHECK(lowest_error_that_fits({tricubic, trilinear, every_mode}) == 2);
+  // A more accurate strategy that does not fit the frame is not chosen.
+  every_mode.fits = false;
+  CHECK(lowest_error_that_fits({tricubic, trilinear, every_mode}) == 0);
+  // None fits: the most accurate, said so.
+  StrategyAccuracy slow = tricubic;
+  slow.fits = false;
+  const std::vector<StrategyAccuracy> none_fit = {slow, every_mode};
+  CHECK(lowest_error_that_fits(none_fit) == 1);
+  CHECK(strategy_reason(none_fit, 1).find("no strategy fits") != std::string::npos);
+  // The reason names the chosen one and every other with its errors.
+  const std::string why = strategy_reason({tricubic, trilinear, exact}, 0);
+  CAPTURE(why);
+  CHECK(why.find("tricubic at m' 16384") != std::string::npos);
+  CHECK(why.find("trilinear at m' 46336") != std::string::npos);
+  CHECK(why.find("exact-product background at m' 92672") != std::string::npos);
+  CHECK(why.find("T 40") != std::string::npos);
+  // A translation-only scene has one candidate.
+  QueryVariant lines;
+  lines.translation_only = true;
+  CHECK(accuracy_candidates(lines).size() == 1);
+}
+
+TEST_CASE("query strategy: the strategy file keeps the choice, and refuses another key or a tampered one") {
+  const test::CacheDirScope cache;
+  QueryVariant base;
+  base.force = base.torque = true;
+  const AccuracyReport saved =
+      report_of({candidate(Interpolation::tricubic, false, 16384, true, 0.09, 0.19, 0.40),
+                 candidate(Interpolation::trilinear, false, 46336, true, 0.04, 0.15, 10.2),
+                 candidate(Interpolation::tricubic, true, 92672, true, 0.03, 0.14, 0.29)});
+  REQUIRE(saved.best == 2);
+  save_strategy("key A", saved);
+  const auto loaded = load_strategy("key A", base);
+  REQUIRE(loaded);
+  CHECK(loaded->best == 2);
+  CHECK(loaded->why == saved.why);
+  REQUIRE(loaded->strategies.size() == 3);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const StrategyAccuracy &a = loaded->strategies[i], &b = saved.strategies[i];
+    CHECK(a.name == b.name);
+    CHECK(variant_name(a.variant) == variant_name(b.variant));
+    CHECK(a.modes == b.modes);
+    CHECK(a.torque_error == b.torque_error);
+    CHECK(a.product_ms == b.product_ms);
+    CHECK(a.estimate_ratio_median[2] == b.estimate_ratio_median[2]);
+  }
+  std::string heard;
+  CHECK_FALSE(load_strategy("key B", base, [&](const std::string& m) { heard = m; }));
+  // A payload whose recorded choice does not follow the rule is not trusted.
+  const std::string text = accuracy_report_to_json(saved);
+  nlohmann::json tampered = nlohmann::json::parse(text);
+  tampered["best"] = 0;
+  CHECK_THROWS_WITH_AS(accuracy_report_from_json(tampered.dump(), base), doctest::Contains("does not follow the rule"),
+                       Error);
+  CHECK_THROWS_AS(accuracy_report_from_json("{\"poses\": 3}", base), Error);
+}
+
+TEST_CASE("query strategy: snapfit run measures the strategies, renders the most accurate that fits, says why") {
+  const test::CacheDirScope cache;
+  const test::TempDir out;
+  const std::string scene = std::string(SNAPFIT_SOURCE_DIR) + "/scenes/default.json";
+  const std::string run = std::string(SNAPFIT_CLI_PATH) + " run " + scene + " --simulated-time --out ";
+  const test::Command first = test::run_command(run + (out.path / "first").string());
+  INFO(first.output);
+  REQUIRE(first.status == 0);
+  CHECK(first.output.find("measured and saved to") != std::string::npos);
+  const nlohmann::json s1 = read_json(out.path / "first" / "summary.json")["query_strategy"];
+  CHECK(s1["chosen_by"] == "lowest error that fits (measured)");
+  REQUIRE(s1["candidates"].size() == 3);
+  // The rule, checked from the JSON alone.
+  std::size_t best = 0;
+  const auto error = [&](const nlohmann::json& c) {
+    return std::max(c["force_error"].get<double>(), c["torque_error"].get<double>());
+  };
+  const auto& c = s1["candidates"];
+  for (std::size_t i = 1; i < c.size(); ++i) {
+    const bool fits = c[i]["fits_budget"], best_fits = c[best]["fits_budget"];
+    if ((fits && !best_fits) || (fits == best_fits && error(c[i]) < error(c[best]))) best = i;
+  }
+  CHECK(s1["name"] == c[best]["strategy"]);
+  CHECK(s1["why"].get<std::string>().find(s1["name"].get<std::string>()) != std::string::npos);
+  const nlohmann::json loop1 = read_json(out.path / "first" / "summary.json")["haptic_loop"];
+  CHECK(loop1["assembled"] == true);
+
+  // The second run reads the choice back and renders the same strategy.
+  const test::Command second = test::run_command(run + (out.path / "second").string());
+  INFO(second.output);
+  REQUIRE(second.status == 0);
+  const nlohmann::json s2 = read_json(out.path / "second" / "summary.json")["query_strategy"];
+  CHECK(s2["chosen_by"] == "lowest error that fits (strategy file)");
+  CHECK(s2["name"] == s1["name"]);
+  CHECK(s2["strategy_file"] == s1["strategy_file"]);
+}
+
+TEST_CASE("query strategy: --strategy names one; a translation-only scene has only its lines") {
+  const test::TempDir out;
+  const std::string cli = std::string(SNAPFIT_CLI_PATH);
+  const test::Command named =
+      test::run_command(cli + " run " + SNAPFIT_SOURCE_DIR + "/scenes/default.json --strategy trilinear --modes 2048 " +
+                        "--simulated-time --out " + (out.path / "named").string());
+  INFO(named.output);
+  REQUIRE(named.status == 0);
+  const nlohmann::json s = read_json(out.path / "named" / "summary.json")["query_strategy"];
+  CHECK(s["name"] == "6dof energy force torque trilinear");
+  CHECK(s["chosen_by"] == "--strategy");
+  CHECK(s["candidates"].is_null());
+
+  const test::Command refused = test::run_command(cli + " run " + SNAPFIT_SOURCE_DIR +
+                                                  "/scenes/peg_hole_translation.json --strategy exact-product " +
+                                                  "--modes 2048 --simulated-time --out " + (out.path / "t").string());
+  CHECK(refused.status != 0);
+  CHECK(refused.output.find("translation-only scene has one strategy") != std::string::npos);
+}
