@@ -19,6 +19,7 @@
 #include "report/haptic_report.h"
 #include "report/run_report.h"
 #include "report/scene_summary.h"
+#include "report/slice_figure.h"
 #include "report/web_assets.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/loop_devices.h"
@@ -108,6 +109,8 @@ void write_report(const RunOptions& opt, RunRecord& record, std::chrono::steady_
   if (!web_pages_available())
     std::cerr << "snapfit: no report.html: this snapfit was built with -DSNAPFIT_WEB_REPORT=OFF (no node/npm at build "
                  "time)\n";
+  if (const std::string font = figure_font_problem(); !font.empty() && !record.vps)
+    std::cerr << "snapfit: " << font << ": the field figures' labels are not readable\n";
 }
 
 // A scene with "method": "vps": part 1's voxmap and part 2's point shell on the host,

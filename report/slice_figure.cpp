@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cairo.h>
 #include <cmath>
+#include <filesystem>
+#include <fontconfig/fontconfig.h>
 #include <memory>
 
 #include "report/axis_ticks.h"
@@ -13,6 +15,7 @@ namespace {
 
 constexpr int kMarginLeft = 78, kMarginTop = 44, kMarginBottom = 58, kBarGap = 26, kBarWidth = 22, kBarLabels = 96;
 constexpr double kFontSize = 13, kTitleSize = 15;
+constexpr const char* kFontFamily = "DejaVu Sans";
 
 using Surface = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 using Context = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
@@ -43,6 +46,26 @@ void line(cairo_t* cr, double x0, double y0, double x1, double y1) {
 }
 
 }  // namespace
+
+std::string figure_font_problem() {
+  FcPattern* pattern = FcNameParse(reinterpret_cast<const FcChar8*>(kFontFamily));
+  if (!pattern) return "fontconfig cannot parse the font name " + std::string(kFontFamily);
+  FcConfigSubstitute(nullptr, pattern, FcMatchPattern);
+  FcDefaultSubstitute(pattern);
+  FcResult result = FcResultNoMatch;
+  FcPattern* match = FcFontMatch(nullptr, pattern, &result);
+  FcPatternDestroy(pattern);
+  std::string problem;
+  FcChar8 *family = nullptr, *file = nullptr;
+  if (!match || FcPatternGetString(match, FC_FAMILY, 0, &family) != FcResultMatch ||
+      std::string(reinterpret_cast<const char*>(family)) != kFontFamily ||
+      FcPatternGetString(match, FC_FILE, 0, &file) != FcResultMatch ||
+      !std::filesystem::exists(reinterpret_cast<const char*>(file)))
+    problem = std::string("the font ") + kFontFamily +
+              " that figure labels are drawn in is not installed (Debian package fonts-dejavu-core)";
+  if (match) FcPatternDestroy(match);
+  return problem;
+}
 
 SliceFigure render_slice_figure(const GridSpec& grid, const float* values, char axis, int index, ColorMap map,
                                 const SliceFigureOptions& options) {
@@ -76,7 +99,7 @@ SliceFigure render_slice_figure(const GridSpec& grid, const float* values, char 
   {
     Surface scratch(cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1), cairo_surface_destroy);
     Context cr(cairo_create(scratch.get()), cairo_destroy);
-    cairo_select_font_face(cr.get(), "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+    cairo_select_font_face(cr.get(), kFontFamily, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
     width = std::max(width, static_cast<int>(std::ceil(text_width(cr.get(), options.title, kTitleSize))) + 24);
   }
   Surface surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height), cairo_surface_destroy);
@@ -133,7 +156,7 @@ SliceFigure render_slice_figure(const GridSpec& grid, const float* values, char 
   cairo_rectangle(c, fig.left - 0.5, fig.top - 0.5, field_w + 1, field_h + 1);
   cairo_rectangle(c, fig.bar_left - 0.5, fig.bar_top - 0.5, kBarWidth + 1, field_h + 1);
   cairo_stroke(c);
-  cairo_select_font_face(c, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_select_font_face(c, kFontFamily, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   const double u_lo = fig.u0 - grid.spacing / 2, u_hi = fig.u0 + (fig.columns - 0.5) * grid.spacing;
   const double v_lo = fig.v0 - grid.spacing / 2, v_hi = fig.v0 + (fig.rows - 0.5) * grid.spacing;
   const AxisTicks ut = linear_ticks(u_lo, u_hi, std::max(2, field_w / 70));
@@ -171,7 +194,7 @@ SliceFigure render_slice_figure(const GridSpec& grid, const float* values, char 
   for (std::size_t p = 0; p + 2 < plain.rgb.size() && !any_nan; p += 3)
     any_nan = plain.rgb[p] == 255 && plain.rgb[p + 1] == 0 && plain.rgb[p + 2] == 255;
   if (any_nan) text(c, "magenta: NaN", fig.bar_left, fig.bar_bottom + 16, Align::left);
-  cairo_select_font_face(c, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+  cairo_select_font_face(c, kFontFamily, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
   text(c, options.title, 12, 16, Align::left, kTitleSize);
   cairo_surface_flush(surface.get());
 

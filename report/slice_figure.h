@@ -36,6 +36,11 @@ struct SliceFigure {
   double pixel_y(double v) const { return top + rows * scale - ((v - v0) / spacing + 0.5) * scale; }
 };
 
+// The font the figures' labels are drawn in ("DejaVu Sans"), and "" when fontconfig finds
+// it; otherwise what is missing and the package that has it. Without it cairo draws no
+// readable labels.
+std::string figure_font_problem();
+
 // Throws snapfit::Error as render_slice does, and for pixels_per_point < 0.
 SliceFigure render_slice_figure(const GridSpec& grid, const float* values, char axis, int index, ColorMap map,
                                 const SliceFigureOptions& options);

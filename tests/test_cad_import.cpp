@@ -344,7 +344,9 @@ TEST_CASE("cad import: the import child starts no threads and the parent process
   CHECK(there.mesh.triangles == here.mesh.triangles);
   // A memory limit the reader cannot work in is an error naming the file, not a crash.
   const test::EnvScope tiny("SNAPFIT_IMPORT_MEMORY_MIB", "1");
-  CHECK(error_of([&] { load_cad_mesh(file, with_deflection(0.02)); }).rfind(file + ": cannot read CAD file: ", 0) == 0);
+  const std::string refused = error_of([&] { load_cad_mesh(file, with_deflection(0.02)); });
+  INFO(refused);
+  CHECK(refused.rfind(file + ": cannot read CAD file: ", 0) == 0);
 }
 
 TEST_CASE("cad import: snapfit mesh-info reports the mesh and the CAD facts") {
