@@ -2,8 +2,11 @@
 
 #include <sstream>
 
+#include "pipeline/assembly_pair.h"
 #include "scheduler/engine_tuning.h"
 #include "scheduler/strategy_file.h"
+#include "snapfit/assembly.h"
+#include "snapfit/tuning.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -37,6 +40,19 @@ StrategyChoice choose_query_strategy(const ComputeContext& ctx, const Scene& sce
     if (options.note) options.note(std::string("the strategy was not saved: ") + e.what());
   }
   return choice;
+}
+
+QueryVariant most_accurate_strategy(const Assembly& assembly, const AutoTuneOptions& options) {
+  AccuracyOptions accuracy;
+  accuracy.budget_ms = assembly.scene().frame_budget_ms;
+  accuracy.margin = options.margin;
+  accuracy.retune = options.retune;
+  accuracy.repetitions = options.repetitions;
+  if (options.progress)
+    accuracy.progress = [&](const std::string&, std::uint64_t done, std::uint64_t total) { options.progress(done, total); };
+  return choose_query_strategy(assembly.context(), assembly.scene(), assembly.pair().spectra, accuracy)
+      .chosen()
+      .variant;
 }
 
 }  // namespace snapfit

@@ -9,6 +9,8 @@
 #include "scheduler/accuracy.h"
 #include "scheduler/engine_tuning.h"
 #include "scheduler/strategy_file.h"
+#include "snapfit/assembly.h"
+#include "snapfit/tuning.h"
 #include "tests/test_support.h"
 
 using namespace snapfit;
@@ -159,6 +161,17 @@ TEST_CASE("query strategy: snapfit run measures the strategies, renders the most
   CHECK(s2["chosen_by"] == "lowest error that fits (strategy file)");
   CHECK(s2["name"] == s1["name"]);
   CHECK(s2["strategy_file"] == s1["strategy_file"]);
+
+  // The library's way in chooses by the same rule on the assembly's device.
+  const Assembly assembly(load_scene(scene));
+  const QueryVariant api = most_accurate_strategy(assembly);
+  const std::string api_name = variant_name(api);
+  CAPTURE(api_name);
+  bool among = false;
+  for (const auto& candidate : s1["candidates"]) among |= candidate["strategy"] == api_name;
+  CHECK(among);
+  auto engine = assembly.make_query_engine(api);
+  CHECK(variant_name(engine->variant()) == api_name);
 }
 
 TEST_CASE("query strategy: --strategy names one; a translation-only scene has only its lines") {

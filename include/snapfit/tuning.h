@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "snapfit/query.h"
+
 namespace snapfit {
 
 class Assembly;
@@ -49,5 +51,15 @@ struct AutoTuneOptions {
 // scene's loop rate along its trajectory (else at part 2's pose). Leaves the engine at
 // the m' it had. Throws snapfit::Error when the engine cannot be timed.
 TuningResult auto_tune(const Assembly& assembly, QueryEngine& engine, const AutoTuneOptions& options = {});
+
+// The query strategy the loop should render on the assembly's device: of the
+// interpolated sums (tricubic, trilinear) and the exact-rotation product, each tuned for
+// the frame budget, the one with the lowest error of the rendered wrench (force and
+// torque against the exact reference along the trajectory) among those that fit, as
+// `snapfit run` chooses it. Measured once per scene, device and budget (tens of seconds
+// on a CPU), then read from the strategy file. Make the loop's engine with it
+// (Assembly::make_query_engine) and auto_tune that engine. Throws snapfit::Error when a
+// strategy cannot be measured.
+QueryVariant most_accurate_strategy(const Assembly& assembly, const AutoTuneOptions& options = {});
 
 }  // namespace snapfit
