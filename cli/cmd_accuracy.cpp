@@ -114,7 +114,7 @@ void add_accuracy_command(CLI::App& app) {
   cmd->add_option("--device", opt->device, "OpenCL device (see `snapfit devices`; default: the loop's pick)");
   cmd->add_option("--poses", opt->poses, "Reference poses along the trajectory (default 24)");
   cmd->add_option("--repetitions", opt->repetitions, "Timed queries per m' level and at the chosen m'")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("--retune", opt->retune, "Measure m' even when the tuning file matches");
   cmd->callback([opt] { run_accuracy(*opt); });
 }

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "cli/commands.h"
+#include "cli/parse_options.h"
 #include "core/progress.h"
 #include "core/quantile.h"
 #include "engine/device_check.h"
@@ -97,9 +98,14 @@ void print_loop(const Scene& scene, const SessionResult& session) {
 }
 
 // Writes the report folder and says where it went.
+std::filesystem::path report_folder(const RunOptions& opt) {
+  return opt.out.empty() ? std::filesystem::path("results") / std::filesystem::path(opt.scene).stem()
+                         : std::filesystem::path(opt.out);
+}
+
 void write_report(const RunOptions& opt, RunRecord& record, std::chrono::steady_clock::time_point start) {
   namespace fs = std::filesystem;
-  const fs::path out = opt.out.empty() ? fs::path("results") / fs::path(opt.scene).stem() : fs::path(opt.out);
+  const fs::path out = report_folder(opt);
   std::cout << "writing the report to " << out.string() << "\n";
   record.seconds = seconds_since(start);
   const std::vector<std::string> written = write_run_report(out, record);
@@ -160,6 +166,7 @@ void run_main_job(const RunOptions& opt) {
   const auto note = [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; };
   std::cout << "[1/7] reading scene " << opt.scene << "\n";
   const Scene scene = load_scene(opt.scene);
+  check_output_folder(report_folder(opt).string());  // before the work, not after it
 
   std::cout << "[2/7] building and validating both parts (in parallel)\n";
   AssemblyPair pair = prepare_assembly_pair(scene);

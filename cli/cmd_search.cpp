@@ -13,6 +13,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "cli/commands.h"
@@ -40,8 +41,8 @@ constexpr double kDeg = M_PI / 180.0;
 
 struct SearchOptions {
   std::string scene;
-  double step_deg = 0;
-  std::size_t rotations = 0;
+  std::optional<double> step_deg;          // default 30 degrees
+  std::optional<std::size_t> rotations;
   std::size_t top = 10;
   std::size_t per_rotation = 4;
   std::string out;
@@ -124,9 +125,10 @@ void write_best_per_rotation(const std::string& dir, const So3Grid& grid, const 
 }
 
 void run_search(const SearchOptions& opt, const SearchRanks& ranks) {
-  if (opt.step_deg > 0 && opt.rotations > 0) throw Error("--step-deg and --rotations: give one of them");
-  const So3Grid grid = opt.rotations > 0 ? so3_grid_for_count(opt.rotations)
-                                         : so3_grid_for_step((opt.step_deg > 0 ? opt.step_deg : 30.0) * kDeg);
+  if (opt.step_deg && opt.rotations) throw Error("--step-deg and --rotations: give one of them");
+  if (!opt.out.empty() && ranks.rank() == 0) check_output_folder(opt.out);
+  const So3Grid grid =
+      opt.rotations ? so3_grid_for_count(*opt.rotations) : so3_grid_for_step(opt.step_deg.value_or(30.0) * kDeg);
   const Interpolation interpolation = parse_interpolation(opt.interpolation);
   // Rank 0 builds the pair (fields and spectra, cached); the others get its spectra.
   AssemblyPair pair;
@@ -298,19 +300,19 @@ void add_search_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("search", "Where part 2 fits part 1 over all rotations (one FFT map each; MPI)");
   cmd->add_option("scene", opt->scene, "Scene file (JSON)")->required();
   cmd->add_option("--step-deg", opt->step_deg, "Spacing of the SO(3) grid in degrees (default 30)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--rotations", opt->rotations, "About this many rotations instead of --step-deg")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--top", opt->top, "Poses to report (default 10)")->check(CLI::PositiveNumber);
+      ->check(positive_number());
+  cmd->add_option("--top", opt->top, "Poses to report (default 10)")->check(positive_number());
   cmd->add_option("--per-rotation", opt->per_rotation, "Best minima kept per map (default 4)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--out", opt->out, "Folder for best_per_rotation.csv, search.html and top.jsonl");
   cmd->add_option("--device", opt->devices,
                   "OpenCL device (see `snapfit devices`); SPEC;SPEC;... gives node-local rank r entry r mod count");
   cmd->add_option("--interpolation", opt->interpolation, "Rotated spectrum in the maps: trilinear or tricubic");
   cmd->add_option("--modes", opt->modes, "Low-pass: keep about this many modes in the maps (default: all)");
   cmd->add_option("--refine-modes", opt->refine_modes, "Modes of the refining queries (default 65536)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--refine-queries", opt->refine_queries, "Queries per refined pose at most (default 200)");
   cmd->add_option("--map-fft", opt->map_fft,
                   "Inverse FFT of the maps: auto (the fastest, measured once per device and size), clfft or fftw");

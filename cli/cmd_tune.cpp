@@ -76,7 +76,7 @@ void add_tune_command(CLI::App& app) {
   cmd->add_option("--budget", opt->budget_ms, "Frame budget in ms (default: the scene's frame.budget_ms)");
   cmd->add_option("--margin", opt->margin, "Safety margin: p99 at most (1 - margin) of the budget")
       ->check(CLI::Range(0.0, 0.95));
-  cmd->add_option("--repetitions", opt->repetitions, "Timed queries per m' level")->check(CLI::PositiveNumber);
+  cmd->add_option("--repetitions", opt->repetitions, "Timed queries per m' level")->check(positive_number());
   cmd->add_option("--interpolation", opt->interpolation, "trilinear or tricubic (what `snapfit run` uses: tricubic)");
   cmd->add_option("--device", opt->device, "OpenCL device (see `snapfit devices`)");
   cmd->add_option("--html", opt->html, "Write a self-contained page with a chart of the sweep");

@@ -1,6 +1,7 @@
 // snapfit: haptic guidance for rigid-part assembly. One executable, one subcommand
 // per task; `snapfit SUBCOMMAND --help` describes each.
 #include <iostream>
+#include <string>
 
 #include "cli/commands.h"
 #include "engine/device.h"
@@ -12,6 +13,9 @@ int main(int argc, char** argv) {
   snapfit::expose_pocl_caller_thread_driver();
   CLI::App app{"snapfit: geometric energy, force and torque between two rigid parts for haptic assembly"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("snapfit ") + SNAPFIT_VERSION);
+  // Every option's --help shows its default (subcommands inherit this).
+  app.option_defaults()->always_capture_default();
   snapfit::cli::add_devices_command(app);
   snapfit::cli::add_mesh_info_command(app);
   snapfit::cli::add_scene_check_command(app);

@@ -1,6 +1,10 @@
 #include "cli/parse_options.h"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "snapfit/error.h"
@@ -24,6 +28,31 @@ std::pair<char, double> parse_slice(const std::string& text) {
   } catch (const std::exception&) {
     throw Error("--slice: '" + text.substr(2) + "' is not a number");
   }
+}
+
+CLI::Validator positive_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0;
+        if (!CLI::detail::lexical_cast(text, value)) return "must be a number, got " + text;
+        return value > 0 ? std::string() : "must be > 0, got " + text;
+      },
+      "> 0", "POSITIVE");
+}
+
+void check_output_folder(const std::string& dir, const std::string& option) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(option + " " + dir + ": cannot make the folder (" + ec.message() + ")");
+  if (!fs::is_directory(dir, ec)) throw Error(option + " " + dir + ": not a folder");
+  const fs::path probe = fs::path(dir) / ".snapfit-write-check";
+  {
+    std::ofstream out(probe);
+    if (!(out << "snapfit\n") || !out.flush())
+      throw Error(option + " " + dir + ": cannot write in the folder (" + std::strerror(errno) + ")");
+  }
+  fs::remove(probe, ec);
 }
 
 }  // namespace snapfit::cli

@@ -340,7 +340,8 @@ PartSpec read_part(const Ctx& c, const json& v, const std::string& path, const s
     if (rel.empty()) fail(c, join(path, "mesh"), "must not be empty");
     const fs::path abs = fs::absolute(c.base_dir / fs::path(rel)).lexically_normal();
     std::error_code ec;
-    if (!fs::is_regular_file(abs, ec)) fail(c, join(path, "mesh"), "file not found: " + abs.string());
+    if (!fs::exists(abs, ec)) fail(c, join(path, "mesh"), "file not found: " + abs.string());
+    if (!fs::is_regular_file(abs, ec)) fail(c, join(path, "mesh"), "not a regular file: " + abs.string());
     part.mesh_path = abs.string();
     const bool cad = is_cad_file(rel);
     std::string mesh_units = units;

@@ -451,6 +451,8 @@ TEST_CASE("scene: structural errors") {
   j["part2"].erase("procedural");
   j["part2"]["mesh"] = "no/such/file.stl";
   CHECK_ERROR(j, "test.json: part2.mesh: file not found");
+  j["part2"]["mesh"] = ".";  // a directory: said as mesh-info says it
+  CHECK_ERROR(j, "test.json: part2.mesh: not a regular file");
   j = base_scene();
   j["descriptor"]["kind"] = "indicator";
   CHECK_ERROR(j, "test.json: descriptor.sigma: only for kind \"skeletal_density\"");
