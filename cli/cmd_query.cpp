@@ -55,7 +55,9 @@ Pose parse_pose(const std::string& text, const std::string& where) {
   return pose;
 }
 
-nlohmann::json result_json(const Pose& pose, const QueryResult& r, const TruncationTails* tails) {
+// One pose's JSON line (the fields are listed in docs/design.md, "snapfit query").
+nlohmann::json result_json(const Pose& pose, const QueryResult& r, std::size_t batch_poses,
+                           const TruncationTails* tails) {
   nlohmann::json flags = nlohmann::json::array();
   if (r.flags & query_outside_grid) flags.push_back("outside_grid");
   if (r.flags & query_bad_pose) flags.push_back("bad_pose");
@@ -72,12 +74,16 @@ nlohmann::json result_json(const Pose& pose, const QueryResult& r, const Truncat
        {{"energy", r.error_estimate.energy}, {"force", r.error_estimate.force}, {"torque", r.error_estimate.torque}}},
       {"flags", flags},
       {"modes", r.modes},
-      {"time_ms", r.seconds * 1e3}};
-  if (tails) {  // seed 001's predicate: the truncated overlap volume above its truncation bound
+      {"batch_mean_ms", r.seconds * 1e3},
+      {"batch_poses", batch_poses}};
+  if (tails) {
+    // Seed 001's predicate is one-sided: an overlap above its truncation bound proves a
+    // collision; below it the truncated sum cannot tell a touch from a small overlap.
     const CollisionVerdict v = collision_verdict(r, *tails);
-    j["collides"] = v.collides;
+    j["collides"] = v.collides ? nlohmann::json(true) : nlohmann::json("unknown");
     j["overlap"] = v.overlap;
     j["truncation_bound"] = v.bound;
+    j["collision_rule"] = "true when overlap > truncation_bound (proven); otherwise unknown, not free";
   }
   return j;
 }
@@ -109,7 +115,7 @@ void run_query(const QueryOptions& opt) {
   const std::vector<QueryResult> results = engine->query_batch(poses);
   const TruncationTails tails = opt.collision ? truncation_tails(pair.spectra) : TruncationTails{};
   for (std::size_t i = 0; i < poses.size(); ++i)
-    std::cout << result_json(poses[i], results[i], opt.collision ? &tails : nullptr).dump() << "\n";
+    std::cout << result_json(poses[i], results[i], poses.size(), opt.collision ? &tails : nullptr).dump() << "\n";
 }
 
 }  // namespace
@@ -126,8 +132,8 @@ void add_query_command(CLI::App& app) {
   cmd->add_option("--interpolation", opt->interpolation, "trilinear (seed 000) or tricubic (Catmull-Rom)");
   cmd->add_option("--device", opt->device, "OpenCL device (see `snapfit devices`)");
   cmd->add_flag("--collision", opt->collision,
-                "Collision verdict (seed 001): the indicator descriptor, and `collides` when the overlap volume "
-                "summed over m' modes exceeds its truncation bound (docs/spheres.md)");
+                "Collision verdict (seed 001): the indicator descriptor, and `collides`: true when the overlap volume "
+                "summed over m' modes exceeds its truncation bound (proven), else \"unknown\" (docs/spheres.md)");
   cmd->callback([opt] { run_query(*opt); });
 }
 

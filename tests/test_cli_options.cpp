@@ -2,7 +2,12 @@
 // --version answers, --help gives defaults, a number that must be positive says so, and
 // an output folder that cannot be written is refused before any work.
 #include <doctest/doctest.h>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "tests/test_support.h"
 
@@ -51,4 +56,28 @@ TEST_CASE("cli options: an output folder that cannot be written is refused befor
     CHECK(c.output.find("--out /proc/snapfit-cannot-write: cannot make the folder") != std::string::npos);
     CHECK(c.output.find("[2/7]") == std::string::npos);  // the parts were not built
   }
+}
+
+TEST_CASE("cli options: every field of query's JSON is documented, and the batch's time says it is the batch's") {
+  const test::CacheDirScope cache;
+  const test::Command c = test::run_command(std::string(SNAPFIT_CLI_PATH) + " query " +
+                                                std::string(SNAPFIT_SOURCE_DIR) + "/scenes/collision_only.json" +
+                                                " --collision --modes 512 --pose 0,0,5 --pose 3,0,-10",
+                                            false);
+  INFO(c.output);
+  REQUIRE(c.status == 0);
+  std::ifstream doc_file(std::string(SNAPFIT_SOURCE_DIR) + "/docs/cli.md");
+  const std::string doc((std::istreambuf_iterator<char>(doc_file)), std::istreambuf_iterator<char>());
+  std::istringstream lines(c.output);
+  std::vector<nlohmann::json> rows;
+  for (std::string line; std::getline(lines, line);) rows.push_back(nlohmann::json::parse(line));
+  REQUIRE(rows.size() == 2);
+  for (const auto& row : rows)
+    for (const auto& [key, value] : row.items()) {
+      CAPTURE(key);
+      CHECK(doc.find("`" + key + "`") != std::string::npos);
+    }
+  CHECK(rows[0]["batch_poses"] == 2);
+  CHECK(rows[0]["batch_mean_ms"] == rows[1]["batch_mean_ms"]);
+  CHECK(rows[0].count("time_ms") == 0);
 }
