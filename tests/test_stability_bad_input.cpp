@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <doctest/doctest.h>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <signal.h>
@@ -23,6 +24,7 @@
 #include "snapfit/error.h"
 #include "snapfit/haptic_loop.h"
 #include "tests/stability_support.h"
+#include "tests/test_support.h"
 
 using namespace snapfit;
 using Eigen::Vector3d;
@@ -116,6 +118,31 @@ TEST_CASE("stability bad input: unknown units and wrong types in a scene name th
     } catch (const Error& e) {
       CHECK_MESSAGE(std::string(e.what()).find(field) != std::string::npos, e.what());
     }
+  }
+}
+
+TEST_CASE("stability bad input: a part that encloses no volume is refused by name, before any field") {
+  // One triangle as both parts: a sheet has no inside for any descriptor (it once passed
+  // scene-check and `query` returned E = 969.7).
+  test::TempDir dir;
+  {
+    std::ofstream stl(dir.file("sheet.stl"));
+    stl << "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 10 0 0\nvertex 0 10 0\nendloop\n"
+           "endfacet\nendsolid s\n";
+  }
+  nlohmann::json scene = nlohmann::json::parse(default_scene_text());
+  scene["part1"] = {{"mesh", "sheet.stl"}};
+  scene["part2"] = {{"mesh", "sheet.stl"}};
+  scene.erase("trajectory");
+  scene.erase("assembled_pose");
+  std::ofstream(dir.file("sheet.json")) << scene.dump(1);
+  for (const std::string command : {"scene-check", "query"}) {
+    const test::Command c =
+        test::run_command(std::string(SNAPFIT_CLI_PATH) + " " + command + " " + dir.file("sheet.json"));
+    INFO(c.output);
+    CHECK(c.status != 0);
+    CHECK(c.output.find("part 'part1' encloses no volume (0 mm^3") != std::string::npos);
+    CHECK(c.output.find("energy") == std::string::npos);
   }
 }
 
