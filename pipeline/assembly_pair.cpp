@@ -25,7 +25,6 @@ AssemblyPair prepare_assembly_pair(const Scene& scene) {
     for (Eigen::Vector3d& v : pair.parts.part2.mesh.vertices) v = scene.part2.pose.rotation * v;
   }
   pair.grids = scene_part_grids(scene.grid, pair.parts.part1.mesh, pair.parts.part2.mesh);
-  add_grid_warnings(pair.plan, scene, pair.grids.part1.spacing);
   return pair;
 }
 

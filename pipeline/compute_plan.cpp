@@ -78,12 +78,4 @@ ComputePlan plan_computation(const Scene& scene) {
   return plan;
 }
 
-void add_grid_warnings(ComputePlan& plan, const Scene& scene, double spacing) {
-  if (!plan.skeletal_density || !(scene.descriptor.sigma < spacing)) return;
-  plan.warnings.push_back("descriptor.sigma " + number(scene.descriptor.sigma) + " is below the grid spacing " +
-                          number(spacing) +
-                          ": the skeletal density's surface layer is under-resolved; a spacing of at most sigma "
-                          "(or a larger sigma, which blurs the fit) resolves it");
-}
-
 }  // namespace snapfit

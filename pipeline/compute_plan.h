@@ -19,9 +19,4 @@ struct ComputePlan {
 
 ComputePlan plan_computation(const Scene& scene);
 
-// Warnings that need the grid: a skeletal density narrower than the grid spacing (its
-// surface layer falls between samples, so the sampled field, and every energy from it,
-// misses part of the geometry whatever m').
-void add_grid_warnings(ComputePlan& plan, const Scene& scene, double spacing);
-
 }  // namespace snapfit
