@@ -93,8 +93,10 @@ void print_loop(const Scene& scene, const SessionResult& session) {
     std::cout << "      t = " << c.time_s << " s: m' " << c.from << " -> " << c.to << " (" << c.reason << ")\n";
   std::cout << "    final pose error " << session.final_error.position << " " << scene.units << ", "
             << session.final_error.angle_deg << " deg (tolerance " << session.position_tolerance << " " << scene.units
-            << ", " << session.angle_tolerance_deg << " deg): " << (session.assembled ? "ASSEMBLED" : "NOT assembled")
-            << "\n";
+            << ", " << session.angle_tolerance_deg << " deg): "
+            << (!session.evaluated ? "not evaluated (the scene has no assembled pose)"
+                                   : session.assembled ? "ASSEMBLED" : "NOT assembled")
+            << "\n      " << final_error_text(session, scene.units) << "\n";
 }
 
 // Writes the report folder and says where it went.

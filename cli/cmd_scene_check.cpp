@@ -17,9 +17,6 @@ void add_scene_check_command(CLI::App& app) {
     const Scene scene = load_scene(*file);
     const AssemblyPair pair = prepare_assembly_pair(scene);
     print_scene_summary(std::cout, scene, pair.parts, pair.plan);
-    if (scene.method == Method::vps)
-      std::cout << "method: Voxmap PointShell, voxel " << scene.vps.voxel_size.value_or(pair.grids.spacing) << " "
-                << scene.units << " (snapfit run computes no fields or spectra for it)\n";
     std::cout << "scene is valid\n";
   });
 }

@@ -25,6 +25,7 @@ AssemblyPair prepare_assembly_pair(const Scene& scene) {
     for (Eigen::Vector3d& v : pair.parts.part2.mesh.vertices) v = scene.part2.pose.rotation * v;
   }
   pair.grids = scene_part_grids(scene.grid, pair.parts.part1.mesh, pair.parts.part2.mesh);
+  if (scene.method == Method::vps) pair.plan = plan_computation(scene, pair.grids.spacing);
   return pair;
 }
 

@@ -17,6 +17,8 @@ struct ComputePlan {
   std::vector<std::string> warnings;  // settings that will cost accuracy, with what to change
 };
 
-ComputePlan plan_computation(const Scene& scene);
+// A Voxmap PointShell scene gets that method's own plan (its voxel size, when the scene
+// leaves it to the grid, from `grid_spacing` when known, > 0).
+ComputePlan plan_computation(const Scene& scene, double grid_spacing = 0);
 
 }  // namespace snapfit

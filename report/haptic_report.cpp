@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <sstream>
 
 #include "core/quantile.h"
@@ -74,6 +75,20 @@ Chart tuning_chart(const TuningResult& t, const std::string& device_name) {
   c.markers.push_back(Marker{4096, t.model.predict_ms(4096) > 0 ? t.model.predict_ms(4096) : t.points.front().p99_ms,
                              "seed 000: 4096 (K20c)"});
   return c;
+}
+
+std::string session_verdict(const SessionResult& run) {
+  if (!run.evaluated) return "not evaluated (no assembled pose)";
+  return run.assembled ? "assembled" : "not assembled";
+}
+
+std::string final_error_text(const SessionResult& run, const std::string& units) {
+  std::ostringstream t;
+  t << std::showpos << std::setprecision(3) << "axial " << run.axial_error << std::noshowpos << " " << units << " ("
+    << (run.axial_error > 0 ? "past" : "short of") << (run.evaluated ? " the fit" : " the last keyframe")
+    << "), lateral " << run.lateral_error << " " << units << ", " << run.final_error.angle_deg << " deg; "
+    << run.final_force.norm() << " N sent";
+  return t.str();
 }
 
 nlohmann::json stiffness_json(const RenderedStiffness& k) {
@@ -173,9 +188,17 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
           {"final_pose",
            {{"position", {fp.translation.x(), fp.translation.y(), fp.translation.z()}},
             {"quaternion_wxyz", {fp.rotation.w(), fp.rotation.x(), fp.rotation.y(), fp.rotation.z()}}}},
-          {"final_error", {{"position", run.final_error.position}, {"angle_deg", run.final_error.angle_deg}}},
+          {"final_error",
+           {{"position", run.final_error.position},
+            {"angle_deg", run.final_error.angle_deg},
+            {"axial", run.axial_error},
+            {"lateral", run.lateral_error},
+            {"insertion_direction",
+             {run.insertion_direction.x(), run.insertion_direction.y(), run.insertion_direction.z()}}}},
+          {"final_force_n", {run.final_force.x(), run.final_force.y(), run.final_force.z()}},
           {"tolerance", {{"position", run.position_tolerance}, {"angle_deg", run.angle_tolerance_deg}}},
-          {"assembled", run.assembled},
+          {"assembled", run.evaluated ? nlohmann::json(run.assembled) : nlohmann::json(nullptr)},
+          {"verdict", session_verdict(run)},
           {"wait", loop_wait_name(run.wait)},
           {"priority",
            {{"threads_raised", run.priority.threads},

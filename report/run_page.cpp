@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "mesh/triangle_refine.h"
 #include "report/chart_spec.h"
@@ -39,6 +40,23 @@ nlohmann::json part_json(const std::string& name, const Mesh& mesh) {
   return {{"name", name}, {"triangles", mesh.triangles.size()}, {"positions", float32_base64(positions)}};
 }
 
+// What m' the loop rendered: the most frequent and the frame-weighted mean over its
+// frames, where it started and ended, and how often it changed.
+nlohmann::json rendered_modes_json(const LoopReport& loop) {
+  if (loop.log.empty()) return nullptr;
+  std::map<std::size_t, std::size_t> frames_at;
+  double sum = 0;
+  for (const FrameRecord& f : loop.log) ++frames_at[f.modes], sum += double(f.modes);
+  const auto most = std::max_element(frames_at.begin(), frames_at.end(),
+                                     [](const auto& a, const auto& b) { return a.second < b.second; });
+  return {{"most_frequent", most->first},
+          {"most_frequent_share", double(most->second) / double(loop.log.size())},
+          {"mean", sum / double(loop.log.size())},
+          {"start", loop.log.front().modes},
+          {"final", loop.log.back().modes},
+          {"changes", loop.mode_changes.size()}};
+}
+
 nlohmann::json summary_json(const RunRecord& run) {
   const Scene& scene = run.pair->scene;
   nlohmann::json s = {{"scene", scene.name},
@@ -46,6 +64,7 @@ nlohmann::json summary_json(const RunRecord& run) {
                       {"units", scene.units},
                       {"device", run.device.name},
                       {"loop_device", run.loop_device.name},
+                      {"method", run.vps ? "vps" : "snapfit"},
                       {"modes", run.tuning.chosen_modes},
                       {"modes_source", run.vps                  ? "none: Voxmap PointShell"
                                        : run.tuning_key.empty() ? "fixed by --modes"
@@ -56,6 +75,8 @@ nlohmann::json summary_json(const RunRecord& run) {
                       {"miss_rate", nullptr},
                       {"assembled", nullptr},
                       {"final_error", nullptr},
+                      {"verdict", nullptr},
+                      {"modes_rendered", nullptr},
                       {"stiffness_at_fit", nullptr},
                       {"query_strategy", nullptr}};
   if (!run.strategy.empty())
@@ -67,9 +88,15 @@ nlohmann::json summary_json(const RunRecord& run) {
     s["frames"] = loop.frames;
     s["misses"] = loop.misses;
     s["miss_rate"] = loop.miss_rate();
-    s["assembled"] = run.session->assembled;
+    s["assembled"] = run.session->evaluated ? nlohmann::json(run.session->assembled) : nlohmann::json(nullptr);
+    s["verdict"] = session_verdict(*run.session);
     s["final_error"] = {{"position", run.session->final_error.position},
-                        {"angle_deg", run.session->final_error.angle_deg}};
+                        {"angle_deg", run.session->final_error.angle_deg},
+                        {"axial", run.session->axial_error},
+                        {"lateral", run.session->lateral_error},
+                        {"final_force_n", run.session->final_force.norm()},
+                        {"text", final_error_text(*run.session, scene.units)}};
+    s["modes_rendered"] = rendered_modes_json(loop);
     if (run.session->fit_stiffness) s["stiffness_at_fit"] = stiffness_json(*run.session->fit_stiffness);
   }
   return s;
@@ -174,16 +201,22 @@ nlohmann::json timeline_json(const RunRecord& run, const RunPageLimits& limits) 
   }
   const Envelope e = envelope(time, v, std::max<std::size_t>(2, limits.chart_points));
   std::vector<Chart> charts;
-  charts.push_back(time_chart("Geometric energy at the part's pose", "energy", e, {{energy, "energy"}}));
+  // E = -Re of the overlap integral of two dimensionless affinities: a volume.
+  charts.push_back(time_chart("Geometric energy at the part's pose", "energy (" + scene.units + "^3)", e,
+                              {{energy, "energy"}}));
   charts.push_back(time_chart("Force", "N", e, {{geo_force, "|geometric force|"}, {sent_force, "|force to device|"}}));
   if (scene.outputs.torque)
     charts.push_back(
         time_chart("Torque", "N m", e, {{geo_torque, "|geometric torque|"}, {sent_torque, "|torque to device|"}}));
-  Chart pose = time_chart("Pose error against the assembled pose", "error", e,
-                          {{position_error, "position (" + scene.units + ")"}, {angle_error, "angle (deg)"}});
-  pose.hlines.push_back(HLine{session.position_tolerance, "position tolerance"});
-  charts.push_back(pose);
-  charts.push_back(time_chart("m' (Fourier modes) in the loop", "m'", e, {{modes, "m'"}}));
+  const std::string against = session.evaluated ? "the assembled pose" : "the last keyframe";
+  Chart position = time_chart("Position error against " + against, scene.units, e,
+                              {{position_error, "position error (" + scene.units + ")"}});
+  position.hlines.push_back(HLine{session.position_tolerance, "tolerance"});
+  charts.push_back(position);
+  Chart angle = time_chart("Angle error against " + against, "deg", e, {{angle_error, "angle error (deg)"}});
+  angle.hlines.push_back(HLine{session.angle_tolerance_deg, "tolerance"});
+  charts.push_back(angle);
+  if (!run.vps) charts.push_back(time_chart("m' (Fourier modes) in the loop", "m'", e, {{modes, "m'"}}));
   Chart frames = time_chart("Frame time", "ms", e, {{frame_ms, "frame time"}});
   frames.hlines.push_back(HLine{scene.frame_budget_ms, "budget"});
   Series missed{"missed frames", {}, {}, Series::Style::points, "#d62728"};

@@ -31,6 +31,17 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part1_mesh, 
   return out;
 }
 
+Eigen::Vector3d insertion_direction(const Trajectory& trajectory, const Pose& target) {
+  const auto& k = trajectory.keyframes;
+  for (std::size_t i = k.size(); i >= 2; --i) {
+    const Eigen::Vector3d step = k[i - 1].pose.translation - k[i - 2].pose.translation;
+    if (step.norm() > 1e-9) return step.normalized();
+  }
+  if (!k.empty() && (target.translation - k.front().pose.translation).norm() > 1e-9)
+    return (target.translation - k.front().pose.translation).normalized();
+  return Eigen::Vector3d::UnitZ();
+}
+
 SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfig config,
                                    const WrenchEvaluator& evaluator, const SessionOptions& options) {
   if (scene.trajectory.keyframes.empty())
@@ -70,7 +81,13 @@ SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfi
   }
   if (raise) restore_process_priority(out.priority);
   out.final_error = pose_error(out.loop.final_part.pose, out.target);
-  out.assembled = out.final_error.within(out.position_tolerance, out.angle_tolerance_deg);
+  out.evaluated = scene.assembled_pose.has_value();
+  out.assembled = out.evaluated && out.final_error.within(out.position_tolerance, out.angle_tolerance_deg);
+  out.insertion_direction = insertion_direction(scene.trajectory, out.target);
+  const Eigen::Vector3d d = out.loop.final_part.pose.translation - out.target.translation;
+  out.axial_error = d.dot(out.insertion_direction);
+  out.lateral_error = (d - out.axial_error * out.insertion_direction).norm();
+  if (!out.loop.log.empty()) out.final_force = out.loop.log.back().sent.force;
   return out;
 }
 

@@ -40,9 +40,16 @@ struct SessionResult {
   double force_scale = 0;  // largest engine force at the gain's probe poses
   Pose target;             // the assembled pose (else the last keyframe)
   PoseError final_error;
+  // The final position error split along the insertion (the trajectory's last segment,
+  // pointing into the fit) and across it, scene units: axial > 0 is past the target
+  // (deeper than the fit), < 0 short of it.
+  Eigen::Vector3d insertion_direction = Eigen::Vector3d::UnitZ();
+  double axial_error = 0, lateral_error = 0;
+  Eigen::Vector3d final_force = Eigen::Vector3d::Zero();  // sent to the device in the last frame, N
   double position_tolerance = 0;  // scene units
   double angle_tolerance_deg = 0;
-  bool assembled = false;   // final_error within the tolerances
+  bool evaluated = false;   // the scene has an assembled pose to judge the end against
+  bool assembled = false;   // evaluated, and final_error within the tolerances
   PriorityChange priority;  // what raising the threads' priority did
   std::shared_ptr<const RigidContactModel> contact;  // null: the loop rendered no rigid contact
   double contact_build_s = 0;
@@ -52,6 +59,14 @@ struct SessionResult {
   std::optional<RenderedStiffness> fit_stiffness;  // at the assembled pose, when the scene has one
   LoopWait wait = LoopWait::spin;
 };
+
+// The direction part 2 moves in at the end of `trajectory` (its last segment that moves),
+// towards `target`; without one, from the first keyframe to the target (else +z).
+Eigen::Vector3d insertion_direction(const Trajectory& trajectory, const Pose& target);
+
+// The direction part 2 moves in at the end of `trajectory` (its last segment that moves),
+// towards `target`; without one, from the first keyframe to the target (else +z).
+Eigen::Vector3d insertion_direction(const Trajectory& trajectory, const Pose& target);
 
 // Runs the loop on its own thread on the steady clock and waits for it. Throws
 // snapfit::Error when the scene has no trajectory or its haptics cannot be set up.

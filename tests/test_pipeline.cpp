@@ -222,4 +222,49 @@ TEST_CASE("pipeline: snapfit run, snapfit query and the library give the same wr
   CHECK(translation_scene);
 }
 
+
+TEST_CASE("pipeline: snapfit run says how the run ended: signed axial and lateral errors, the force, or no verdict") {
+  const test::CacheDirScope cache;
+  const test::TempDir out;
+  const std::string scene_file = std::string(SNAPFIT_SOURCE_DIR) + "/scenes/default.json";
+  const std::string run = std::string(SNAPFIT_CLI_PATH) + " run ";
+  const test::Command judged =
+      test::run_command(run + scene_file + " --modes 2048 --simulated-time --out " + (out.path / "judged").string());
+  INFO(judged.output);
+  REQUIRE(judged.status == 0);
+  nlohmann::json s;
+  std::ifstream(out.path / "judged" / "summary.json") >> s;
+  const nlohmann::json& loop = s["haptic_loop"];
+  // The default trajectory ends straight down (-z) into the fit at z = -20: axial is the
+  // depth past the fit, the rest is lateral.
+  const auto& p = loop["final_pose"]["position"];
+  const double x = p[0], y = p[1], z = p[2];
+  CHECK(loop["final_error"]["axial"].get<double>() == doctest::Approx(-(z + 20)).epsilon(1e-9));
+  CHECK(loop["final_error"]["lateral"].get<double>() == doctest::Approx(std::hypot(x, y)).epsilon(1e-9));
+  CHECK(loop["final_error"]["insertion_direction"] == nlohmann::json({0.0, 0.0, -1.0}));
+  CHECK(loop["final_force_n"].size() == 3);
+  CHECK(loop["verdict"] == (loop["assembled"].get<bool>() ? "assembled" : "not assembled"));
+  CHECK(judged.output.find("axial ") != std::string::npos);
+
+  // Without an assembled pose the run is not judged.
+  nlohmann::json scene;
+  std::ifstream(scene_file) >> scene;
+  scene.erase("assembled_pose");
+  for (auto& part : {"part1", "part2"})
+    if (scene[part].contains("mesh"))
+      scene[part]["mesh"] = (fs::path(SNAPFIT_SOURCE_DIR) / "scenes" / scene[part]["mesh"].get<std::string>()).string();
+  std::ofstream(out.path / "unjudged.json") << scene.dump();
+  const test::Command unjudged = test::run_command(run + (out.path / "unjudged.json").string() +
+                                                   " --modes 2048 --simulated-time --out " +
+                                                   (out.path / "unjudged").string());
+  INFO(unjudged.output);
+  REQUIRE(unjudged.status == 0);
+  nlohmann::json u;
+  std::ifstream(out.path / "unjudged" / "summary.json") >> u;
+  CHECK(u["haptic_loop"]["assembled"].is_null());
+  CHECK(u["haptic_loop"]["verdict"] == "not evaluated (no assembled pose)");
+  CHECK(unjudged.output.find("not evaluated (the scene has no assembled pose)") != std::string::npos);
+  CHECK(unjudged.output.find("NOT assembled") == std::string::npos);
+}
+
 }  // namespace snapfit

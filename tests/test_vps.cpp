@@ -163,6 +163,13 @@ TEST_CASE("vps: snapfit run plays a vps scene and names the method in summary.js
   CHECK(summary["tuning"].is_null());
   CHECK(summary["haptic_loop"]["frames"] == 5500);
   CHECK(summary["haptic_loop"]["assembled"] == true);  // 0.5 mm of clearance, twice the voxel size
+  // The plan printed and written is Voxmap PointShell's, not snapfit's.
+  const std::string plan = summary["plan"].dump();
+  CHECK(plan.find("Voxmap PointShell") != std::string::npos);
+  CHECK(plan.find("voxel 0.25 mm") != std::string::npos);
+  CHECK(plan.find("skeletal density") == std::string::npos);
+  CHECK(plan.find("tricubic") == std::string::npos);
+  CHECK(run.output.find("sigma") == std::string::npos);
   // A bad vps field stops the run with the field named.
   scene["vps"]["voxel_size"] = 0;
   test::write_text(dir.file("bad.json"), scene.dump());

@@ -27,6 +27,16 @@ function stiffnessItem(k) {
   return summaryItem('stiffness_at_fit', `stiffness at the fit (over ${k.step_mm} mm, ${k.tilt_deg} deg)`, k, text);
 }
 
+// The tuned m' and what the loop rendered: the loop steps m' down when frames run late.
+function modesText(s) {
+  if (s.method === 'vps') return `none (${s.modes_source})`;
+  const r = s.modes_rendered;
+  if (!r) return `${s.modes} (${s.modes_source})`;
+  const share = formatNumber(100 * r.most_frequent_share, 3);
+  return `${s.modes} (${s.modes_source}); the loop rendered ${r.most_frequent} in ${share} % of frames ` +
+         `(mean ${formatNumber(r.mean, 5)}, from ${r.start} to ${r.final}, ${r.changes} changes)`;
+}
+
 function renderSummary(root, s) {
   const list = element('dl', { class: 'summary', id: 'summary' });
   list.append(summaryItem('scene', 'scene', s.scene, s.scene));
@@ -37,15 +47,17 @@ function renderSummary(root, s) {
     list.append(summaryItem('query_strategy', 'query strategy', q, `${q.name} (${q.chosen_by})`));
     if (q.why) list.append(summaryItem('strategy_why', 'why this strategy', q.why, q.why));
   }
-  list.append(summaryItem('modes', "m' (Fourier modes)", s.modes, `${s.modes} (${s.modes_source})`));
+  list.append(summaryItem('modes', "m' (Fourier modes)", s.modes, modesText(s)));
   if (s.frames !== null) {
     list.append(summaryItem('misses', 'missed frames', s.misses,
                             `${s.misses} of ${s.frames} (${formatNumber(100 * s.miss_rate, 3)} %)`,
                             s.miss_rate <= 0.001 ? 'good' : 'bad'));
-    list.append(summaryItem('assembled', 'success', s.assembled, s.assembled ? 'ASSEMBLED' : 'NOT assembled',
-                            s.assembled ? 'good' : 'bad'));
+    list.append(summaryItem('assembled', 'success', s.assembled,
+                            s.assembled === null ? 'not evaluated (no assembled pose)'
+                                                 : s.assembled ? 'ASSEMBLED' : 'NOT assembled',
+                            s.assembled === null ? null : s.assembled ? 'good' : 'bad'));
     list.append(summaryItem('final_error', 'final pose error', s.final_error,
-                            `${formatNumber(s.final_error.position)} ${s.units}, ${formatNumber(s.final_error.angle_deg)} deg`));
+                            `${formatNumber(s.final_error.position)} ${s.units}: ${s.final_error.text}`));
     if (s.stiffness_at_fit) list.append(stiffnessItem(s.stiffness_at_fit));
   } else {
     list.append(summaryItem('misses', 'missed frames', null, 'no loop (the scene has no trajectory)'));
@@ -104,7 +116,7 @@ function main() {
   const torques = pb ? float32s(pb.torque) : null;
   const energies = pb ? float32s(pb.energy) : null;
   const modes = pb ? float32s(pb.modes) : null;
-  const viewer = createViewer(view, data.parts, positions);
+  const viewer = createViewer(view, data.parts, positions, quaternions);
 
   const units = data.summary.units;
   const table = element('table', {},
@@ -114,7 +126,7 @@ function main() {
     legendRow(COLORS.force, 'force sent (N)', 'value-force'),
     legendRow(COLORS.torque, 'torque sent (N m)', 'value-torque'),
     legendRow('transparent', 'energy', 'value-energy'),
-    legendRow('transparent', "m'", 'value-modes'),
+    ...(data.summary.method === 'vps' ? [] : [legendRow('transparent', "m'", 'value-modes')]),
     legendRow('transparent', 'time (s)', 'value-time'));
   side.append(table);
   if (pb) {
@@ -164,7 +176,8 @@ function main() {
     document.getElementById('value-force').textContent = formatNumber(Math.hypot(...force));
     document.getElementById('value-torque').textContent = formatNumber(Math.hypot(...torque));
     document.getElementById('value-energy').textContent = formatNumber(energies[i]);
-    document.getElementById('value-modes').textContent = String(modes[i]);
+    const modesCell = document.getElementById('value-modes');
+    if (modesCell) modesCell.textContent = String(modes[i]);
     document.getElementById('value-time').textContent = formatNumber(currentTime, 4);
     slider.value = String(currentTime);
     clock.textContent = `${currentTime.toFixed(3)} / ${times[times.length - 1].toFixed(3)} s`;
@@ -239,7 +252,9 @@ function main() {
     root.append(tuning);
     entries.push({ chart: createChart(tuning, data.tuning_chart, { height: 320 }), container: tuning });
   } else {
-    root.append(element('p', { class: 'note', id: 'no-tuning', text: "m' was fixed by --modes: no tuning sweep ran." }));
+    const why = data.summary.method === 'vps' ? "Voxmap PointShell has no m' to tune." :
+      "m' was fixed by --modes: no tuning sweep ran.";
+    root.append(element('p', { class: 'note', id: 'no-tuning', text: why }));
   }
   if (data.frame_time_histogram) {
     root.append(element('h2', { text: 'Frame times' }));

@@ -36,8 +36,9 @@ function arrow(color) {
 }
 
 // container: an element with a size. parts: [{positions (base64 float32), name}] for part 1
-// and part 2 in their own frames. path: float32 positions of part 2's origin (may be empty).
-export function createViewer(container, parts, path) {
+// and part 2 in their own frames. path: float32 positions of part 2's origin (may be empty);
+// turns: float32 quaternions (w, x, y, z) at the same frames (may be null).
+export function createViewer(container, parts, path, turns) {
   const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   renderer.setSize(container.clientWidth, container.clientHeight);
@@ -80,17 +81,32 @@ export function createViewer(container, parts, path) {
   const forceArrow = arrow(COLORS.force), torqueArrow = arrow(COLORS.torque);
   scene.add(forceArrow, torqueArrow);
 
-  // Frame everything: part 1, part 2 where it starts, and the path.
+  // Frame everything: part 1, and part 2 wherever the run takes it (its box's corners at
+  // every recorded pose), so that no moment of the playback is cut off.
   const box = new THREE.Box3().setFromObject(meshes[0]);
-  box.union(new THREE.Box3().setFromObject(part2));
-  for (let i = 0; i < pathPoints.length; i += 3)
-    box.expandByPoint(new THREE.Vector3(pathPoints[i], pathPoints[i + 1], pathPoints[i + 2]));
+  const own = part2.geometry.boundingBox;
+  const corner = new THREE.Vector3(), turn = new THREE.Quaternion(), at = new THREE.Vector3();
+  const frames = pathPoints.length / 3;
+  if (frames === 0) box.union(new THREE.Box3().setFromObject(part2));
+  for (let f = 0; f < frames; f++) {
+    at.set(pathPoints[3 * f], pathPoints[3 * f + 1], pathPoints[3 * f + 2]);
+    if (turns && turns.length >= 4 * (f + 1)) turn.set(turns[4 * f + 1], turns[4 * f + 2], turns[4 * f + 3], turns[4 * f]);
+    else turn.identity();
+    for (let c = 0; c < 8; c++) {
+      corner.set(c & 1 ? own.max.x : own.min.x, c & 2 ? own.max.y : own.min.y, c & 4 ? own.max.z : own.min.z);
+      box.expandByPoint(corner.applyQuaternion(turn).add(at));
+    }
+  }
   const center = box.getCenter(new THREE.Vector3());
   const size = Math.max(box.getSize(new THREE.Vector3()).length(), 1e-6);
   const arrowScale = 0.3 * size;  // an arrow this long shows the run's largest magnitude
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.target.copy(center);
-  camera.position.copy(center).add(new THREE.Vector3(1.0, -1.5, 0.8).normalize().multiplyScalar(1.25 * size));
+  // Far enough that the box's bounding sphere fits the narrower of the two fields of view.
+  const halfFov = Math.min(THREE.MathUtils.degToRad(camera.fov) / 2,
+                           Math.atan(Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2) * camera.aspect));
+  const distance = (0.5 * size) / Math.sin(halfFov) * 1.05;
+  camera.position.copy(center).add(new THREE.Vector3(1.0, -1.5, 0.8).normalize().multiplyScalar(distance));
   camera.near = size / 1000;
   camera.far = size * 100;
   camera.updateProjectionMatrix();

@@ -27,8 +27,12 @@ try {
   t.check(dom.scene && dom.scene.value === summary.scene && dom.scene.text.includes(summary.scene), `scene is "${summary.scene}"`);
   t.check(dom.device && dom.device.value === summary.device, `device is "${summary.device}"`);
   t.check(dom.loop_device && dom.loop_device.value === summary.loop_device, 'loop device as in summary.json');
-  t.check(dom.modes && dom.modes.value === summary.tuning.chosen_modes &&
-          dom.modes.text.startsWith(String(summary.tuning.chosen_modes)), `m' is ${summary.tuning.chosen_modes}`);
+  if (summary.method === 'vps') {
+    t.check(dom.modes && dom.modes.text.startsWith('none'), "Voxmap PointShell: no m'");
+  } else {
+    t.check(dom.modes && dom.modes.value === summary.tuning.chosen_modes &&
+            dom.modes.text.startsWith(String(summary.tuning.chosen_modes)), `m' is ${summary.tuning.chosen_modes}`);
+  }
   const strategy = summary.query_strategy;
   if (strategy) {
     t.check(dom.query_strategy && dom.query_strategy.value.name === strategy.name &&
@@ -43,7 +47,19 @@ try {
     t.check(dom.misses && dom.misses.value === loop.misses && dom.misses.text.startsWith(`${loop.misses} of ${loop.frames}`),
             `misses: ${loop.misses} of ${loop.frames}`);
     t.check(dom.assembled && dom.assembled.value === loop.assembled &&
-            dom.assembled.text === (loop.assembled ? 'ASSEMBLED' : 'NOT assembled'), `success: ${loop.assembled}`);
+            dom.assembled.text === (loop.assembled === null ? 'not evaluated (no assembled pose)'
+                                                            : loop.assembled ? 'ASSEMBLED' : 'NOT assembled'),
+            `success: ${loop.assembled} (${loop.verdict})`);
+    const fe = loop.final_error;
+    t.check(dom.final_error && dom.final_error.text.includes('axial') && dom.final_error.text.includes('lateral') &&
+            dom.final_error.text.includes(' N sent') &&
+            Math.abs(dom.final_error.value.axial - fe.axial) < 1e-9 && Math.abs(dom.final_error.value.lateral - fe.lateral) < 1e-9,
+            `final error: axial ${fe.axial}, lateral ${fe.lateral} (signed, as in summary.json)`);
+    if (summary.method !== 'vps') {
+      const changes = loop.modes.changes.length;
+      t.check(dom.modes.text.includes('the loop rendered') && dom.modes.text.includes(`${changes} changes`),
+              `m': tuned and rendered (${changes} changes)`);
+    }
     const stiff = loop.stiffness_at_fit;
     if (stiff) {
       const lowest = Math.min(...Object.values(stiff.force_n_per_mm));
@@ -69,12 +85,16 @@ try {
   // hide another where they coincide)
   const charts = page.locator('.chart');
   const chartCount = await charts.count();
-  const tuned = summary.tuning.key !== '';
+  const tuned = summary.tuning !== null && summary.tuning.key !== '';
   const data = await page.evaluate(() => JSON.parse(document.getElementById('snapfit-data').textContent));
   const timeCharts = data.timeline ? data.timeline.charts.length : 0;
   t.check(!loop || timeCharts >= 5, `${timeCharts} time charts`);
   t.check(chartCount === timeCharts + (loop ? 1 : 0) + (tuned ? 1 : 0), `${chartCount} charts on the page`);
-  if (!tuned) t.check(await page.locator('#no-tuning').count() === 1, "m' fixed: the page says no sweep ran");
+  if (!tuned) {
+    const note = await page.locator('#no-tuning').textContent();
+    t.check(summary.method === 'vps' ? note.includes('Voxmap PointShell') : note.includes('--modes'),
+            `no sweep ran, and the page says why: "${note}"`);
+  }
   for (let i = 0; i < chartCount; i++) {
     const shot = await charts.nth(i).locator('canvas').first().screenshot();
     const first = await pixelStats(page, shot, { color: [31, 119, 180], tolerance: 40 });
@@ -86,7 +106,10 @@ try {
 
   // --- the field figures
   const images = await page.evaluate(() => [...document.querySelectorAll('.slices img')].map((i) => i.naturalWidth));
-  t.check(images.length === 2 && images.every((w) => w > 200), `field figures: ${images.join(', ')} pixels wide`);
+  if (summary.method === 'vps') t.check(images.length === 0, 'Voxmap PointShell: no field figures');
+  else t.check(images.length === 2 && images.every((w) => w > 200), `field figures: ${images.join(', ')} pixels wide`);
+  if (summary.method === 'vps')
+    t.check(await page.locator('#value-modes').count() === 0, "Voxmap PointShell: no m' beside the view");
 
   if (loop) {
     // --- the playback moves the part
@@ -94,9 +117,16 @@ try {
     t.check(t1 > t0, `playback spans ${t0} .. ${t1} s`);
     await page.evaluate((x) => window.snapfitReport.setTime(x), t0);
     const box0 = await page.evaluate(() => window.snapfitReport.partScreenBox());
+    const canvas = await view.boundingBox();
+    for (const [name, b] of [['start', box0]])
+      t.check(b.left >= 0 && b.top >= 0 && b.right <= canvas.width && b.bottom <= canvas.height,
+              `part 2 is wholly in view at the ${name} (${b.left.toFixed(0)}..${b.right.toFixed(0)} x ` +
+              `${b.top.toFixed(0)}..${b.bottom.toFixed(0)} in ${canvas.width.toFixed(0)} x ${canvas.height.toFixed(0)})`);
     const first = await view.screenshot();
     await page.evaluate((x) => window.snapfitReport.setTime(x), t1);
     const box1 = await page.evaluate(() => window.snapfitReport.partScreenBox());
+    t.check(box1.left >= 0 && box1.top >= 0 && box1.right <= canvas.width && box1.bottom <= canvas.height,
+            'part 2 is wholly in view at the end');
     const last = await view.screenshot();
     const moved = Math.hypot((box1.left + box1.right - box0.left - box0.right) / 2, (box1.top + box1.bottom - box0.top - box0.bottom) / 2);
     t.check(moved > 20, `part 2's screen box moved ${moved.toFixed(0)} pixels`);
