@@ -11,6 +11,7 @@
 #include "core/grid.h"
 #include "io/import_child.h"
 #include "io/occt_shapes.h"
+#include "io/step_units.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -83,6 +84,9 @@ void check_complete(const std::string& path, CadFormat format, std::uintmax_t si
 // The whole import; runs in the import child.
 std::string import_cad(const std::string& path, const CadImportOptions& options) {
   return occt::guard_occt(path, [&] {
+    if (cad_format(path) == CadFormat::step)
+      if (const std::string unit = step_length_unit_problem(path); !unit.empty())
+        fail(path, "cannot read CAD file: " + unit);
     const occt::CadFile file = occt::read_cad_file(path);
     const occt::NamedSolid& chosen = pick_solid(path, file, options.solid);
     const double scale = kMetresPerMillimetre / options.metres_per_unit * options.scale;  // mm -> output units
@@ -105,8 +109,21 @@ std::string import_cad(const std::string& path, const CadImportOptions& options)
                                 (options.grid.spacing ? "" : " (the grid's resolution over this solid)");
     }
     facts.angular_deflection_deg = options.angular_deflection_deg;
-    occt::Tessellation t = occt::tessellate_solid(chosen.solid, facts.linear_deflection / scale,
-                                                  options.angular_deflection_deg * kPi / 180.0, scale, path);
+    occt::Tessellation t;
+    try {
+      t = occt::tessellate_solid(chosen.solid, facts.linear_deflection / scale,
+                                 options.angular_deflection_deg * kPi / 180.0, scale, path);
+    } catch (const Error& e) {
+      // A part far larger than intended (a file in metres read as such, a wrong scale)
+      // asks for more triangles than the mesher makes: say how large it came out.
+      std::ostringstream size;
+      size << e.what() << " (the solid spans " << (exact.box[3] - exact.box[0]) * scale << " x "
+           << (exact.box[4] - exact.box[1]) * scale << " x " << (exact.box[5] - exact.box[2]) * scale << " "
+           << options.units << " from the file's length unit " << file.file_unit << " and scale " << options.scale
+           << ", meshed to within " << facts.linear_deflection << " " << options.units
+           << "; if the part should be smaller, its file's unit or the scene's \"scale\" is wrong)";
+      throw Error(size.str());
+    }
     if (t.mesh.triangles.empty()) fail(path, "cannot read CAD file: the tessellation holds no triangles");
     facts.faces = t.faces;
     facts.triangles = t.mesh.triangles.size();

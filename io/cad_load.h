@@ -23,6 +23,7 @@ struct CadImportOptions {
   // The output's length unit (snapfit/scene.h metres_per_unit): the file's own unit is
   // converted to it, then every coordinate is multiplied by `scale`.
   double metres_per_unit = 1e-3;
+  std::string units = "mm";  // its name, for messages
   double scale = 1.0;
   // The solid to take, by one of the names CadFacts::solids lists; needed when the file
   // holds more than one.

@@ -1,5 +1,7 @@
 #include "pipeline/assembly_pair.h"
 
+#include <sstream>
+
 #include <iostream>
 
 #include "pipeline/spectra_cache.h"
@@ -24,7 +26,20 @@ AssemblyPair prepare_assembly_pair(const Scene& scene) {
   if (scene.motion == Motion::translation && !scene.part2.pose.rotation.toRotationMatrix().isIdentity(1e-12)) {
     for (Eigen::Vector3d& v : pair.parts.part2.mesh.vertices) v = scene.part2.pose.rotation * v;
   }
-  pair.grids = scene_part_grids(scene.grid, pair.parts.part1.mesh, pair.parts.part2.mesh);
+  try {
+    pair.grids = scene_part_grids(scene.grid, pair.parts.part1.mesh, pair.parts.part2.mesh);
+  } catch (const Error& e) {
+    // Too many grid points usually means a part far larger than intended: say how large.
+    std::ostringstream m;
+    m << e.what() << " (the parts come out as";
+    for (const auto& [spec, part] : {std::pair{&scene.part1, &pair.parts.part1}, {&scene.part2, &pair.parts.part2}}) {
+      const Eigen::Vector3d size = part->report.bbox_max - part->report.bbox_min;
+      m << " '" << spec->name << "' " << size.x() << " x " << size.y() << " x " << size.z() << " " << scene.units
+        << (spec == &scene.part1 ? "," : "");
+    }
+    m << "; if one should be smaller, its file's unit, \"mesh_units\" or \"scale\" is wrong)";
+    throw Error(m.str());
+  }
   if (scene.method == Method::vps) pair.plan = plan_computation(scene, pair.grids.spacing);
   return pair;
 }

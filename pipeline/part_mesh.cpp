@@ -13,6 +13,7 @@ PartMesh build_part_mesh(const PartSpec& part, const Scene& scene) {
     if (part.mesh_path && is_cad_file(*part.mesh_path)) {
       CadImportOptions options;
       options.metres_per_unit = metres_per_unit(scene.units);
+      options.units = scene.units;
       options.scale = part.mesh_scale;
       options.solid = part.cad.solid;
       options.linear_deflection = part.cad.deflection;

@@ -3,6 +3,8 @@
 // file's units, solids and names, bad files, the import child, and `snapfit mesh-info`.
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <doctest/doctest.h>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -137,6 +139,34 @@ TEST_CASE("cad import: the default deflection is tied to the grid spacing") {
   const std::size_t coarse_triangles = load_cad_mesh(file, coarse).mesh.triangles.size();
   coarse.angular_deflection_deg = 5;
   CHECK(load_cad_mesh(file, coarse).mesh.triangles.size() > coarse_triangles);
+}
+
+TEST_CASE("cad import: an unknown length unit is refused by name; a part far too large says its size") {
+  const test::TempDir dir;
+  const std::string mm = dir.file("block_mm.step");
+  test::write_cad_part(mm, block_spec(), "MM");
+  std::ifstream in(mm);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string si = "SI_UNIT(.MILLI.,.METRE.)";
+  REQUIRE(text.find(si) != std::string::npos);
+  // OpenCASCADE read this as a unit 1000x too large, without a word.
+  std::string furlong = text;
+  furlong.replace(furlong.find(si), si.size(), "SI_UNIT(.MILLI.,.FURLONG.)");
+  test::write_text(dir.file("furlong.step"), furlong);
+  const std::string refused = error_of([&] { load_cad_mesh(dir.file("furlong.step"), with_deflection(0.1)); });
+  INFO(refused);
+  CHECK(refused.find("unknown length unit SI_UNIT(.MILLI.,.FURLONG.)") != std::string::npos);
+  // The same part declared in metres is 1000x larger: meshed to a deflection meant for
+  // millimetres, the mesher gives up, and the message says how large the part came out.
+  std::string metres = text;
+  metres.replace(metres.find(si), si.size(), "SI_UNIT($,.METRE.)");
+  test::write_text(dir.file("metres.step"), metres);
+  const std::string too_fine = error_of([&] { load_cad_mesh(dir.file("metres.step"), with_deflection(0.0005)); });
+  INFO(too_fine);
+  CHECK(too_fine.find("could not be tessellated") != std::string::npos);
+  CHECK(too_fine.find("the solid spans 30000 x 30000 x 30000 mm from the file's length unit metre") !=
+        std::string::npos);
+  CHECK(too_fine.find("\"scale\"") != std::string::npos);
 }
 
 TEST_CASE("cad import: the file's length unit is converted to the output's") {
