@@ -4,9 +4,11 @@
 // exact-rotation reference at the trajectory's poses (scheduler/accuracy.h). Prints one
 // JSON object on stdout: the loop's strategy at the top level, every strategy under
 // "strategies", and which one has the lowest error within the budget.
+#include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <vector>
 
 #include "cli/commands.h"
 #include "cli/parse_options.h"
@@ -30,6 +32,7 @@ struct AccuracyCommandOptions {
   std::size_t poses = 24;
   std::size_t repetitions = 400;
   bool retune = false;
+  std::vector<double> turning_deg_per_s = {0, 30, 90, 180};
 };
 
 void run_accuracy(const AccuracyCommandOptions& opt) {
@@ -66,6 +69,9 @@ void run_accuracy(const AccuracyCommandOptions& opt) {
   options.poses = opt.poses;
   options.retune = opt.retune;
   options.repetitions = opt.repetitions;
+  for (double w : opt.turning_deg_per_s)
+    if (!(std::isfinite(w) && w >= 0)) throw Error("--turning: speeds must be >= 0 deg/s");
+  options.turning_deg_per_s = opt.turning_deg_per_s;
   options.note = note;
   options.progress = pass_progress_bars();
   const AccuracyReport report = measure_accuracy(loop_ctx, scene, pair.spectra, options);
@@ -116,6 +122,10 @@ void add_accuracy_command(CLI::App& app) {
   cmd->add_option("--repetitions", opt->repetitions, "Timed queries per m' level and at the chosen m'")
       ->check(positive_number());
   cmd->add_flag("--retune", opt->retune, "Measure m' even when the tuning file matches");
+  cmd->add_option("--turning", opt->turning_deg_per_s,
+                  "Angular speeds (deg/s) at which the exact product with background updates is also measured "
+                  "while part 2 turns (0.2 s at the loop rate from 6 poses)")
+      ->delimiter(',');
   cmd->callback([opt] { run_accuracy(*opt); });
 }
 

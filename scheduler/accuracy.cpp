@@ -1,14 +1,17 @@
 #include "scheduler/accuracy.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <thread>
 
 #include "core/quantile.h"
 #include "engine/query_engine.h"
 #include "scheduler/engine_tuning.h"
 #include "scheduler/trajectory.h"
+#include "scheduler/virtual_coupling.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -38,6 +41,56 @@ std::string errors_text(const StrategyAccuracy& s) {
   if (s.variant.force) t += ", F " + percent(s.force_error);
   if (s.variant.torque) t += ", T " + percent(s.torque_error);
   return t;
+}
+
+// The background product's error while part 2 turns: from each of `starts` poses, queries
+// paced at `rate_hz` on the wall clock (the worker predicts the rotation from them) along
+// a steady rotation at each speed about one of six axes, for 0.2 s; the last query is
+// compared with the exact reference at its pose, beside the same m' with the product
+// made for that pose (at rest): the difference is what the lag costs.
+std::vector<TurningAccuracy> turning_accuracy(const ComputeContext& ctx, const PairSpectra& spectra,
+                                              const QueryVariant& background, std::size_t modes,
+                                              const std::vector<Pose>& starts, const std::vector<double>& speeds,
+                                              double rate_hz) {
+  QueryVariant exact = background;
+  exact.product_update = ProductUpdate::each_query;
+  exact.product_modes = spectra.part1.rho.size();
+  auto reference = make_query_engine(ctx, spectra, exact);
+  reference->set_modes(reference->max_modes());
+  auto engine = make_query_engine(ctx, spectra, background);
+  engine->set_modes(modes);
+  QueryVariant at_rest_variant = background;
+  at_rest_variant.product_update = ProductUpdate::each_query;
+  auto at_rest = make_query_engine(ctx, spectra, at_rest_variant);
+  at_rest->set_modes(modes);
+  const Eigen::Vector3d axes[6] = {Eigen::Vector3d::UnitX(),          Eigen::Vector3d::UnitY(),
+                                   Eigen::Vector3d::UnitZ(),          Eigen::Vector3d(1, 1, 0).normalized(),
+                                   Eigen::Vector3d(0, 1, 1).normalized(), Eigen::Vector3d(1, 0, 1).normalized()};
+  const double period = 1.0 / (rate_hz > 0 ? rate_hz : 1000.0);
+  const int frames = static_cast<int>(std::lround(0.2 / period));
+  std::vector<TurningAccuracy> out;
+  for (double speed : speeds) {
+    RelativeErrors sums, rest;
+    for (std::size_t k = 0; k < starts.size(); ++k) {
+      const Eigen::Vector3d omega = speed * M_PI / 180.0 * axes[k % 6];
+      Pose pose = starts[k];
+      const auto start = std::chrono::steady_clock::now();
+      QueryResult last;
+      for (int i = 0; i <= frames; ++i) {
+        std::this_thread::sleep_until(start + std::chrono::duration<double>(i * period));
+        pose.rotation = (rotation_exp(omega * (i * period)) * starts[k].rotation).normalized();
+        last = engine->query(pose);
+      }
+      const QueryResult ref = reference->query(pose), still = at_rest->query(pose);
+      if (last.flags == query_ok && ref.flags == query_ok && still.flags == query_ok) {
+        sums.add(last, ref);
+        rest.add(still, ref);
+      }
+    }
+    out.push_back({speed, sums.relative(0), sums.relative(1), sums.relative(2), rest.relative(0), rest.relative(1),
+                   rest.relative(2)});
+  }
+  return out;
 }
 
 }  // namespace
@@ -218,6 +271,16 @@ AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, c
     s.energy_error = sums.relative(0);
     s.force_error = sums.relative(1);
     s.torque_error = sums.relative(2);
+    if (timed.rotation == RotationMethod::exact_product && timed.product_update == ProductUpdate::background &&
+        !options.turning_deg_per_s.empty()) {
+      measured.reset();
+      progress("turning " + s.name, 0, 1);
+      std::vector<Pose> starts;
+      for (std::size_t i = 0; i < poses.size() && starts.size() < 6; i += std::max<std::size_t>(1, poses.size() / 6))
+        starts.push_back(poses[i]);
+      s.turning = turning_accuracy(ctx, spectra, timed, s.modes, starts, options.turning_deg_per_s, scene.loop_rate_hz);
+      progress("turning " + s.name, 1, 1);
+    }
     report.strategies.push_back(s);
   }
 

@@ -34,8 +34,22 @@ struct AccuracyOptions {
   std::size_t poses = 24;  // reference poses, evenly in time along the trajectory
   bool retune = false;     // measure even when the tuning file matches
   std::size_t repetitions = 400;
+  // Angular speeds (deg/s) at which the exact product with background updates is also
+  // measured while part 2 turns (TurningAccuracy); none: only at rest.
+  std::vector<double> turning_deg_per_s;
   std::function<void(const std::string& stage, std::uint64_t done, std::uint64_t total)> progress;
   std::function<void(const std::string&)> note;
+};
+
+// The error of a strategy while part 2 turns (the exact product with background updates
+// lags the rotation): relative errors as above at the end of 0.2 s of queries at the loop
+// rate along a rotation at `deg_per_s`.
+struct TurningAccuracy {
+  double deg_per_s = 0;
+  double energy_error = 0, force_error = 0, torque_error = 0;
+  // At the same final poses with the product made for each (no lag): the turning
+  // ends elsewhere at each speed, so this is what each speed's errors compare with.
+  double at_rest_energy_error = 0, at_rest_force_error = 0, at_rest_torque_error = 0;
 };
 
 struct StrategyAccuracy {
@@ -54,6 +68,7 @@ struct StrategyAccuracy {
   // current rotation the background product can be); the errors above are with the
   // product made for each pose's rotation (a part at rest).
   double product_ms = 0;
+  std::vector<TurningAccuracy> turning;  // exact_product with background updates, when asked for
 };
 
 struct AccuracyReport {

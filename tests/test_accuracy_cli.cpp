@@ -1,0 +1,40 @@
+// `snapfit accuracy` (scheduler/accuracy.h) as a user reads it: every strategy with its
+// m', frame time and errors, the choice and why, and the exact product's errors while
+// part 2 turns, beside the same final poses at rest.
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/test_support.h"
+
+using namespace snapfit;
+
+TEST_CASE("accuracy cli: strategies, the choice, and the background product while turning") {
+  const test::CacheDirScope cache;
+  const test::Command c = test::run_command(std::string(SNAPFIT_CLI_PATH) + " accuracy " + SNAPFIT_SOURCE_DIR +
+                                                "/scenes/default.json --poses 6 --repetitions 60 --turning 0,90",
+                                            false);
+  INFO(c.output);
+  REQUIRE(c.status == 0);
+  const nlohmann::json j = nlohmann::json::parse(c.output);
+  REQUIRE(j["strategies"].size() == 3);
+  bool named = false;
+  for (const auto& s : j["strategies"]) {
+    named |= s["strategy"] == j["lowest_error_within_budget"];
+    CHECK(s["modes"].get<std::size_t>() > 0);
+  }
+  CHECK(named);
+  CHECK(j["why"].get<std::string>().find(j["lowest_error_within_budget"].get<std::string>()) != std::string::npos);
+  const nlohmann::json& product = j["strategies"][2];
+  REQUIRE(product["strategy"] == "6dof energy force torque exact-product background");
+  const nlohmann::json& turning = product["while_turning"];
+  REQUIRE(turning.size() == 2);
+  CHECK(turning[0]["deg_per_s"] == 0.0);
+  CHECK(turning[1]["deg_per_s"] == 90.0);
+  // Held still, the background product is made for the very rotation queried: the same
+  // as the product made for each pose, to float rounding.
+  for (const char* q : {"energy_error", "force_error", "torque_error"}) {
+    CAPTURE(q);
+    CHECK(turning[0][q].get<double>() == doctest::Approx(turning[0]["at_rest"][q].get<double>()).epsilon(1e-3));
+    CHECK(turning[1][q].get<double>() >= 0);
+  }
+}
