@@ -49,8 +49,8 @@ DeviceMinima::DeviceMinima(const ComputeContext& ctx, const std::array<std::size
     kernel_ = cl::Kernel(build_program(ctx, "map_minima", kernel_source("map_minima"), "-cl-std=CL1.2", cache).program,
                          "map_local_minima");
     const std::size_t kernel_max = kernel_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(ctx.device.device);
-    wg_ = std::max<std::size_t>(1, std::min({env_size("SNAPFIT_MINIMA_WG", 64), kernel_max,
-                                             std::max<std::size_t>(1, ctx.device.info.max_work_group_size)}));
+    const std::size_t item_max = ctx.device.device.getInfo<CL_DEVICE_MAX_WORK_ITEM_SIZES>().at(0);
+    wg_ = std::max<std::size_t>(1, std::min({env_size("SNAPFIT_MINIMA_WG", 64), kernel_max, item_max}));
     for (int s = 0; s < slots; ++s)
       lists_.emplace_back(ctx.context, CL_MEM_READ_WRITE, sizeof(cl_uint) * (kHeader + 2 * capacity_));
     kernel_.setArg(1, cl_int4{{int(dims[0]), int(dims[1]), int(dims[2]), 0}});
@@ -63,7 +63,6 @@ DeviceMinima::DeviceMinima(const ComputeContext& ctx, const std::array<std::size
 }
 
 void DeviceMinima::enqueue_reduce(const cl::CommandQueue& queue, int slot, const cl::Buffer& f, const MapBox& box) {
-  const std::size_t total = dims_[0] * dims_[1] * dims_[2];
   const cl::Buffer& list = lists_.at(std::size_t(slot));
   try {
     queue.enqueueWriteBuffer(list, CL_FALSE, 0, sizeof kHeaderReset, kHeaderReset);
@@ -71,7 +70,8 @@ void DeviceMinima::enqueue_reduce(const cl::CommandQueue& queue, int slot, const
     kernel_.setArg(2, cl_int4{{box.lo[0], box.lo[1], box.lo[2], 0}});
     kernel_.setArg(3, cl_int4{{box.hi[0], box.hi[1], box.hi[2], 0}});
     kernel_.setArg(5, list);
-    queue.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange((total + wg_ - 1) / wg_ * wg_), cl::NDRange(wg_));
+    queue.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange((dims_[0] + wg_ - 1) / wg_ * wg_, dims_[1], dims_[2]),
+                               cl::NDRange(wg_, 1, 1));
   } catch (const cl::Error& e) {
     rethrow(ctx_, e);
   }

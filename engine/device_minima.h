@@ -31,7 +31,7 @@ class DeviceMinima {
   // Maps of `dims` points in `slots` slots. Each slot's list holds `capacity` minima; 0
   // (the default) takes the most a map of dims can have, ceil(N_x/2) ceil(N_y/2) ceil(N_z/2)
   // (no two neighbours are both minima, so each 2 x 2 x 2 block holds at most one): the
-  // list cannot overflow. One work-item per point, 64 to a group. SNAPFIT_MINIMA_WG and
+  // list cannot overflow. One work-item per point, groups of 64 along x. SNAPFIT_MINIMA_WG and
   // SNAPFIT_MINIMA_CAPACITY override the group size and the capacity (for measurements on
   // other devices and the tests of the overflow path). Throws snapfit::Error naming the
   // device when a buffer or the kernel cannot be made.
