@@ -70,7 +70,8 @@ void DeviceMinima::enqueue_reduce(const cl::CommandQueue& queue, int slot, const
     kernel_.setArg(2, cl_int4{{box.lo[0], box.lo[1], box.lo[2], 0}});
     kernel_.setArg(3, cl_int4{{box.hi[0], box.hi[1], box.hi[2], 0}});
     kernel_.setArg(5, list);
-    queue.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange((dims_[0] + wg_ - 1) / wg_ * wg_, dims_[1], dims_[2]),
+    queue.enqueueNDRangeKernel(kernel_, cl::NullRange,
+                               cl::NDRange((dims_[0] + wg_ - 1) / wg_ * wg_, dims_[1], dims_[2]),
                                cl::NDRange(wg_, 1, 1));
   } catch (const cl::Error& e) {
     rethrow(ctx_, e);

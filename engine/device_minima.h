@@ -62,11 +62,11 @@ class DeviceMinima {
   std::size_t work_group() const { return wg_; }
 
   struct Stats {
-    std::size_t maps = 0;         // finished
-    std::size_t longest = 0;      // the most minima with E <= 0 in one map
-    std::size_t long_lists = 0;   // maps whose list was longer than its read: the rest read after
-    std::size_t overflows = 0;    // maps with more minima than the list holds
-    std::size_t infinities = 0;   // maps with an infinite E
+    std::size_t maps = 0;        // finished
+    std::size_t longest = 0;     // the most minima with E <= 0 in one map
+    std::size_t long_lists = 0;  // maps whose list was longer than its read: the rest read after
+    std::size_t overflows = 0;   // maps with more minima than the list holds
+    std::size_t infinities = 0;  // maps with an infinite E
   };
   const Stats& stats() const { return stats_; }
 
@@ -75,10 +75,10 @@ class DeviceMinima {
   std::array<std::size_t, 3> dims_;
   std::size_t capacity_ = 0, wg_ = 64, read_entries_ = 1024;
   cl::Kernel kernel_;
-  std::vector<cl::Buffer> lists_;                // per slot: 4 counters, then 2 words per entry
-  std::vector<std::vector<cl_uint>> host_;       // per slot, the same on the host
-  std::vector<std::size_t> read_;                // per slot: entries its last read brought
-  std::vector<MapMinimum> candidates_;           // scratch: the list's minima with E < 0
+  std::vector<cl::Buffer> lists_;           // per slot: 4 counters, then 2 words per entry
+  std::vector<std::vector<cl_uint>> host_;  // per slot, the same on the host
+  std::vector<std::size_t> read_;           // per slot: entries its last read brought
+  std::vector<MapMinimum> candidates_;      // scratch: the list's minima with E < 0
   Stats stats_;
 };
 

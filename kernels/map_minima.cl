@@ -43,7 +43,7 @@ __kernel void map_local_minima(__global const float2* f, const int4 dims, const 
   }
   if (isnan(v)) return;
   // Neighbours inside the box on each side.
-  const bool xl = x > lo.x, xh = x < hi.x, yl = y > lo.y, yh = y < hi.y, zl = z > lo.z, zh = z < hi.z;
+  const bool xl = (x > lo.x), xh = (x < hi.x), yl = (y > lo.y), yh = (y < hi.y), zl = (z > lo.z), zh = (z < hi.z);
   // A neighbour before the point in grid order beats it when lower or equal, one after it
   // when lower (NaN compares false: not counted).
 #define BEFORE(inside, node) \

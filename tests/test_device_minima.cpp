@@ -2,15 +2,23 @@
 // against the host's map_minima on the whole map, the reference: the same minima in the
 // same order with the same energies, and the same lowest energy, bit for bit. On
 // synthetic maps (plateaus, NaN holes and masked slabs, minima on the grid's faces,
-// zeros of both signs, infinities, lists longer than the first read and than the buffer).
+// zeros of both signs, infinities, lists longer than the first read and than the buffer)
+// and on the maps of the shipped default scene, through TranslationMapper's two slots and
+// scan_rotations.
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstring>
 #include <doctest/doctest.h>
 #include <random>
 
+#include "core/so3_grid.h"
 #include "engine/device_minima.h"
+#include "engine/full_map.h"
 #include "engine/map_minima.h"
+#include "engine/rotation_search.h"
 #include "engine/spectra.h"
+#include "pipeline/assembly_pair.h"
+#include "tests/shipped_engine.h"
 #include "tests/test_engine_support.h"
 
 using namespace snapfit;
@@ -228,4 +236,87 @@ TEST_CASE("device minima: infinities and overflowing lists are reported, long li
   REQUIRE(full.reduced);
   CHECK(full.result.minima.size() == exact.capacity());
   check_same(full.result, host_reference(small, blocks, full_box(small), 1000, 0.0), "checkerboard");
+}
+
+TEST_CASE("device minima: the shipped default scene's maps, pipelined, equal map_minima on the maps read back") {
+  const Scene scene = test::shipped_scene("default.json");
+  const FftLibrary fft;
+  PairOptions options;
+  options.note = [](const std::string&) {};
+  const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, options);
+  const PairSpectra& spectra = pair.spectra;
+  const double separation = 2 * spectra.spacing;
+  TranslationMapper mapper(fft, test::test_context(), spectra, Interpolation::trilinear, 0, MapFft::clfft,
+                           test::test_program_cache());
+  REQUIRE(mapper.minima_on_device());
+  const So3Grid grid = so3_grid_for_count(24);
+  std::vector<std::size_t> picked{0, 5, 11, 17, 23};
+  std::vector<Eigen::Quaterniond> rotations;
+  for (std::size_t i : picked) rotations.push_back(grid.rotations[i]);
+  if (scene.assembled_pose) rotations.push_back(scene.assembled_pose->rotation);
+  // The reference: each whole map read back, map_minima on the host.
+  std::vector<MapMinimaResult> every, top;
+  std::vector<float> energy;
+  for (const Eigen::Quaterniond& q : rotations) {
+    mapper.submit(0, q.toRotationMatrix(), MapOutput::energy);
+    mapper.collect(0, energy);
+    every.emplace_back();
+    map_minima(mapper.grid(), energy, 1000000, 0.0, every.back());
+    top.emplace_back();
+    map_minima(mapper.grid(), energy, 4, separation, top.back());
+  }
+  // Device minima, two maps in flight: every minimum, and the search's four.
+  std::size_t total = 0;
+  for (const bool all : {true, false}) {
+    const std::size_t count = all ? 1000000 : 4;
+    const double sep = all ? 0.0 : separation;
+    const std::vector<MapMinimaResult>& want = all ? every : top;
+    MapMinimaResult got;
+    mapper.submit(0, rotations[0].toRotationMatrix(), MapOutput::minima);
+    mapper.submit(1, rotations[1].toRotationMatrix(), MapOutput::minima);
+    CHECK_THROWS_AS(mapper.collect(0, energy), Error);  // submitted for its minima
+    for (std::size_t i = 0; i < rotations.size(); ++i) {
+      mapper.collect_minima(int(i % 2), count, sep, got);
+      if (i + 2 < rotations.size()) mapper.submit(int(i % 2), rotations[i + 2].toRotationMatrix(), MapOutput::minima);
+      check_same(got, want[i], std::string(all ? "every minimum" : "top 4") + ", rotation " + std::to_string(i));
+      if (all) total += got.minima.size();
+    }
+  }
+  const MapMinimaCounts counts = mapper.minima_counts();
+  MESSAGE("default scene, " << mapper.grid().dims.transpose() << " translations: " << total << " minima in "
+                            << rotations.size() << " maps, longest list " << counts.longest << ", " << counts.long_lists
+                            << " lists longer than their first read");
+  CHECK(total >= rotations.size());
+  CHECK(counts.on_device == 2 * rotations.size());
+  CHECK(counts.fallbacks == 0);
+
+  // scan_rotations (device minima) gives the reference's candidates and lowest energies.
+  std::vector<std::size_t> indices(rotations.size());
+  for (std::size_t i = 0; i < indices.size(); ++i) indices[i] = i;
+  const RotationScan scan = scan_rotations(mapper, rotations, indices, ScanOptions{4, separation});
+  std::size_t c = 0;
+  for (std::size_t i = 0; i < rotations.size(); ++i) {
+    CHECK(same_float(float(scan.best_energy[i]), top[i].best));
+    for (const MapMinimum& m : top[i].minima) {
+      REQUIRE(c < scan.candidates.size());
+      CHECK(scan.candidates[c].rotation == i);
+      CHECK(scan.candidates[c].cell == m.index);
+      CHECK(scan.candidates[c].energy == double(m.energy));
+      ++c;
+    }
+  }
+  CHECK(c == scan.candidates.size());
+
+  // A list too small for the maps: each map falls back to the whole map, with the same result.
+  test::EnvScope capacity("SNAPFIT_MINIMA_CAPACITY", "2");
+  TranslationMapper small(fft, test::test_context(), spectra, Interpolation::trilinear, 0, MapFft::clfft,
+                          test::test_program_cache());
+  MapMinimaResult got;
+  for (std::size_t i = 0; i < 2; ++i) {
+    small.submit(0, rotations[i].toRotationMatrix(), MapOutput::minima);
+    small.collect_minima(0, 1000000, 0.0, got);
+    check_same(got, every[i], "capacity 2, rotation " + std::to_string(i));
+  }
+  CHECK(small.minima_counts().fallbacks == 2);
+  CHECK(small.minima_counts().on_host == 2);
 }
