@@ -3,9 +3,11 @@
 // once, the inverse FFT plan baked once and two maps in flight, against the one-shot
 // path (engine/full_map.h translational_energy_map: upload, bake, map, every call).
 //
-//   bench_search [--quick] [--device SPEC] [--out DIR] [--rotations N]
+//   bench_search [--quick] [--device SPEC] [--out DIR] [--rotations N] [--scene FILE]
 //
-// Sizes 64^3 and 128^3, spectra of two synthetic parts (perf/bench_spectra.h), trilinear
+// Sizes 64^3 and 128^3, spectra of two synthetic parts (perf/bench_spectra.h: a ball and a
+// box, E >= 0 wherever they overlap, so their maps hold no minima with E < 0), or with
+// --scene the scene's pair at its own FFT size (maps with the minima of real parts), trilinear
 // and tricubic resampling of the rotated spectrum (--quick: trilinear only), each inverse
 // FFT this build has (engine/map_fft.h) side by side, and the one choose_map_fft picks;
 // with clFFT both ways of finding each map's minima: on the device (the search's way,
@@ -15,7 +17,7 @@
 // Per row: where one map's time goes (TranslationMapper::time_minima_stages, or
 // time_stages then map_minima: each stage waited for in turn, median of 3), the
 // set-up (mapper constructor: uploads, kernels, plan), 2 warm-up maps, then N rotations of
-// so3_grid_for_count(N) (default 64^3: 200, 128^3: 40; --quick 24 and 6) with 4 minima
+// so3_grid_for_count(N) (default 64^3: 200, 128^3 and a scene: 40; --quick 24 and 6) with 4 minima
 // per map, two maps in flight (scan_rotations; the host way with clFFT: the same loop
 // with collect and map_minima, as scan_rotations ran before the device found minima);
 // the interval between consecutive finished maps is one rotation's cost; rotations/s =
@@ -26,6 +28,7 @@
 #include <chrono>
 #include <functional>
 #include <iostream>
+#include <memory>
 
 #include "core/quantile.h"
 #include "core/so3_grid.h"
@@ -36,6 +39,7 @@
 #include "engine/rotation_search.h"
 #include "perf/bench_common.h"
 #include "perf/bench_spectra.h"
+#include "pipeline/assembly_pair.h"
 
 namespace {
 
@@ -43,12 +47,13 @@ using namespace snapfit;
 using Clock = std::chrono::steady_clock;
 
 void usage(std::ostream& out) {
-  out << "bench_search [--quick] [--device SPEC] [--out DIR] [--rotations N]\n"
-         "  maps per second of snapfit search's loop at 64^3 and 128^3 (see the file's header)\n";
+  out << "bench_search [--quick] [--device SPEC] [--out DIR] [--rotations N] [--scene FILE]\n"
+         "  maps per second of snapfit search's loop at 64^3 and 128^3, or on a scene's pair (see the file's header)\n";
 }
 
 struct Row {
-  std::size_t n = 0;
+  std::string workload;                    // "synthetic" or the scene file
+  std::size_t n = 0;                       // FFT points along x
   std::string interpolation, fft, minima;  // minima: "device" or "host"
   MapStageSeconds stages;                  // medians
   std::size_t rotations = 0;
@@ -83,8 +88,13 @@ int main(int argc, char** argv) {
   return bench::guarded_main("bench_search", [&] {
     bool quick = false;
     std::string device, out = "results/bench_search";
+    std::string scene_path;
     long rotations = 0;
     bench::parse_options(argc, argv, quick, device, out, usage, [&](const std::string&, auto value, auto is) {
+      if (is("--scene")) {
+        scene_path = value("--scene");
+        return true;
+      }
       if (!is("--rotations")) return false;
       rotations = bench::integer_option("--rotations", value("--rotations"), 1, 1000000);
       return true;
@@ -94,22 +104,39 @@ int main(int argc, char** argv) {
     std::cout << "bench_search on " << ctx.device.info.name << (quick ? " (quick)" : "") << ", load "
               << bench::read_loadavg() << "\n";
     std::vector<Row> rows;
-    for (const std::size_t n : {64, 128}) {
-      const PairSpectra spectra = bench::synthetic_spectra(fft, ctx, {n, n, n}, 0.5);
+    // A scene's pair (fields and spectra through the caches), or none: the synthetic sizes.
+    std::unique_ptr<AssemblyPair> pair;
+    if (!scene_path.empty()) {
+      PairOptions options;
+      options.note = [](const std::string&) {};
+      pair = std::make_unique<AssemblyPair>(build_assembly_pair(load_scene(scene_path), ctx, fft, options));
+    }
+    const std::vector<std::size_t> sizes = pair ? std::vector<std::size_t>{0} : std::vector<std::size_t>{64, 128};
+    for (const std::size_t synthetic : sizes) {
+      const PairSpectra spectra =
+          pair ? pair->spectra : bench::synthetic_spectra(fft, ctx, {synthetic, synthetic, synthetic}, 0.5);
+      const std::size_t n = spectra.dims[0];
+      const std::string size = std::to_string(spectra.dims[0]) +
+                               (spectra.dims[1] == n && spectra.dims[2] == n
+                                    ? std::string("^3")
+                                    : "x" + std::to_string(spectra.dims[1]) + "x" + std::to_string(spectra.dims[2]));
       for (const Interpolation interpolation : {Interpolation::trilinear, Interpolation::tricubic}) {
         if (quick && interpolation == Interpolation::tricubic) continue;
         const MapFftChoice choice = choose_map_fft(fft, ctx, spectra, interpolation);
-        std::cout << n << "^3 " << (interpolation == Interpolation::tricubic ? "tricubic" : "trilinear")
+        std::cout << size << " " << (interpolation == Interpolation::tricubic ? "tricubic" : "trilinear")
                   << ": choose_map_fft picks " << describe_map_fft_choice(choice) << "\n";
         for (const MapFft kind : map_ffts_built())
           for (const bool on_device : {true, false}) {
             if (on_device && kind != MapFft::clfft) continue;  // FFTW's maps are on the host
             Row row;
+            row.workload = pair ? scene_path : "synthetic";
             row.n = n;
             row.interpolation = interpolation == Interpolation::tricubic ? "tricubic" : "trilinear";
             row.fft = map_fft_name(kind);
             row.minima = on_device ? "device" : "host";
-            row.rotations = rotations > 0 ? std::size_t(rotations) : quick ? (n == 64 ? 24 : 6) : (n == 64 ? 200 : 40);
+            row.rotations = rotations > 0 ? std::size_t(rotations)
+                            : quick       ? (synthetic == 64 ? 24 : 6)
+                                          : (synthetic == 64 ? 200 : 40);
             row.load_before = bench::load1();
             auto t0 = Clock::now();
             TranslationMapper mapper(fft, ctx, spectra, interpolation, 0, kind);
@@ -176,7 +203,7 @@ int main(int argc, char** argv) {
             }
             row.load_after = bench::load1();
             auto ms = [](double s) { return bench::fixed(1e3 * s, 1); };
-            std::cout << n << "^3 " << row.interpolation << " " << row.fft << ", minima on the " << row.minima
+            std::cout << size << " " << row.interpolation << " " << row.fft << ", minima on the " << row.minima
                       << ": stages product " << ms(row.stages.product) << " ms, inverse FFT " << ms(row.stages.fft)
                       << " ms, ";
             if (on_device)
@@ -201,7 +228,8 @@ int main(int argc, char** argv) {
     }
     std::filesystem::create_directories(out);
     std::ofstream csv(std::filesystem::path(out) / "search.csv");
-    csv << "n,interpolation,fft,minima_on,product_s,inverse_fft_s,reduce_s,read_s,host_map_s,minima_s,rotations,"
+    csv << "workload,n,interpolation,fft,minima_on,product_s,inverse_fft_s,reduce_s,read_s,host_map_s,minima_s,"
+           "rotations,"
            "setup_s,median_s,p90_s,rotations_per_s_median,rotations_per_s_scan,one_shot_s,longest_list,"
            "whole_maps_read,load_before,load_after\n";
     nlohmann::json json = {{"command", bench::command_line(argc, argv)},
@@ -235,12 +263,13 @@ int main(int argc, char** argv) {
       if (!one.x.empty()) chart.series.push_back(one);
     }
     for (const Row& r : rows) {
-      csv << r.n << "," << r.interpolation << "," << r.fft << "," << r.minima << "," << r.stages.product << ","
-          << r.stages.fft << "," << r.stages.reduce << "," << r.stages.read << "," << r.stages.host << ","
-          << r.stages.minima << "," << r.rotations << "," << r.setup_s << "," << r.median_s << "," << r.p90_s << ","
-          << 1 / r.median_s << "," << r.scan_rate << "," << r.one_shot_s << "," << r.counts.longest << ","
-          << r.counts.fallbacks << "," << r.load_before << "," << r.load_after << "\n";
-      json["rows"].push_back({{"n", r.n},
+      csv << r.workload << "," << r.n << "," << r.interpolation << "," << r.fft << "," << r.minima << ","
+          << r.stages.product << "," << r.stages.fft << "," << r.stages.reduce << "," << r.stages.read << ","
+          << r.stages.host << "," << r.stages.minima << "," << r.rotations << "," << r.setup_s << "," << r.median_s
+          << "," << r.p90_s << "," << 1 / r.median_s << "," << r.scan_rate << "," << r.one_shot_s << ","
+          << r.counts.longest << "," << r.counts.fallbacks << "," << r.load_before << "," << r.load_after << "\n";
+      json["rows"].push_back({{"workload", r.workload},
+                              {"n", r.n},
                               {"interpolation", r.interpolation},
                               {"fft", r.fft},
                               {"minima_on", r.minima},
