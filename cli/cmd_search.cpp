@@ -187,7 +187,11 @@ void run_search(const SearchOptions& opt, const SearchRanks& ranks) {
               << "maps: " << d[0] << " x " << d[1] << " x " << d[2] << " translations, spacing " << pair.spectra.spacing
               << " " << pair.scene.units << ", " << opt.interpolation << ", " << ranks.size()
               << (ranks.size() == 1 ? " rank" : " ranks") << "\n"
-              << "map FFT: " << fft_used << "\n";
+              << "map FFT: " << fft_used << "\n"
+              << "map minima: "
+              << (mapper->minima_on_device() ? "on the device, a short list read back per map"
+                                             : "on the host, in each map read back")
+              << "\n";
   }
   std::vector<std::size_t> mine;
   for (std::size_t r = std::size_t(ranks.rank()); r < grid.rotations.size(); r += std::size_t(ranks.size()))

@@ -38,9 +38,11 @@ float low_pass_w2(const PairSpectra& spectra, std::size_t modes) {
 }  // namespace
 
 struct TranslationMapper::Slot {
-  std::vector<Complex> f;  // clfft: the complex inverse FFT, read back
+  cl::Buffer result;       // clfft: the complex inverse FFT, on the device
+  std::vector<Complex> f;  // clfft: the same read back (sized at the first read)
   cl::Event read;
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  MapOutput output = MapOutput::energy;
   bool pending = false;
 };
 
@@ -74,8 +76,6 @@ TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeCon
                           jz = (z + dims[2] - dims[2] / 2) % dims[2];
         fft_index_[x + dims[0] * (y + dims[1] * z)] = jx + dims[0] * (jy + dims[1] * jz);
       }
-  if (fft == MapFft::clfft)
-    for (int s = 0; s < slots; ++s) slot_[s].f.resize(total);
   try {
     const std::string options = std::string("-cl-std=CL1.2") +
                                 (interpolation == Interpolation::tricubic ? " -D TRICUBIC" : "") +
@@ -91,7 +91,10 @@ TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeCon
     s1_ = upload(spectra.part1.rho);
     s2_ = upload(spectra.part2.rho);
     product_ = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * (fft == MapFft::clfft ? total : half));
-    if (fft == MapFft::clfft) result_ = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * total);
+    // One map per slot: a slot's map stays on the device until it is collected.
+    if (fft == MapFft::clfft)
+      for (int s = 0; s < slots; ++s)
+        slot_[s].result = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * total);
     kernel_.setArg(0, s1_);
     kernel_.setArg(1, s2_);
     kernel_.setArg(2, cl_int4{{int(dims[0]), int(dims[1]), int(dims[2]), 0}});
@@ -103,7 +106,15 @@ TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeCon
   } catch (const cl::Error& e) {
     rethrow(ctx, e);
   }
-  if (fft == MapFft::clfft) fft_ = std::make_unique<Fft3d>(library, ctx, dims);
+  if (fft == MapFft::clfft) {
+    fft_ = std::make_unique<Fft3d>(library, ctx, dims);
+    device_minima_ = std::make_unique<DeviceMinima>(ctx, dims, slots, cache);
+    try {
+      side_ = cl::CommandQueue(ctx.context, ctx.device.device, 0);
+    } catch (const cl::Error& e) {
+      rethrow(ctx, e);
+    }
+  }
 #ifdef SNAPFIT_HAVE_FFTW
   if (fft == MapFft::fftw) host_fft_ = std::make_unique<HostFft>(dims);
 #endif
@@ -127,15 +138,20 @@ void TranslationMapper::enqueue_product(const Eigen::Matrix3d& R) {
       cl::NDRange(fft_kind_ == MapFft::clfft ? d[0] * d[1] * d[2] : (d[0] / 2 + 1) * d[1] * d[2]));
 }
 
-void TranslationMapper::enqueue_fft() {
+void TranslationMapper::enqueue_fft(int slot) {
   if (fft_kind_ == MapFft::clfft)
-    fft_->enqueue(FftDirection::inverse, product_, result_);  // f(t_j) = sum_k P_k e^{2 pi i k.j / N}
+    fft_->enqueue(FftDirection::inverse, product_, slot_[slot].result);  // f(t_j) = sum_k P_k e^{2 pi i k.j / N}
 }
 
 void TranslationMapper::enqueue_read(int slot, cl::Event* done) {
   Slot& s = slot_[slot];
   if (fft_kind_ == MapFft::clfft) {
-    ctx_.queue.enqueueReadBuffer(result_, CL_FALSE, 0, sizeof(Complex) * s.f.size(), s.f.data(), nullptr, done);
+    if (s.output == MapOutput::minima) {
+      device_minima_->enqueue_read(ctx_.queue, slot, done);
+      return;
+    }
+    s.f.resize(fft_index_.size());  // allocates at the first read only
+    ctx_.queue.enqueueReadBuffer(s.result, CL_FALSE, 0, sizeof(Complex) * s.f.size(), s.f.data(), nullptr, done);
     return;
   }
 #ifdef SNAPFIT_HAVE_FFTW
@@ -145,20 +161,53 @@ void TranslationMapper::enqueue_read(int slot, cl::Event* done) {
 #endif
 }
 
-void TranslationMapper::submit(int slot, const Eigen::Matrix3d& R) {
+void TranslationMapper::submit(int slot, const Eigen::Matrix3d& R, MapOutput output) {
   Slot& s = slot_[slot];
   try {
     if (s.pending) s.read.wait();  // an uncollected map is dropped
     s.pending = false;
+    s.R = R;
+    s.output = output;
     enqueue_product(R);
-    enqueue_fft();
+    enqueue_fft(slot);
+    if (fft_kind_ == MapFft::clfft && output == MapOutput::minima)
+      device_minima_->enqueue_reduce(ctx_.queue, slot, s.result, aliasing_box(R));
     enqueue_read(slot, &s.read);
     ctx_.queue.flush();
   } catch (const cl::Error& e) {
     rethrow(ctx_, e);
   }
-  s.R = R;
   s.pending = true;
+}
+
+// Same aliasing rule as the pose queries (engine/pose_query.cpp), per axis: the
+// translation t aliases when |t + R c2 - c1| + reach > L on some axis.
+void TranslationMapper::aliasing_mask(const Eigen::Matrix3d& R, std::array<std::vector<char>, 3>& inside) const {
+  const Eigen::Vector3d shift = R * spectra_.part2.centre - spectra_.part1.centre;
+  const Eigen::Vector3d reach = spectra_.part1.half_extent + R.cwiseAbs() * spectra_.part2.half_extent;
+  for (int a = 0; a < 3; ++a) {
+    inside[a].resize(std::size_t(grid_.dims[a]));
+    for (int i = 0; i < grid_.dims[a]; ++i)
+      inside[a][i] = std::abs(grid_.origin[a] + grid_.spacing * i + shift[a]) + reach[a] <= spectra_.length[a];
+  }
+}
+
+// The mask as a box: |t_i + shift| + reach <= L holds on an interval of i, since t_i grows
+// with i.
+MapBox TranslationMapper::aliasing_box(const Eigen::Matrix3d& R) {
+  aliasing_mask(R, inside_);
+  MapBox box;
+  for (int a = 0; a < 3; ++a) {
+    const auto& in = inside_[a];
+    const auto first = std::find(in.begin(), in.end(), 1);
+    if (first == in.end()) return MapBox{};  // empty
+    const auto last = std::find(in.rbegin(), in.rend(), 1).base() - 1;
+    if (std::find(first, last, 0) != last)
+      throw Error("full map: the aliasing mask on axis " + std::to_string(a) + " is not an interval");
+    box.lo[a] = int(first - in.begin());
+    box.hi[a] = int(last - in.begin());
+  }
+  return box;
 }
 
 void TranslationMapper::finish_map(int slot, std::vector<float>& energy, MapStageSeconds* stages) {
@@ -177,16 +226,8 @@ void TranslationMapper::finish_map(int slot, std::vector<float>& energy, MapStag
     }
   }
 #endif
-  // Same aliasing rule as the pose queries (engine/pose_query.cpp), per axis: the
-  // translation t aliases when |t + R c2 - c1| + reach > L on some axis.
-  const Eigen::Vector3d shift = s.R * spectra_.part2.centre - spectra_.part1.centre;
-  const Eigen::Vector3d reach = spectra_.part1.half_extent + s.R.cwiseAbs() * spectra_.part2.half_extent;
-  std::array<std::vector<char>, 3> inside;
-  for (int a = 0; a < 3; ++a) {
-    inside[a].resize(std::size_t(grid_.dims[a]));
-    for (int i = 0; i < grid_.dims[a]; ++i)
-      inside[a][i] = std::abs(grid_.origin[a] + grid_.spacing * i + shift[a]) + reach[a] <= spectra_.length[a];
-  }
+  aliasing_mask(s.R, inside_);
+  const auto& inside = inside_;
   energy.resize(fft_index_.size());
   const float nan = std::numeric_limits<float>::quiet_NaN();
   std::size_t g = 0;
@@ -202,7 +243,7 @@ void TranslationMapper::finish_map(int slot, std::vector<float>& energy, MapStag
   if (stages) stages->host = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void TranslationMapper::collect(int slot, std::vector<float>& energy) {
+void TranslationMapper::wait_for(int slot) {
   Slot& s = slot_[slot];
   if (!s.pending) throw Error("full map: slot " + std::to_string(slot) + " has no map submitted");
   try {
@@ -211,7 +252,54 @@ void TranslationMapper::collect(int slot, std::vector<float>& energy) {
     rethrow(ctx_, e);
   }
   s.pending = false;
+}
+
+void TranslationMapper::collect(int slot, std::vector<float>& energy) {
+  if (slot_[slot].pending && fft_kind_ == MapFft::clfft && slot_[slot].output == MapOutput::minima)
+    throw Error("full map: slot " + std::to_string(slot) + " was submitted for its minima (collect_minima)");
+  wait_for(slot);
   finish_map(slot, energy, nullptr);
+}
+
+// map_minima and the lowest finite E on the whole map, on the host.
+void TranslationMapper::host_minima(int slot, std::size_t count, double separation, MapMinimaResult& out,
+                                    MapStageSeconds* stages) {
+  finish_map(slot, energy_, stages);
+  const auto t0 = std::chrono::steady_clock::now();
+  map_minima(grid_, energy_, count, separation, out);
+  ++counts_.on_host;
+  if (stages) stages->minima = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void TranslationMapper::collect_minima(int slot, std::size_t count, double separation, MapMinimaResult& out) {
+  wait_for(slot);
+  Slot& s = slot_[slot];
+  if (fft_kind_ != MapFft::clfft || s.output != MapOutput::minima) {
+    host_minima(slot, count, separation, out, nullptr);
+    return;
+  }
+  if (device_minima_->finish(side_, slot, grid_, count, separation, out.minima, out.best)) {
+    ++counts_.on_device;
+    return;
+  }
+  // The list overflowed or E was infinite: the slot's map is still on the device.
+  ++counts_.fallbacks;
+  s.f.resize(fft_index_.size());
+  try {
+    side_.enqueueReadBuffer(s.result, CL_TRUE, 0, sizeof(Complex) * s.f.size(), s.f.data());
+  } catch (const cl::Error& e) {
+    rethrow(ctx_, e);
+  }
+  host_minima(slot, count, separation, out, nullptr);
+}
+
+MapMinimaCounts TranslationMapper::minima_counts() const {
+  MapMinimaCounts c = counts_;
+  if (device_minima_) {
+    c.longest = device_minima_->stats().longest;
+    c.long_lists = device_minima_->stats().long_lists;
+  }
+  return c;
 }
 
 MapStageSeconds TranslationMapper::time_stages(const Eigen::Matrix3d& R, std::vector<float>& energy) {
@@ -233,10 +321,12 @@ MapStageSeconds TranslationMapper::time_stages(const Eigen::Matrix3d& R, std::ve
     ctx_.queue.finish();
     t.product = lap();
     if (fft_kind_ == MapFft::clfft) {
-      enqueue_fft();
+      enqueue_fft(0);
       ctx_.queue.finish();
       t.fft = lap();
     }
+    slot_[0].R = R;
+    slot_[0].output = MapOutput::energy;
     cl::Event read;
     enqueue_read(0, &read);
     read.wait();
@@ -244,8 +334,54 @@ MapStageSeconds TranslationMapper::time_stages(const Eigen::Matrix3d& R, std::ve
   } catch (const cl::Error& e) {
     rethrow(ctx_, e);
   }
-  slot_[0].R = R;
   finish_map(0, energy, &t);
+  return t;
+}
+
+MapStageSeconds TranslationMapper::time_minima_stages(const Eigen::Matrix3d& R, std::size_t count, double separation,
+                                                      MapMinimaResult& out) {
+  if (fft_kind_ != MapFft::clfft) {
+    MapStageSeconds t = time_stages(R, energy_);
+    const auto t0 = std::chrono::steady_clock::now();
+    map_minima(grid_, energy_, count, separation, out);
+    t.minima = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return t;
+  }
+  for (int s = 0; s < slots; ++s)
+    if (slot_[s].pending) slot_[s].read.wait();
+  slot_[0].pending = slot_[1].pending = false;
+  MapStageSeconds t;
+  using Clock = std::chrono::steady_clock;
+  auto lap = [last = Clock::now()]() mutable {
+    const auto now = Clock::now();
+    const double s = std::chrono::duration<double>(now - last).count();
+    last = now;
+    return s;
+  };
+  Slot& s = slot_[0];
+  try {
+    ctx_.queue.finish();
+    lap();
+    enqueue_product(R);
+    ctx_.queue.finish();
+    t.product = lap();
+    enqueue_fft(0);
+    ctx_.queue.finish();
+    t.fft = lap();
+    s.R = R;
+    s.output = MapOutput::minima;
+    device_minima_->enqueue_reduce(ctx_.queue, 0, s.result, aliasing_box(R));
+    ctx_.queue.finish();
+    t.reduce = lap();
+    enqueue_read(0, &s.read);
+    s.read.wait();
+    t.read = lap();
+  } catch (const cl::Error& e) {
+    rethrow(ctx_, e);
+  }
+  s.pending = true;
+  collect_minima(0, count, separation, out);
+  t.minima = lap();
   return t;
 }
 

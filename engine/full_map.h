@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "core/grid.h"
+#include "engine/device_minima.h"
 #include "engine/map_fft.h"
+#include "engine/map_minima.h"
 #include "engine/program_cache.h"
 #include "engine/spectra.h"
 #include "snapfit/query.h"
@@ -21,20 +23,39 @@ struct TranslationMap {
   double seconds = 0;
 };
 
-// Seconds of each stage of one map, run one after the other (TranslationMapper::time_stages).
+// Seconds of each stage of one map, run one after the other (TranslationMapper::time_stages
+// and time_minima_stages).
 struct MapStageSeconds {
   double product = 0;  // the product kernel, on the device
   double fft = 0;      // the inverse FFT (device or host)
-  double read = 0;     // device to host copy
+  double reduce = 0;   // the minima kernel, on the device (clFFT's minima)
+  double read = 0;     // device to host copy: the map, or the list of minima
   double host = 0;     // the map into E(R, t) in grid order, with the aliasing mask
+  double minima = 0;   // on the host: map_minima and the lowest E on the map, or the list's thinning
+};
+
+// What a slot's map is submitted for: the map itself (collect), or its minima only
+// (collect_minima).
+enum class MapOutput { energy, minima };
+
+// How a mapper's minima were found, over its life.
+struct MapMinimaCounts {
+  std::size_t on_device = 0;   // maps reduced on the device (engine/device_minima.h)
+  std::size_t on_host = 0;     // maps whose minima were found in the whole map on the host
+  std::size_t fallbacks = 0;   // of those, maps meant for the device: its list overflowed, or E was infinite
+  std::size_t longest = 0;     // the longest list of minima a device map had (E <= 0)
+  std::size_t long_lists = 0;  // device maps whose list was longer than its first read
 };
 
 // Maps of one pair for many rotations on one device: both spectra uploaded, the product
 // kernel built and the inverse FFT planned once. Two slots pipeline the work: while the
 // host finishes one slot's map, the device computes the other's (one in-order queue).
-// With MapFft::clfft the queue runs the product, clFFT's inverse and a non-blocking read
-// of the complex map; with MapFft::fftw it runs the product on the half spectrum and a
-// non-blocking read of that, and collect() runs FFTW's complex-to-real inverse on the host.
+// With MapFft::clfft the queue runs the product, clFFT's inverse into the slot's map and
+// a non-blocking read of the complex map, or, for MapOutput::minima, the minima kernel
+// (engine/device_minima.h) and a read of its short list; with MapFft::fftw it runs the
+// product on the half spectrum and a non-blocking read of that, and collect() (or
+// collect_minima(), which then finds the minima on the host) runs FFTW's complex-to-real
+// inverse on the host.
 class TranslationMapper {
  public:
   // `modes` = 0 keeps every mode; otherwise the low-pass ball holding about that many.
@@ -50,32 +71,54 @@ class TranslationMapper {
   const GridSpec& grid() const { return grid_; }  // the translations of every map
   MapFft fft() const { return fft_kind_; }
   // Enqueues the map of part 2 turned by R into `slot` (0 or 1) and returns at once.
-  void submit(int slot, const Eigen::Matrix3d& R);
+  void submit(int slot, const Eigen::Matrix3d& R, MapOutput output = MapOutput::energy);
   // Waits for the slot's map and writes E(R, t) in grid order into `energy` (NaN where
-  // the periodic sum would alias). Throws snapfit::Error for a slot with nothing submitted.
+  // the periodic sum would alias). Throws snapfit::Error for a slot with nothing submitted
+  // or one submitted for its minima.
   void collect(int slot, std::vector<float>& energy);
+  // Waits for the slot's map and writes what map_minima(grid(), E, count, separation)
+  // gives on its energy, and the map's lowest finite E. A slot submitted for its minima
+  // on clFFT reads only the device's list of minima (the whole map when that list
+  // overflowed or E was infinite); any other slot finds them in the whole map on the host.
+  // Throws snapfit::Error for a slot with nothing submitted.
+  void collect_minima(int slot, std::size_t count, double separation, MapMinimaResult& out);
   // submit + collect.
   TranslationMap map(const Eigen::Matrix3d& R);
   // One map with every stage waited for and timed in turn (no overlap), for benchmarks.
   MapStageSeconds time_stages(const Eigen::Matrix3d& R, std::vector<float>& energy);
+  // The same for submit(.., MapOutput::minima) + collect_minima.
+  MapStageSeconds time_minima_stages(const Eigen::Matrix3d& R, std::size_t count, double separation,
+                                     MapMinimaResult& out);
+  // True when MapOutput::minima reduces the maps on the device (clFFT).
+  bool minima_on_device() const { return fft_kind_ == MapFft::clfft; }
+  MapMinimaCounts minima_counts() const;
 
  private:
   struct Slot;
   struct HostFft;
   void enqueue_product(const Eigen::Matrix3d& R);
-  void enqueue_fft();
+  void enqueue_fft(int slot);
   void enqueue_read(int slot, cl::Event* done);
+  void wait_for(int slot);
+  void aliasing_mask(const Eigen::Matrix3d& R, std::array<std::vector<char>, 3>& inside) const;
+  MapBox aliasing_box(const Eigen::Matrix3d& R);
   void finish_map(int slot, std::vector<float>& energy, MapStageSeconds* stages);
+  void host_minima(int slot, std::size_t count, double separation, MapMinimaResult& out, MapStageSeconds* stages);
   const ComputeContext& ctx_;
   const PairSpectra& spectra_;
   GridSpec grid_;
   float max_w2_;
   cl::Kernel kernel_;
-  cl::Buffer s1_, s2_, product_, result_;
+  cl::Buffer s1_, s2_, product_;
   MapFft fft_kind_;
-  std::unique_ptr<Fft3d> fft_;          // clfft
-  std::unique_ptr<HostFft> host_fft_;   // fftw
-  std::vector<std::size_t> fft_index_;  // grid index -> FFT index of the same translation
+  std::unique_ptr<Fft3d> fft_;                   // clfft
+  std::unique_ptr<DeviceMinima> device_minima_;  // clfft
+  cl::CommandQueue side_;                        // clfft: reads of a collected slot while the queue runs the other
+  std::unique_ptr<HostFft> host_fft_;            // fftw
+  std::vector<std::size_t> fft_index_;           // grid index -> FFT index of the same translation
+  std::vector<float> energy_;                    // collect_minima's map on the host
+  std::array<std::vector<char>, 3> inside_;      // per axis: the translations that do not alias
+  MapMinimaCounts counts_;
   std::unique_ptr<Slot[]> slot_;
 };
 

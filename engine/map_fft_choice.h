@@ -1,7 +1,8 @@
 #pragma once
 // Which inverse FFT makes full maps fastest on this device at this size: every backend
 // this build has (engine/map_fft.h) maps the same few rotations through a
-// TranslationMapper, two in flight as in a search; the fewest seconds per map wins.
+// TranslationMapper as a search does (scan_rotations: two in flight, each map's minima
+// found, on the device with clFFT); the fewest seconds per map wins.
 // The pick and its timings are cached per (device, driver, FFT size, interpolation, the
 // map kernels' source, backends built) under cache_root()/map_fft (io/cache_file.h), so
 // a size is measured once per device.
@@ -15,7 +16,7 @@ namespace snapfit {
 
 struct MapFftTiming {
   MapFft fft = MapFft::clfft;
-  double seconds = 0;  // seconds per map, two in flight
+  double seconds = 0;  // seconds per map with its minima, two in flight
 };
 
 struct MapFftChoice {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "snapfit/error.h"
 
@@ -51,10 +52,26 @@ std::vector<MapMinimum> map_minima(const GridSpec& grid, const std::vector<float
         if (!is_minimum(grid, energy, x, y, z)) continue;
         candidates.push_back({g, grid.point(x, y, z), v});
       }
+  std::vector<MapMinimum> kept;
+  thin_minima(candidates, count, separation, kept);
+  return kept;
+}
+
+void map_minima(const GridSpec& grid, const std::vector<float>& energy, std::size_t count, double separation,
+                MapMinimaResult& out) {
+  float best = std::numeric_limits<float>::quiet_NaN();
+  for (float e : energy)
+    if (std::isfinite(e) && !(e >= best)) best = e;
+  out.minima = map_minima(grid, energy, count, separation);
+  out.best = best;
+}
+
+void thin_minima(std::vector<MapMinimum>& candidates, std::size_t count, double separation,
+                 std::vector<MapMinimum>& kept) {
+  kept.clear();
   std::sort(candidates.begin(), candidates.end(), [](const MapMinimum& a, const MapMinimum& b) {
     return a.energy < b.energy || (a.energy == b.energy && a.index < b.index);
   });
-  std::vector<MapMinimum> kept;
   const double s2 = separation * separation;
   for (const MapMinimum& c : candidates) {
     if (kept.size() == count) break;
@@ -63,7 +80,6 @@ std::vector<MapMinimum> map_minima(const GridSpec& grid, const std::vector<float
     });
     if (!near) kept.push_back(c);
   }
-  return kept;
 }
 
 }  // namespace snapfit

@@ -4,6 +4,7 @@
 // better kept one lies within `separation` of it), best first.
 #include <Eigen/Core>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "core/grid.h"
@@ -22,5 +23,22 @@ struct MapMinimum {
 // better one kept. Ties in energy go to the lower grid index, so the result is deterministic.
 std::vector<MapMinimum> map_minima(const GridSpec& grid, const std::vector<float>& energy, std::size_t count,
                                    double separation);
+
+// One map's minima and its lowest value.
+struct MapMinimaResult {
+  std::vector<MapMinimum> minima;                        // as map_minima gives them
+  float best = std::numeric_limits<float>::quiet_NaN();  // the lowest finite E (NaN: none)
+};
+
+// map_minima into out.minima, and the lowest finite E of `energy` into out.best.
+void map_minima(const GridSpec& grid, const std::vector<float>& energy, std::size_t count, double separation,
+                MapMinimaResult& out);
+
+// map_minima's last step on minima found elsewhere (engine/device_minima.h): sorts
+// `candidates` (the minima with E < 0, in any order) best first, ties to the lower grid
+// index, then writes into `kept` at most `count` of them, each farther than `separation`
+// from every better one kept. Allocates nothing when `kept` has the capacity.
+void thin_minima(std::vector<MapMinimum>& candidates, std::size_t count, double separation,
+                 std::vector<MapMinimum>& kept);
 
 }  // namespace snapfit

@@ -13,23 +13,29 @@ RotationScan scan_rotations(TranslationMapper& mapper, const std::vector<Eigen::
                             const std::vector<std::size_t>& indices, const ScanOptions& options,
                             const std::function<void()>& done) {
   RotationScan scan;
+  MapMinimaResult map;
   std::vector<float> energy;
+  // On clFFT the device finds each map's minima and only they are read back; otherwise
+  // the host finds them in the map, after queueing the next one.
+  const bool on_device = mapper.minima_on_device();
+  const MapOutput output = on_device ? MapOutput::minima : MapOutput::energy;
   const std::size_t n = indices.size();
   for (std::size_t i = 0; i < n && i < std::size_t(TranslationMapper::slots); ++i)
-    mapper.submit(int(i % TranslationMapper::slots), rotations[indices[i]].toRotationMatrix());
+    mapper.submit(int(i % TranslationMapper::slots), rotations[indices[i]].toRotationMatrix(), output);
   for (std::size_t i = 0; i < n; ++i) {
     const int slot = int(i % TranslationMapper::slots);
-    mapper.collect(slot, energy);
-    // The slot is free again: queue the map after next before reading this one.
+    if (on_device)
+      mapper.collect_minima(slot, options.minima_per_rotation, options.separation, map);
+    else
+      mapper.collect(slot, energy);
+    // The slot is free again: queue the map after next before using this one.
     if (i + TranslationMapper::slots < n)
-      mapper.submit(slot, rotations[indices[i + TranslationMapper::slots]].toRotationMatrix());
+      mapper.submit(slot, rotations[indices[i + TranslationMapper::slots]].toRotationMatrix(), output);
+    if (!on_device) map_minima(mapper.grid(), energy, options.minima_per_rotation, options.separation, map);
     const std::size_t r = indices[i];
-    double best = std::numeric_limits<double>::quiet_NaN();
-    for (float e : energy)
-      if (std::isfinite(e) && !(e >= best)) best = e;
     scan.rotations.push_back(r);
-    scan.best_energy.push_back(best);
-    for (const MapMinimum& m : map_minima(mapper.grid(), energy, options.minima_per_rotation, options.separation)) {
+    scan.best_energy.push_back(map.best);
+    for (const MapMinimum& m : map.minima) {
       PoseCandidate c;
       c.pose.rotation = rotations[r];
       c.pose.translation = m.translation;

@@ -3,22 +3,32 @@
 // once, the inverse FFT plan baked once and two maps in flight, against the one-shot
 // path (engine/full_map.h translational_energy_map: upload, bake, map, every call).
 //
-//   bench_search [--quick] [--device SPEC] [--out DIR] [--rotations N]
+//   bench_search [--quick] [--device SPEC] [--out DIR] [--rotations N] [--scene FILE]
 //
-// Sizes 64^3 and 128^3, spectra of two synthetic parts (perf/bench_spectra.h), trilinear
+// Sizes 64^3 and 128^3, spectra of two synthetic parts (perf/bench_spectra.h: a ball and a
+// box, E >= 0 wherever they overlap, so their maps hold no minima with E < 0), or with
+// --scene the scene's pair at its own FFT size (maps with the minima of real parts), trilinear
 // and tricubic resampling of the rotated spectrum (--quick: trilinear only), each inverse
-// FFT this build has (engine/map_fft.h) side by side, and the one choose_map_fft picks.
-// Per row: where one map's time goes (TranslationMapper::time_stages, each stage waited
-// for in turn, median of 3; then map_minima on that map), the
-// set-up (mapper constructor: uploads, kernel, plan), 2 warm-up maps, then N rotations of
-// so3_grid_for_count(N) (default 64^3: 200, 128^3: 40; --quick 24 and 6) through
-// scan_rotations with 4 minima per map; the interval between consecutive finished maps
-// is one rotation's cost; rotations/s = 1 / median interval, and the whole scan's count
-// over its wall time. One-shot: 3 calls (--quick 1), median.
+// FFT this build has (engine/map_fft.h) side by side, and the one choose_map_fft picks;
+// with clFFT both ways of finding each map's minima: on the device (the search's way,
+// engine/device_minima.h: the minima kernel, then a short list read back and thinned on
+// the host) and on the host (the whole complex map read back, put in grid order, then
+// map_minima), so the two compare in one run. FFTW's maps are on the host: host only.
+// Per row: where one map's time goes (TranslationMapper::time_minima_stages, or
+// time_stages then map_minima: each stage waited for in turn, median of 3), the
+// set-up (mapper constructor: uploads, kernels, plan), 2 warm-up maps, then N rotations of
+// so3_grid_for_count(N) (default 64^3: 200, 128^3 and a scene: 40; --quick 24 and 6) with 4 minima
+// per map, two maps in flight (scan_rotations; the host way with clFFT: the same loop
+// with collect and map_minima, as scan_rotations ran before the device found minima);
+// the interval between consecutive finished maps is one rotation's cost; rotations/s =
+// 1 / median interval, and the whole scan's count over its wall time. One-shot: 3 calls
+// (--quick 1), median.
 // Output in DIR (default results/bench_search): search.csv, search.json, charts.html.
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <iostream>
+#include <memory>
 
 #include "core/quantile.h"
 #include "core/so3_grid.h"
@@ -29,6 +39,7 @@
 #include "engine/rotation_search.h"
 #include "perf/bench_common.h"
 #include "perf/bench_spectra.h"
+#include "pipeline/assembly_pair.h"
 
 namespace {
 
@@ -36,20 +47,40 @@ using namespace snapfit;
 using Clock = std::chrono::steady_clock;
 
 void usage(std::ostream& out) {
-  out << "bench_search [--quick] [--device SPEC] [--out DIR] [--rotations N]\n"
-         "  maps per second of snapfit search's loop at 64^3 and 128^3 (see the file's header)\n";
+  out << "bench_search [--quick] [--device SPEC] [--out DIR] [--rotations N] [--scene FILE]\n"
+         "  maps per second of snapfit search's loop at 64^3 and 128^3, or on a scene's pair (see the file's header)\n";
 }
 
 struct Row {
-  std::size_t n = 0;
-  std::string interpolation, fft;
-  MapStageSeconds stages;  // medians
-  double minima_s = 0;
+  std::string workload;                    // "synthetic" or the scene file
+  std::size_t n = 0;                       // FFT points along x
+  std::string interpolation, fft, minima;  // minima: "device" or "host"
+  MapStageSeconds stages;                  // medians
   std::size_t rotations = 0;
   double setup_s = 0, median_s = 0, p90_s = 0, scan_rate = 0, one_shot_s = 0, load_before = 0, load_after = 0;
+  MapMinimaCounts counts;  // over the row's maps
 };
 
 double median(const std::vector<double>& v) { return quantile(v, 0.5); }
+
+// scan_rotations as it was before the device found the minima: the whole map read
+// back, the next map queued, then map_minima on the host.
+void scan_on_host(TranslationMapper& mapper, const std::vector<Eigen::Quaterniond>& rotations,
+                  const std::vector<std::size_t>& indices, const ScanOptions& options,
+                  const std::function<void()>& done) {
+  std::vector<float> energy;
+  MapMinimaResult map;
+  const std::size_t n = indices.size(), slots = TranslationMapper::slots;
+  for (std::size_t i = 0; i < n && i < slots; ++i)
+    mapper.submit(int(i % slots), rotations[indices[i]].toRotationMatrix(), MapOutput::energy);
+  for (std::size_t i = 0; i < n; ++i) {
+    const int slot = int(i % slots);
+    mapper.collect(slot, energy);
+    if (i + slots < n) mapper.submit(slot, rotations[indices[i + slots]].toRotationMatrix(), MapOutput::energy);
+    map_minima(mapper.grid(), energy, options.minima_per_rotation, options.separation, map);
+    done();
+  }
+}
 
 }  // namespace
 
@@ -57,8 +88,13 @@ int main(int argc, char** argv) {
   return bench::guarded_main("bench_search", [&] {
     bool quick = false;
     std::string device, out = "results/bench_search";
+    std::string scene_path;
     long rotations = 0;
     bench::parse_options(argc, argv, quick, device, out, usage, [&](const std::string&, auto value, auto is) {
+      if (is("--scene")) {
+        scene_path = value("--scene");
+        return true;
+      }
       if (!is("--rotations")) return false;
       rotations = bench::integer_option("--rotations", value("--rotations"), 1, 1000000);
       return true;
@@ -68,86 +104,134 @@ int main(int argc, char** argv) {
     std::cout << "bench_search on " << ctx.device.info.name << (quick ? " (quick)" : "") << ", load "
               << bench::read_loadavg() << "\n";
     std::vector<Row> rows;
-    for (const std::size_t n : {64, 128}) {
-      const PairSpectra spectra = bench::synthetic_spectra(fft, ctx, {n, n, n}, 0.5);
+    // A scene's pair (fields and spectra through the caches), or none: the synthetic sizes.
+    std::unique_ptr<AssemblyPair> pair;
+    if (!scene_path.empty()) {
+      PairOptions options;
+      options.note = [](const std::string&) {};
+      pair = std::make_unique<AssemblyPair>(build_assembly_pair(load_scene(scene_path), ctx, fft, options));
+    }
+    const std::vector<std::size_t> sizes = pair ? std::vector<std::size_t>{0} : std::vector<std::size_t>{64, 128};
+    for (const std::size_t synthetic : sizes) {
+      const PairSpectra spectra =
+          pair ? pair->spectra : bench::synthetic_spectra(fft, ctx, {synthetic, synthetic, synthetic}, 0.5);
+      const std::size_t n = spectra.dims[0];
+      const std::string size = std::to_string(spectra.dims[0]) +
+                               (spectra.dims[1] == n && spectra.dims[2] == n
+                                    ? std::string("^3")
+                                    : "x" + std::to_string(spectra.dims[1]) + "x" + std::to_string(spectra.dims[2]));
       for (const Interpolation interpolation : {Interpolation::trilinear, Interpolation::tricubic}) {
         if (quick && interpolation == Interpolation::tricubic) continue;
         const MapFftChoice choice = choose_map_fft(fft, ctx, spectra, interpolation);
-        std::cout << n << "^3 " << (interpolation == Interpolation::tricubic ? "tricubic" : "trilinear")
+        std::cout << size << " " << (interpolation == Interpolation::tricubic ? "tricubic" : "trilinear")
                   << ": choose_map_fft picks " << describe_map_fft_choice(choice) << "\n";
-        for (const MapFft kind : map_ffts_built()) {
-          Row row;
-          row.n = n;
-          row.interpolation = interpolation == Interpolation::tricubic ? "tricubic" : "trilinear";
-          row.fft = map_fft_name(kind);
-          row.rotations = rotations > 0 ? std::size_t(rotations) : quick ? (n == 64 ? 24 : 6) : (n == 64 ? 200 : 40);
-          row.load_before = bench::load1();
-          auto t0 = Clock::now();
-          TranslationMapper mapper(fft, ctx, spectra, interpolation, 0, kind);
-          row.setup_s = bench::seconds_since(t0);
-          const So3Grid grid = so3_grid_for_count(row.rotations);
-          std::vector<std::size_t> warm{1, 2}, all(grid.rotations.size());
-          for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-          scan_rotations(mapper, grid.rotations, warm, ScanOptions{4, 1.0});
-          std::vector<double> product, inverse, read, host, minima;
-          std::vector<float> energy;
-          for (std::size_t k = 0; k < 3; ++k) {
-            const MapStageSeconds st = mapper.time_stages(grid.rotations[k].toRotationMatrix(), energy);
-            product.push_back(st.product);
-            inverse.push_back(st.fft);
-            read.push_back(st.read);
-            host.push_back(st.host);
-            t0 = Clock::now();
-            map_minima(mapper.grid(), energy, 4, 1.0);
-            minima.push_back(bench::seconds_since(t0));
-          }
-          row.stages = {median(product), median(inverse), median(read), median(host)};
-          row.minima_s = median(minima);
-          std::vector<double> intervals;
-          t0 = Clock::now();
-          auto last = t0;
-          scan_rotations(mapper, grid.rotations, all, ScanOptions{4, 1.0}, [&] {
-            const auto now = Clock::now();
-            intervals.push_back(std::chrono::duration<double>(now - last).count());
-            last = now;
-          });
-          const double scan_s = bench::seconds_since(t0);
-          row.rotations = all.size();
-          row.scan_rate = double(all.size()) / scan_s;
-          row.median_s = median(intervals);
-          row.p90_s = quantile(intervals, 0.9);
-          if (kind == MapFft::clfft) {
-            std::vector<double> one_shot;
-            for (int k = 0; k < (quick ? 1 : 3); ++k) {
-              t0 = Clock::now();
-              translational_energy_map(fft, ctx, spectra, grid.rotations[std::size_t(k)].toRotationMatrix(),
-                                       interpolation);
-              one_shot.push_back(bench::seconds_since(t0));
+        for (const MapFft kind : map_ffts_built())
+          for (const bool on_device : {true, false}) {
+            if (on_device && kind != MapFft::clfft) continue;  // FFTW's maps are on the host
+            Row row;
+            row.workload = pair ? scene_path : "synthetic";
+            row.n = n;
+            row.interpolation = interpolation == Interpolation::tricubic ? "tricubic" : "trilinear";
+            row.fft = map_fft_name(kind);
+            row.minima = on_device ? "device" : "host";
+            row.rotations = rotations > 0 ? std::size_t(rotations)
+                            : quick       ? (synthetic == 64 ? 24 : 6)
+                                          : (synthetic == 64 ? 200 : 40);
+            row.load_before = bench::load1();
+            auto t0 = Clock::now();
+            TranslationMapper mapper(fft, ctx, spectra, interpolation, 0, kind);
+            row.setup_s = bench::seconds_since(t0);
+            const So3Grid grid = so3_grid_for_count(row.rotations);
+            std::vector<std::size_t> warm{1, 2}, all(grid.rotations.size());
+            for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+            const ScanOptions options{4, 1.0};
+            auto scan = [&](const std::vector<std::size_t>& indices, const std::function<void()>& done) {
+              if (on_device || kind != MapFft::clfft)
+                scan_rotations(mapper, grid.rotations, indices, options, done);
+              else
+                scan_on_host(mapper, grid.rotations, indices, options, done);
+            };
+            scan(warm, [] {});
+            std::vector<MapStageSeconds> stages;
+            std::vector<float> energy;
+            MapMinimaResult map;
+            for (std::size_t k = 0; k < 3; ++k) {
+              const Eigen::Matrix3d R = grid.rotations[k].toRotationMatrix();
+              if (on_device) {
+                stages.push_back(mapper.time_minima_stages(R, options.minima_per_rotation, options.separation, map));
+              } else {
+                stages.push_back(mapper.time_stages(R, energy));
+                t0 = Clock::now();
+                map_minima(mapper.grid(), energy, options.minima_per_rotation, options.separation, map);
+                stages.back().minima = bench::seconds_since(t0);
+              }
             }
-            row.one_shot_s = median(one_shot);
+            auto stage = [&](double MapStageSeconds::*field) {
+              std::vector<double> v;
+              for (const MapStageSeconds& s : stages) v.push_back(s.*field);
+              return median(v);
+            };
+            row.stages.product = stage(&MapStageSeconds::product);
+            row.stages.fft = stage(&MapStageSeconds::fft);
+            row.stages.reduce = stage(&MapStageSeconds::reduce);
+            row.stages.read = stage(&MapStageSeconds::read);
+            row.stages.host = stage(&MapStageSeconds::host);
+            row.stages.minima = stage(&MapStageSeconds::minima);
+            std::vector<double> intervals;
+            t0 = Clock::now();
+            auto last = t0;
+            scan(all, [&] {
+              const auto now = Clock::now();
+              intervals.push_back(std::chrono::duration<double>(now - last).count());
+              last = now;
+            });
+            const double scan_s = bench::seconds_since(t0);
+            row.rotations = all.size();
+            row.scan_rate = double(all.size()) / scan_s;
+            row.median_s = median(intervals);
+            row.p90_s = quantile(intervals, 0.9);
+            row.counts = mapper.minima_counts();
+            if (kind == MapFft::clfft && on_device) {
+              std::vector<double> one_shot;
+              for (int k = 0; k < (quick ? 1 : 3); ++k) {
+                t0 = Clock::now();
+                translational_energy_map(fft, ctx, spectra, grid.rotations[std::size_t(k)].toRotationMatrix(),
+                                         interpolation);
+                one_shot.push_back(bench::seconds_since(t0));
+              }
+              row.one_shot_s = median(one_shot);
+            }
+            row.load_after = bench::load1();
+            auto ms = [](double s) { return bench::fixed(1e3 * s, 1); };
+            std::cout << size << " " << row.interpolation << " " << row.fft << ", minima on the " << row.minima
+                      << ": stages product " << ms(row.stages.product) << " ms, inverse FFT " << ms(row.stages.fft)
+                      << " ms, ";
+            if (on_device)
+              std::cout << "minima kernel " << ms(row.stages.reduce) << " ms, read-back of the list "
+                        << ms(row.stages.read) << " ms, thinning " << ms(row.stages.minima) << " ms (longest list "
+                        << row.counts.longest << ", " << row.counts.long_lists << " read twice, "
+                        << row.counts.fallbacks << " whole maps read)";
+            else
+              std::cout << "read-back " << ms(row.stages.read) << " ms, host map " << ms(row.stages.host)
+                        << " ms, minima " << ms(row.stages.minima) << " ms";
+            std::cout << "; " << row.rotations << " rotations, set-up " << bench::fixed(row.setup_s, 2) << " s, median "
+                      << ms(row.median_s) << " ms per rotation (" << bench::fixed(1 / row.median_s, 1)
+                      << " rotations/s; p90 " << ms(row.p90_s) << " ms), whole scan " << bench::fixed(row.scan_rate, 1)
+                      << " rotations/s";
+            if (row.one_shot_s > 0)
+              std::cout << "; one-shot translational_energy_map " << bench::fixed(1e3 * row.one_shot_s, 0) << " ms";
+            std::cout << "; load " << bench::fixed(row.load_before, 2) << " -> " << bench::fixed(row.load_after, 2)
+                      << "\n";
+            rows.push_back(row);
           }
-          row.load_after = bench::load1();
-          auto ms = [](double s) { return bench::fixed(1e3 * s, 1); };
-          std::cout << n << "^3 " << row.interpolation << " " << row.fft << ": stages product "
-                    << ms(row.stages.product) << " ms, inverse FFT " << ms(row.stages.fft) << " ms, read-back "
-                    << ms(row.stages.read) << " ms, host map " << ms(row.stages.host) << " ms, minima "
-                    << ms(row.minima_s) << " ms; " << row.rotations << " rotations, set-up "
-                    << bench::fixed(row.setup_s, 2) << " s, median " << ms(row.median_s) << " ms per rotation ("
-                    << bench::fixed(1 / row.median_s, 1) << " rotations/s; p90 " << ms(row.p90_s) << " ms), whole scan "
-                    << bench::fixed(row.scan_rate, 1) << " rotations/s";
-          if (row.one_shot_s > 0)
-            std::cout << "; one-shot translational_energy_map " << bench::fixed(1e3 * row.one_shot_s, 0) << " ms";
-          std::cout << "; load " << bench::fixed(row.load_before, 2) << " -> " << bench::fixed(row.load_after, 2)
-                    << "\n";
-          rows.push_back(row);
-        }
       }
     }
     std::filesystem::create_directories(out);
     std::ofstream csv(std::filesystem::path(out) / "search.csv");
-    csv << "n,interpolation,fft,product_s,inverse_fft_s,read_s,host_map_s,minima_s,rotations,setup_s,median_s,p90_s,"
-           "rotations_per_s_median,rotations_per_s_scan,one_shot_s,"
-           "load_before,load_after\n";
+    csv << "workload,n,interpolation,fft,minima_on,product_s,inverse_fft_s,reduce_s,read_s,host_map_s,minima_s,"
+           "rotations,"
+           "setup_s,median_s,p90_s,rotations_per_s_median,rotations_per_s_scan,one_shot_s,longest_list,"
+           "whole_maps_read,load_before,load_after\n";
     nlohmann::json json = {{"command", bench::command_line(argc, argv)},
                            {"device", ctx.device.info.name},
                            {"date", bench::now_iso()},
@@ -158,16 +242,17 @@ int main(int argc, char** argv) {
     chart.y_label = "rotations/s";
     chart.log_y = true;
     for (const char* name : {"trilinear", "tricubic"}) {
-      for (const MapFft kind : map_ffts_built()) {
-        Series s;
-        s.label = std::string(name) + ", " + map_fft_name(kind) + ", scan (pipelined)";
-        for (const Row& r : rows)
-          if (r.interpolation == name && r.fft == map_fft_name(kind)) {
-            s.x.push_back(double(r.n));
-            s.y.push_back(1 / r.median_s);
-          }
-        if (!s.x.empty()) chart.series.push_back(s);
-      }
+      for (const MapFft kind : map_ffts_built())
+        for (const char* where : {"device", "host"}) {
+          Series s;
+          s.label = std::string(name) + ", " + map_fft_name(kind) + ", minima on the " + where + ", scan (pipelined)";
+          for (const Row& r : rows)
+            if (r.interpolation == name && r.fft == map_fft_name(kind) && r.minima == where) {
+              s.x.push_back(double(r.n));
+              s.y.push_back(1 / r.median_s);
+            }
+          if (!s.x.empty()) chart.series.push_back(s);
+        }
       Series one;
       one.label = std::string(name) + ", clfft, one-shot map";
       for (const Row& r : rows)
@@ -178,18 +263,25 @@ int main(int argc, char** argv) {
       if (!one.x.empty()) chart.series.push_back(one);
     }
     for (const Row& r : rows) {
-      csv << r.n << "," << r.interpolation << "," << r.fft << "," << r.stages.product << "," << r.stages.fft << ","
-          << r.stages.read << "," << r.stages.host << "," << r.minima_s << "," << r.rotations << "," << r.setup_s << ","
-          << r.median_s << "," << r.p90_s << "," << 1 / r.median_s << "," << r.scan_rate << "," << r.one_shot_s << ","
-          << r.load_before << "," << r.load_after << "\n";
-      json["rows"].push_back({{"n", r.n},
+      csv << r.workload << "," << r.n << "," << r.interpolation << "," << r.fft << "," << r.minima << ","
+          << r.stages.product << "," << r.stages.fft << "," << r.stages.reduce << "," << r.stages.read << ","
+          << r.stages.host << "," << r.stages.minima << "," << r.rotations << "," << r.setup_s << "," << r.median_s
+          << "," << r.p90_s << "," << 1 / r.median_s << "," << r.scan_rate << "," << r.one_shot_s << ","
+          << r.counts.longest << "," << r.counts.fallbacks << "," << r.load_before << "," << r.load_after << "\n";
+      json["rows"].push_back({{"workload", r.workload},
+                              {"n", r.n},
                               {"interpolation", r.interpolation},
                               {"fft", r.fft},
+                              {"minima_on", r.minima},
                               {"product_s", r.stages.product},
                               {"inverse_fft_s", r.stages.fft},
+                              {"reduce_s", r.stages.reduce},
                               {"read_s", r.stages.read},
                               {"host_map_s", r.stages.host},
-                              {"minima_s", r.minima_s},
+                              {"minima_s", r.stages.minima},
+                              {"longest_list", r.counts.longest},
+                              {"long_lists", r.counts.long_lists},
+                              {"whole_maps_read", r.counts.fallbacks},
                               {"rotations", r.rotations},
                               {"setup_s", r.setup_s},
                               {"median_s", r.median_s},

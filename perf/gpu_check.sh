@@ -399,19 +399,20 @@ if not srows:
     w("bench_search/search.json " + (NF + "." if b is None else "has no rows."))
 else:
     picks = dict(re.findall(r"^(\d+)\^3 \w+: choose_map_fft picks (\w+)", text("bench_search.log"), re.M))
-    w("Device {}. Per rotation, ms: product, inverse FFT, read-back, host map, minima.".format(g(b, "device") or NF))
+    w("Device {}. Per rotation, ms: product, inverse FFT, minima kernel (device), read-back (the map, or the "
+      "list of minima), host map, minima on the host (map_minima, or the list's thinning).".format(g(b, "device") or NF))
     w("")
-    w("| size | interpolation | FFT | rotations/s (median) | whole scan | per rotation, ms |")
-    w("|---|---|---|---|---|---|")
+    w("| size | interpolation | FFT | minima on | rotations/s (median) | whole scan | per rotation, ms |")
+    w("|---|---|---|---|---|---|---|")
     for r in srows:
         n = r.get("n")
         fft = str(r.get("fft"))
         if picks.get(str(n)) == fft:
             fft += " (picked)"
-        w("| {}^3 | {} | {} | {} | {} | {} / {} / {} / {} / {} |".format(
-            n, r.get("interpolation", NF), fft, num(r.get("rotations_per_s_median"), 4),
+        w("| {}^3 | {} | {} | {} | {} | {} | {} / {} / {} / {} / {} / {} |".format(
+            n, r.get("interpolation", NF), fft, r.get("minima_on", "host"), num(r.get("rotations_per_s_median"), 4),
             num(r.get("rotations_per_s_scan"), 4), ms(r.get("product_s")), ms(r.get("inverse_fft_s")),
-            ms(r.get("read_s")), ms(r.get("host_map_s")), ms(r.get("minima_s"))))
+            ms(r.get("reduce_s", 0)), ms(r.get("read_s")), ms(r.get("host_map_s")), ms(r.get("minima_s"))))
 w("")
 
 # ---- bench_fft
