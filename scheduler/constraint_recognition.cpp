@@ -31,6 +31,7 @@ ConstraintOffset concentric_offset(const AnalyticFace& f1, const AnalyticFace& f
   out.point = o2 + t * a2;
   const Eigen::Vector3d on_axis1 = o1 + a1 * (out.point - o1).dot(a1);
   out.d = on_axis1 - out.point;
+  out.play = std::abs(f1.radius() - f2.radius());
   return out;
 }
 
@@ -89,7 +90,8 @@ double engagement(const ConstraintOffset& o, double voxel_size) {
   const double l = std::max(o.depth, voxel_size);
   const double theta0 = voxel_size / l;  // eq. 16
   const double d0 = voxel_size;          // eq. 17
-  return 0.5 * std::exp(-o.theta / theta0) + 0.5 * std::exp(-o.d.norm() / d0);  // eq. 15
+  const double d = std::max(0.0, o.d.norm() - o.play);
+  return 0.5 * std::exp(-o.theta / theta0) + 0.5 * std::exp(-d / d0);  // eq. 15
 }
 
 QueryWrench alignment_wrench(const ConstraintOffset& o, const Pose& pose, double k_a, double k_r, double u) {

@@ -42,11 +42,14 @@ struct ConstraintOffset {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();         // on part 2: where the spring pulls
   Eigen::Vector3d turn_axis = Eigen::Vector3d::UnitX();    // unit: turning part 2 about it reduces theta
   double depth = 0;                                        // l: axial overlap (concentric), face size (planar)
+  double play = 0;                                         // |r1 - r2| (concentric): the offset the fit allows
 };
 ConstraintOffset constraint_offset(ConstraintKind kind, const AnalyticFace& f1, const AnalyticFace& f2,
                                    const Pose& pose);
 
-// Eq. 15-17 with voxel size s; the insertion depth is taken as at least one voxel.
+// Eq. 15-17 with voxel size s; the insertion depth is taken as at least one voxel, and d
+// as the offset beyond the play, max(0, |d| - play): a peg anywhere within its hole's
+// clearance sits on the constraint (at the paper's low clearances, below a voxel, the same).
 double engagement(const ConstraintOffset& offset, double voxel_size);
 
 // A wrench in the units of a QueryResult: force in N, torque in N per scene unit of lever arm.

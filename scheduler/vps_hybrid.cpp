@@ -129,4 +129,22 @@ HybridResult hybrid_wrench(const HybridModel& model, HybridState& state, const B
   return out;
 }
 
+WrenchEvaluator hybrid_evaluator(const HybridModel& model, HybridState& state) {
+  WrenchEvaluator e;
+  e.evaluate = [&model](const Pose& pose) {
+    BodyState s;
+    s.pose = pose;
+    return vps_wrench(model.vps, s).query;
+  };
+  e.evaluate_state = [&model, &state](const BodyState& s) {
+    const HybridResult r = hybrid_wrench(model, state, s);
+    QueryResult q = r.vps.query;
+    q.constraint = static_cast<std::uint8_t>(r.kind);
+    q.constraint_weight = r.x;
+    return q;
+  };
+  e.set_modes = [](std::size_t) {};
+  return e;
+}
+
 }  // namespace snapfit

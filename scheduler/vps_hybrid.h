@@ -82,4 +82,9 @@ struct HybridResult {
 // One frame: advances `state` (recognition, hysteresis, ramps) by the loop's period.
 HybridResult hybrid_wrench(const HybridModel& model, HybridState& state, const BodyState& part);
 
+// The loop's view; neither may outlive it. evaluate_state runs one hybrid frame (the
+// loop calls it once a frame) and tags the query with the engaged constraint and its
+// weight; evaluate (warm-up and timing queries) is plain VPS and leaves `state` alone.
+WrenchEvaluator hybrid_evaluator(const HybridModel& model, HybridState& state);
+
 }  // namespace snapfit

@@ -3,16 +3,21 @@
 // (concentric, planar; none for a cylinder against a plane, cylinders of different radii,
 // two pegs, tilted axes), engagement (eq. 15-17), and a scripted insertion down to the
 // floor and back out: concentric while inserting, then planar at the floor, both
-// released outside, with a bounded step of the wrench between frames.
+// released outside, with bounded steps of the blend weights between frames; `snapfit run`
+// with a vps_hybrid scene (constraint per frame in loop.csv and summary.json) and with a
+// part without analytic faces (plain VPS, said so).
 #include <doctest/doctest.h>
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "mesh/procedural/procedural_parts.h"
 #include "scheduler/vps_hybrid.h"
 #include "snapfit/error.h"
+#include "tests/test_support.h"
 
 using namespace snapfit;
 
@@ -79,18 +84,23 @@ TEST_CASE("vps hybrid: recognition between the peg's and the hole's faces") {
   CHECK(recognise(floor, peg[face(peg, "peg top")], at(0, -kDepth - 20), tol) == ConstraintKind::none);  // not opposed
   CHECK(recognise(floor, bottom, at(0, -kDepth + 3), tol) == ConstraintKind::none);  // too far above
 
-  // Engagement, eq. 15-17: 1 on the constraint, 0.5 + 0.5 exp(-d/s) for a pure offset.
+  // Engagement, eq. 15-17: 1 on the constraint, 0.5 + 0.5 exp(-d/s) for a pure offset d
+  // beyond the play (the radii's difference, the clearance).
   const ConstraintOffset on = constraint_offset(ConstraintKind::concentric, wall, side, at(0, -5));
   CHECK(engagement(on, kVoxel) == doctest::Approx(1));
   CHECK(on.depth == doctest::Approx(5 - 0.5 - 0.5));  // overlap of wall [-10, -0.5] and side [-4.5, 15]
   const ConstraintOffset off = constraint_offset(ConstraintKind::concentric, wall, side, at(0.25, -5));
   CHECK(off.d.x() == doctest::Approx(-0.25));
-  CHECK(engagement(off, kVoxel) == doctest::Approx(0.5 + 0.5 * std::exp(-0.5)));
+  CHECK(off.play == doctest::Approx(kClearance).epsilon(1e-3));
+  CHECK(engagement(off, kVoxel) == doctest::Approx(0.5 + 0.5 * std::exp(-(0.25 - off.play) / kVoxel)));
+  const ConstraintOffset within = constraint_offset(ConstraintKind::concentric, wall, side, at(0.15, -5));
+  CHECK(engagement(within, kVoxel) == doctest::Approx(1));  // inside the play
   const ConstraintOffset turned = constraint_offset(ConstraintKind::concentric, wall, side, tilted);
   CHECK(turned.theta == doctest::Approx(0.3));
   // theta_0 = s / l: the turn's term is exp(-theta l / s).
   CHECK(engagement(turned, kVoxel) ==
-        doctest::Approx(0.5 * std::exp(-0.3 * turned.depth / kVoxel) + 0.5 * std::exp(-turned.d.norm() / kVoxel)));
+        doctest::Approx(0.5 * std::exp(-0.3 * turned.depth / kVoxel) +
+                        0.5 * std::exp(-std::max(0.0, turned.d.norm() - turned.play) / kVoxel)));
 }
 
 TEST_CASE("vps hybrid: bad parameters are refused") {
@@ -158,4 +168,58 @@ TEST_CASE("vps hybrid: a scripted insertion engages concentric, then planar at t
   // once, the weight jumps by x >= x_engage.
   CHECK(ramped_step <= 0.02 + 0.02 + 1e-9);
   CHECK(instant_step >= 0.75);
+}
+
+TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint per frame; without faces it is plain VPS") {
+  // The shipped peg scene at 0.1 mm clearance (below the voxel: the peg touches the wall)
+  // as "method": "vps_hybrid" at a quarter-millimetre voxel.
+  nlohmann::json scene;
+  std::ifstream(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/peg_hole_clearance_0p5.json") >> scene;
+  scene["part1"]["procedural"]["clearance"] = 0.1;
+  scene["method"] = "vps_hybrid";
+  scene["vps"] = {{"voxel_size", 0.25}};
+  const test::TempDir dir;
+  test::write_text(dir.file("hybrid.json"), scene.dump());
+  const test::Command run = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("hybrid.json") +
+                                              " --simulated-time --out " + dir.file("out"));
+  INFO(run.output);
+  REQUIRE(run.status == 0);
+  CHECK(run.output.find("analytic faces") != std::string::npos);
+  nlohmann::json summary;
+  std::ifstream(dir.file("out/summary.json")) >> summary;
+  CHECK(summary["method"] == "vps_hybrid");
+  const nlohmann::json& h = summary["vps"]["hybrid"];
+  CHECK(h["engaged"] == true);
+  CHECK(h["faces1"] == 8);  // top, 4 sides, bottom, wall, floor (no chamfer)
+  CHECK(h["faces2"] == 3);  // bottom, side, top
+  CHECK(h["frames_concentric"].get<int>() > 0);
+  CHECK(h["max_constraint_x"].get<double>() > 0.5);
+  CHECK(h["max_constraint_x"].get<double>() <= 1.0);
+  // loop.csv carries the constraint (1 concentric) and its weight per frame.
+  std::ifstream csv(dir.file("out/loop.csv"));
+  std::string header, line;
+  std::getline(csv, header);
+  CHECK(header.find(",constraint,constraint_x") != std::string::npos);
+  int concentric_rows = 0;
+  while (std::getline(csv, line)) {
+    const std::size_t last = line.rfind(','), before = line.rfind(',', last - 1);
+    if (line.substr(before + 1, last - before - 1) == "1") ++concentric_rows;
+  }
+  CHECK(concentric_rows == h["frames_concentric"].get<int>());
+
+  // The three-peg pair has no analytic faces: plain VPS, said so.
+  nlohmann::json three;
+  std::ifstream(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/three_pegs.json") >> three;
+  three["method"] = "vps_hybrid";
+  three["vps"] = {{"voxel_size", 1.0}};
+  three.erase("trajectory");
+  test::write_text(dir.file("three.json"), three.dump());
+  const test::Command plain = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("three.json") +
+                                                " --simulated-time --out " + dir.file("three"));
+  INFO(plain.output);
+  REQUIRE(plain.status == 0);
+  CHECK(plain.output.find("has no analytic faces: running as plain Voxmap PointShell") != std::string::npos);
+  nlohmann::json s3;
+  std::ifstream(dir.file("three/summary.json")) >> s3;
+  CHECK(s3["vps"]["hybrid"]["engaged"] == false);
 }
