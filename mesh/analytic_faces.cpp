@@ -76,7 +76,7 @@ std::vector<std::int16_t> label_voxmap(const Voxmap& map, const std::vector<Anal
 std::vector<std::int16_t> label_point_shell(const PointShell& shell, const std::vector<AnalyticFace>& faces) {
   std::vector<std::int16_t> out(shell.points.size(), kNoFace);
   for (std::size_t i = 0; i < shell.points.size(); ++i)
-    out[i] = face_at(faces, shell.points[i], shell.spacing, 0.25 * shell.spacing);
+    out[i] = face_at(faces, shell.points[i], shell.spacing, 0.5 * shell.spacing);
   return out;
 }
 

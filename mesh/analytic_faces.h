@@ -61,7 +61,8 @@ std::int16_t face_at(const std::vector<AnalyticFace>& faces, const Eigen::Vector
 std::vector<std::int16_t> label_voxmap(const Voxmap& map, const std::vector<AnalyticFace>& faces);
 
 // Labels of the points of a point shell, which lie on the surface: tolerance one
-// spacing, edge band a quarter of the spacing.
+// spacing, edge band half the spacing (as for voxels: a rim point that can sit inside the
+// other part's surface voxels along the adjacent face is on the edge).
 std::vector<std::int16_t> label_point_shell(const PointShell& shell, const std::vector<AnalyticFace>& faces);
 
 }  // namespace snapfit

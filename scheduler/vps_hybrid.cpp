@@ -14,19 +14,24 @@ struct FrameContext {
   HybridState* state;
 };
 
-// Counts the contact under its face pair and adds it to the region of the engaged
-// constraint between those faces, if any.
+// Counts the contact under its face pair (both on one face: what recognition reads) and
+// adds it to the region of the first engaged constraint it belongs to: its voxel on the
+// constraint's face of part 1 and its point on the constraint's face of part 2, or one
+// of them on an edge (the rim of a face in contact lies on an edge: a peg's bottom rim
+// inside the wall's voxels is the constraint's contact, not a collision to render).
 void on_contact(void* context, std::size_t voxel, std::size_t point, const Eigen::Vector3d& force,
                 const Eigen::Vector3d& torque) {
   auto& c = *static_cast<FrameContext*>(context);
   const std::int16_t f1 = c.model->voxel_face[voxel], f2 = c.model->point_face[point];
-  if (f1 < 0 || f2 < 0) return;  // interior voxel, edge, or no face: an "other" contact
-  ++c.state->pair_contacts[static_cast<std::size_t>(f1) * c.model->faces2.size() + f2];
+  if (f1 >= 0 && f2 >= 0) ++c.state->pair_contacts[static_cast<std::size_t>(f1) * c.model->faces2.size() + f2];
   for (int k = 0; k < kMaxConstraints; ++k) {
     const ActiveConstraint& a = c.state->active[k];
-    if (a.kind != ConstraintKind::none && a.face1 == f1 && a.face2 == f2) {
+    if (a.kind == ConstraintKind::none) continue;
+    const bool in_region = (f1 == a.face1 && (f2 == a.face2 || f2 == kEdge)) || (f1 == kEdge && f2 == a.face2);
+    if (in_region) {
       c.state->region[k].force += force;
       c.state->region[k].torque += torque;
+      return;  // one constraint per contact: its force is blended out once
     }
   }
 }

@@ -42,7 +42,7 @@ TEST_CASE("analytic faces: every shell point of a chamfered peg maps to its face
   // within R (1 - cos(pi/64)) / 2 < 0.004 of it, so the test allows a slack of 0.01.
   const double m = 0.5 * (1 + std::cos(M_PI / 64));
   const Eigen::Vector2d corners[3] = {{0, (R - c) * m}, {c, R * m}, {L, R * m}};
-  const double band = 0.25 * s, slack = 0.01;
+  const double band = 0.5 * s, slack = 0.01;
   int edges = 0, on_face = 0;
   for (std::size_t i = 0; i < shell.points.size(); ++i) {
     const Eigen::Vector3d& p = shell.points[i];
