@@ -4,14 +4,17 @@
 // two pegs, tilted axes), engagement (eq. 15-17), and a scripted insertion down to the
 // floor and back out: concentric while inserting, then planar at the floor, both
 // released outside, with bounded steps of the blend weights between frames; `snapfit run`
-// with a vps_hybrid scene (constraint per frame in loop.csv and summary.json) and with a
-// part without analytic faces (plain VPS, said so).
+// with a vps_hybrid scene (constraint per frame in loop.csv and summary.json; it assembles
+// below the voxel size; in the loop the weight steps little and the force sent no more
+// than plain VPS's) and with a part without analytic faces (plain VPS, said so).
 #include <doctest/doctest.h>
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <algorithm>
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "mesh/procedural/procedural_parts.h"
@@ -54,6 +57,42 @@ HybridModel peg_in_hole_model(double ramp_s) {
   params.ramp_s = ramp_s;
   return hybrid_model(std::move(vps), procedural_part_faces(kHole), procedural_part_faces(kPeg), CouplingParams{},
                       params);
+}
+
+// The columns of loop.csv the run test reads.
+struct LoopColumns {
+  std::vector<int> constraint;
+  std::vector<double> weight;
+  std::vector<Eigen::Vector3d> sent;
+  std::size_t frames() const { return weight.size(); }
+  double max_sent_step() const {
+    double m = 0;
+    for (std::size_t i = 1; i < sent.size(); ++i) m = std::max(m, (sent[i] - sent[i - 1]).norm());
+    return m;
+  }
+};
+
+LoopColumns read_loop(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  for (std::stringstream s(line); std::getline(s, line, ',');) names.push_back(line);
+  const auto column = [&](const char* name) {
+    const auto it = std::find(names.begin(), names.end(), name);
+    REQUIRE(it != names.end());
+    return static_cast<std::size_t>(it - names.begin());
+  };
+  const std::size_t c = column("constraint"), x = column("constraint_x"), fx = column("sent_fx");
+  LoopColumns out;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    for (std::stringstream s(line); std::getline(s, line, ',');) v.push_back(std::stod(line));
+    out.constraint.push_back(static_cast<int>(v.at(c)));
+    out.weight.push_back(v.at(x));
+    out.sent.emplace_back(v.at(fx), v.at(fx + 1), v.at(fx + 2));
+  }
+  return out;
 }
 
 Pose at(double x, double z) {
@@ -198,16 +237,25 @@ TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint 
   // Plain VPS stops about 3.9 mm short here: the voxel is larger than the clearance.
   CHECK(summary["haptic_loop"]["assembled"] == true);
   // loop.csv carries the constraint (1 concentric) and its weight per frame.
-  std::ifstream csv(dir.file("out/loop.csv"));
-  std::string header, line;
-  std::getline(csv, header);
-  CHECK(header.find(",constraint,constraint_x") != std::string::npos);
-  int concentric_rows = 0;
-  while (std::getline(csv, line)) {
-    const std::size_t last = line.rfind(','), before = line.rfind(',', last - 1);
-    if (line.substr(before + 1, last - before - 1) == "1") ++concentric_rows;
-  }
-  CHECK(concentric_rows == h["frames_concentric"].get<int>());
+  const LoopColumns hybrid_loop = read_loop(dir.file("out/loop.csv"));
+  REQUIRE(hybrid_loop.frames() > 5000);
+  CHECK(std::count(hybrid_loop.constraint.begin(), hybrid_loop.constraint.end(), 1) ==
+        h["frames_concentric"].get<int>());
+  // Through engagement and release in the loop: the weight moves by at most the ramp's
+  // 1/50 plus what x itself changes in a frame (the speed limit keeps that small), and
+  // the force sent steps no more than plain VPS's on the same scene.
+  double max_dx = 0;
+  for (std::size_t i = 1; i < hybrid_loop.frames(); ++i)
+    max_dx = std::max(max_dx, std::abs(hybrid_loop.weight[i] - hybrid_loop.weight[i - 1]));
+  CHECK(max_dx <= 0.05);
+  scene["method"] = "vps";
+  test::write_text(dir.file("vps.json"), scene.dump());
+  const test::Command vps_run = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("vps.json") +
+                                                  " --simulated-time --out " + dir.file("vps_out"));
+  REQUIRE(vps_run.status == 0);
+  const double hybrid_step = hybrid_loop.max_sent_step(), vps_step = read_loop(dir.file("vps_out/loop.csv")).max_sent_step();
+  MESSAGE("largest sent force step: hybrid " << hybrid_step << " N, plain VPS " << vps_step << " N; weight step " << max_dx);
+  CHECK(hybrid_step <= 1.5 * vps_step);
 
   // The three-peg pair has no analytic faces: plain VPS, said so.
   nlohmann::json three;
