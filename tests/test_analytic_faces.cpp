@@ -125,7 +125,7 @@ TEST_CASE("analytic faces: every surface voxel of a hole block maps to a face, t
   CHECK(r - peg[find_face(peg, "peg side")].radius() == doctest::Approx(clearance).epsilon(1e-3));
 }
 
-TEST_CASE("analytic faces: the three-peg pair has none; bad input is refused") {
+TEST_CASE("analytic faces: the three-peg pair has none, and bad input is refused") {
   const ProceduralPartSpec base{"three_peg_base",
                                 {{"cell", 20}, {"base_thickness", 5}, {"cover_thickness", 5}},
                                 {{"peg_radii", {3, 4, 5}}, {"peg_heights", {6, 8, 10}}, {"fillet_radii", {1, 1, 1}}}};

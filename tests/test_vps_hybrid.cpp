@@ -209,7 +209,7 @@ TEST_CASE("vps hybrid: a scripted insertion engages concentric, then planar at t
   CHECK(instant_step >= 0.75);
 }
 
-TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint per frame; without faces it is plain VPS") {
+TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint per frame, and without faces plain VPS") {
   // The shipped peg scene at 0.1 mm clearance (below the voxel: the peg touches the wall)
   // as "method": "vps_hybrid" at a quarter-millimetre voxel.
   nlohmann::json scene;
