@@ -5,6 +5,7 @@
 // and the others (scheduler/loop_devices.h; or loads the tuning files), plays the scene's
 // scripted trajectory through the 1 kHz haptic loop in real time, and writes the report
 // folder (report/run_report.h).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -25,6 +26,8 @@
 #include "scheduler/assembly_session.h"
 #include "scheduler/loop_devices.h"
 #include "scheduler/query_strategy.h"
+#include "mesh/procedural/procedural_parts.h"
+#include "scheduler/vps_hybrid.h"
 #include "scheduler/vps_method.h"
 #include "snapfit/error.h"
 
@@ -146,16 +149,48 @@ void run_vps_job(const RunOptions& opt, const AssemblyPair& pair, std::chrono::s
             << facts.interior_voxels << " interior, " << facts.proximity_voxels << " proximity voxels; "
             << facts.shell_points << " shell points at " << facts.shell_spacing << " " << scene.units << " (built in "
             << facts.build_seconds << " s)\n";
+  // The hybrid needs both parts' analytic faces; a part without them runs as plain VPS.
+  std::optional<HybridModel> hybrid;
+  std::optional<HybridState> hybrid_state;
+  if (scene.method == Method::vps_hybrid) {
+    const auto faces_of = [](const PartSpec& p) {
+      return p.procedural ? procedural_part_faces(*p.procedural) : std::vector<AnalyticFace>{};
+    };
+    std::vector<AnalyticFace> f1 = faces_of(scene.part1), f2 = faces_of(scene.part2);
+    for (const PartSpec* p : {&scene.part1, &scene.part2})
+      if ((p == &scene.part1 ? f1 : f2).empty())
+        facts.plain_reason += std::string(facts.plain_reason.empty() ? "" : "; ") + "part '" + p->name + "' " +
+                              (p->procedural ? "(procedural " + p->procedural->type + ")" : std::string("(a mesh file)")) +
+                              " has no analytic faces";
+    if (!facts.plain_reason.empty()) {
+      std::cout << "    vps_hybrid: " << facts.plain_reason << ": running as plain Voxmap PointShell\n";
+    } else {
+      facts.faces1 = f1.size();
+      facts.faces2 = f2.size();
+      hybrid = hybrid_model(model, std::move(f1), std::move(f2), coupling);
+      hybrid_state = hybrid_state_for(*hybrid);
+      facts.hybrid = true;
+      facts.labelled_voxels = std::count_if(hybrid->voxel_face.begin(), hybrid->voxel_face.end(),
+                                            [](std::int16_t f) { return f >= 0; });
+      facts.labelled_points = std::count_if(hybrid->point_face.begin(), hybrid->point_face.end(),
+                                            [](std::int16_t f) { return f >= 0; });
+      facts.alignment_k_n_per_m = hybrid->k_a_n_per_m;
+      std::cout << "    vps_hybrid: " << facts.faces1 << " + " << facts.faces2 << " analytic faces; "
+                << facts.labelled_voxels << " surface voxels and " << facts.labelled_points
+                << " shell points on one face; alignment k_A " << facts.alignment_k_n_per_m << " N/m\n";
+    }
+  }
   if (!scene.trajectory.keyframes.empty()) {
     const Trajectory& t = scene.trajectory;
     const double seconds = t.keyframes.back().time_s - t.keyframes.front().time_s + scene.haptics.settle_s;
     std::cout << "[7/7] haptic loop at " << scene.loop_rate_hz << " Hz playing the scripted trajectory (" << seconds
-              << " s of " << (opt.simulated_time ? "simulated" : "real") << " time, Voxmap PointShell)\n";
+              << " s of " << (opt.simulated_time ? "simulated" : "real") << " time, " << (hybrid ? "VPS - constraint hybrid" : "Voxmap PointShell") << ")\n";
     SessionOptions session;
     session.simulated_time = opt.simulated_time;
     session.wait = parse_loop_wait(opt.loop_wait);
     record.session = run_scripted_session(scene, pair.grids.spacing, vps_loop_config(scene, model, coupling),
-                                          vps_evaluator(model), session);
+                                          hybrid ? hybrid_evaluator(*hybrid, *hybrid_state) : vps_evaluator(model),
+                                          session);
     print_loop(scene, *record.session);
   } else {
     std::cout << "[7/7] the scene has no trajectory: no scripted assembly to run\n";
@@ -173,7 +208,7 @@ void run_main_job(const RunOptions& opt) {
   std::cout << "[2/7] building and validating both parts (in parallel)\n";
   AssemblyPair pair = prepare_assembly_pair(scene);
   print_scene_summary(std::cout, scene, pair.parts, pair.plan);
-  if (scene.method == Method::vps) return run_vps_job(opt, pair, start);
+  if (uses_vps(scene.method)) return run_vps_job(opt, pair, start);
 
   std::cout << "[3/7] opening the OpenCL device and checking it\n";
   const Device device = select_device(device_spec_from(opt.device));

@@ -488,7 +488,8 @@ Method read_method(const Ctx& c, const json& v, const std::string& path) {
   const std::string m = text(c, v, path);
   if (m == "snapfit") return Method::snapfit;
   if (m == "vps") return Method::vps;
-  fail(c, path, "unknown method '" + m + "' (expected snapfit or vps)");
+  if (m == "vps_hybrid") return Method::vps_hybrid;
+  fail(c, path, "unknown method '" + m + "' (expected snapfit, vps or vps_hybrid)");
 }
 
 Motion read_motion(const Ctx& c, const json& v, const std::string& path) {
@@ -767,7 +768,7 @@ std::string scene_to_json(const Scene& s) {
   if (h.contact_spacing) hj["contact_spacing"] = *h.contact_spacing;
   hj["max_force_rate_n_per_s"] = h.max_force_rate_n_per_s;
   j["haptics"] = hj;
-  j["method"] = s.method == Method::vps ? "vps" : "snapfit";
+  j["method"] = method_name(s.method);
   ordered_json vj;
   if (s.vps.voxel_size) vj["voxel_size"] = *s.vps.voxel_size;
   vj["stiffness_n_per_m"] = s.vps.stiffness_n_per_m;

@@ -1,6 +1,8 @@
 // The assembly benchmark: scripted insertions by an imprecise user, so that the geometry
-// has to do the aligning, for snapfit (6-DOF and translation-only) and Voxmap
-// PointShell (scheduler/vps_method.h) at several voxel sizes, in the same haptic loop.
+// has to do the aligning, for snapfit (6-DOF and translation-only), Voxmap PointShell
+// (scheduler/vps_method.h) and its constraint hybrid (scheduler/vps_hybrid.h; plain VPS
+// for the three-peg pair, which has no analytic faces) at several voxel sizes, in the
+// same haptic loop.
 //
 // Cells: the peg in its blind hole (scenes/peg_hole_clearance_0p5.json with the hole's
 // clearance set to each of --clearances) and the three-peg pair (scenes/three_pegs.json,
@@ -22,7 +24,7 @@
 //
 //   ./build/perf/bench_assembly [--quick] [--trials 20] [--seed 1] [--modes 16384]
 //       [--clearances 0,0.02,0.05,0.1,0.25,0.5,1] [--voxels 0.1,0.25,0.5]
-//       [--methods snapfit,translation,vps] [--no-three-pegs] [--penetration-stride 10]
+//       [--methods snapfit,translation,vps,vps_hybrid] [--no-three-pegs] [--penetration-stride 10]
 //       [--geometry-strength G] [--lambda-in P] [--contact-stiffness K] [--no-contact] [--device SPEC]
 //       [--out results/bench_assembly]
 // --geometry-strength and --lambda-in override the scenes' haptics.geometry_strength and
@@ -52,6 +54,8 @@
 #include "scheduler/assembly_session.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/rigid_contact.h"
+#include "mesh/procedural/procedural_parts.h"
+#include "scheduler/vps_hybrid.h"
 #include "scheduler/vps_method.h"
 
 using namespace snapfit;
@@ -133,7 +137,8 @@ Trajectory user_trajectory(const Pose& assembled, double entry, const UserTrial&
 
 struct BenchMethod {
   std::string name;  // "snapfit-6dof", "snapfit-translation", "vps-0.25"
-  enum Kind { six_dof, translation, vps } kind = six_dof;
+  enum Kind { six_dof, translation, vps, vps_hybrid } kind = six_dof;
+  bool voxel_based() const { return kind == vps || kind == vps_hybrid; }
   double voxel = 0;
 };
 
@@ -314,12 +319,15 @@ int main(int argc, char** argv) {
           methods.push_back({"snapfit-translation", BenchMethod::translation, 0});
         else if (m == "vps")
           for (double v : voxels) methods.push_back({"vps-" + bench::fixed(v, 2), BenchMethod::vps, v});
+        else if (m == "vps_hybrid")
+          for (double v : voxels)
+            methods.push_back({"vps_hybrid-" + bench::fixed(v, 2), BenchMethod::vps_hybrid, v});
         else
-          throw Error("--methods: unknown method '" + m + "' (expected snapfit, translation, vps)");
+          throw Error("--methods: unknown method '" + m + "' (expected snapfit, translation, vps, vps_hybrid)");
       }
     }
     const bool need_device =
-        std::any_of(methods.begin(), methods.end(), [](const BenchMethod& m) { return m.kind != BenchMethod::vps; });
+        std::any_of(methods.begin(), methods.end(), [](const BenchMethod& m) { return !m.voxel_based(); });
 
     // Cells: the peg at each clearance, then the three-peg pair.
     std::vector<Cell> cells;
@@ -392,13 +400,24 @@ int main(int argc, char** argv) {
         std::optional<AssemblyPair> pair;
         std::unique_ptr<QueryEngine> engine;
         std::optional<VpsModel> vps;
+        std::optional<HybridModel> hybrid;
         std::shared_ptr<const RigidContactModel> rigid;
         CouplingParams coupling;
         const auto build_start = std::chrono::steady_clock::now();
-        if (method.kind == BenchMethod::vps) {
+        if (method.voxel_based()) {
           scene.vps.voxel_size = method.voxel;
           coupling = coupling_for(scene, m2);
           vps = vps_model_for(scene, m1, m2, spacing, coupling);
+          if (method.kind == BenchMethod::vps_hybrid) {
+            const auto faces_of = [](const PartSpec& p) {
+              return p.procedural ? procedural_part_faces(*p.procedural) : std::vector<AnalyticFace>{};
+            };
+            std::vector<AnalyticFace> f1 = faces_of(scene.part1), f2 = faces_of(scene.part2);
+            if (f1.empty() || f2.empty())
+              std::cout << "  (" << cell.pair << ": no analytic faces, " << method.name << " runs as plain VPS)\n";
+            else
+              hybrid = hybrid_model(*vps, std::move(f1), std::move(f2), coupling);
+          }
         } else {
           PairOptions options;
           options.note = [](const std::string& m) { std::cerr << "  " << m << "\n"; };
@@ -421,7 +440,11 @@ int main(int argc, char** argv) {
           FrameWork work;
           work.wall_ms.reserve(8000), work.cpu_ms.reserve(8000);
           SessionResult run;
-          if (method.kind == BenchMethod::vps) {
+          if (hybrid) {
+            HybridState state = hybrid_state_for(*hybrid);  // each user starts disengaged
+            run = run_scripted_session(scene, spacing, vps_loop_config(scene, *vps, coupling),
+                                       timed(hybrid_evaluator(*hybrid, state), work), options);
+          } else if (method.voxel_based()) {
             run = run_scripted_session(scene, spacing, vps_loop_config(scene, *vps, coupling),
                                        timed(vps_evaluator(*vps), work), options);
           } else {

@@ -40,7 +40,7 @@ AssemblyPair prepare_assembly_pair(const Scene& scene) {
     m << "; if one should be smaller, its file's unit, \"mesh_units\" or \"scale\" is wrong)";
     throw Error(m.str());
   }
-  if (scene.method == Method::vps) pair.plan = plan_computation(scene, pair.grids.spacing);
+  if (uses_vps(scene.method)) pair.plan = plan_computation(scene, pair.grids.spacing);
   return pair;
 }
 

@@ -59,15 +59,20 @@ ComputePlan vps_plan(const Scene& scene, double grid_spacing) {
                        "(tangent-plane force, k_ff " +
                        number(v.stiffness_n_per_m) +
                        " N/m a point); points approaching through proximity voxels are braked");
+  if (scene.method == Method::vps_hybrid)
+    plan.lines.push_back("hybrid (seed 002 chapter 5): voxels and shell points carry their analytic faces; "
+                         "concentric and planar constraints between contacting faces are phased in, "
+                         "F = F_C (1 - x) + F_A x (eq. 13-19); a part without analytic faces runs as plain VPS");
   plan.lines.push_back(std::string("outputs per frame: force") + (plan.torque ? ", torque" : "") +
-                       " (and the points' penalty energy)");
+                       " (and the points' penalty energy)" +
+                       (scene.method == Method::vps_hybrid ? "; the engaged constraint and its weight x" : ""));
   return plan;
 }
 
 }  // namespace
 
 ComputePlan plan_computation(const Scene& scene, double grid_spacing) {
-  if (scene.method == Method::vps) return vps_plan(scene, grid_spacing);
+  if (uses_vps(scene.method)) return vps_plan(scene, grid_spacing);
   ComputePlan plan;
   plan.skeletal_density = scene.descriptor.kind == DescriptorKind::skeletal_density;
   plan.rotation = scene.motion == Motion::six_dof;

@@ -64,7 +64,7 @@ nlohmann::json summary_json(const RunRecord& run) {
                       {"units", scene.units},
                       {"device", run.device.name},
                       {"loop_device", run.loop_device.name},
-                      {"method", run.vps ? "vps" : "snapfit"},
+                      {"method", method_name(run.pair->scene.method)},
                       {"modes", run.tuning.chosen_modes},
                       {"modes_source", run.vps                  ? "none: Voxmap PointShell"
                                        : run.tuning_key.empty() ? "fixed by --modes"

@@ -18,6 +18,12 @@ struct VpsFacts {
   std::size_t surface_voxels = 0, interior_voxels = 0, proximity_voxels = 0, shell_points = 0;
   double stiffness_n_per_m = 0, braking_n_s_per_m = 0;
   double build_seconds = 0;
+  // "method": "vps_hybrid": whether it ran as the hybrid, or why it ran as plain VPS.
+  bool hybrid = false;
+  std::string plain_reason;
+  std::size_t faces1 = 0, faces2 = 0;           // analytic faces of each part
+  std::size_t labelled_voxels = 0, labelled_points = 0;  // on one face (not an edge, not none)
+  double alignment_k_n_per_m = 0;
 };
 
 struct RunRecord {

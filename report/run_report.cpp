@@ -111,6 +111,27 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
            {"stiffness_n_per_m", v.stiffness_n_per_m},
            {"braking_n_s_per_m", v.braking_n_s_per_m},
            {"build_seconds", v.build_seconds}};
+    if (run.pair->scene.method == Method::vps_hybrid) {
+      // Frames with each constraint engaged (weight > 0) and the largest weight reached.
+      std::size_t concentric = 0, planar = 0;
+      double max_x = 0;
+      if (run.session)
+        for (const FrameRecord& f : run.session->loop.log) {
+          if (f.constraint == 1) ++concentric;
+          if (f.constraint == 2) ++planar;
+          max_x = std::max(max_x, f.constraint_weight);
+        }
+      vps["hybrid"] = {{"engaged", v.hybrid},
+                       {"plain_vps_because", v.plain_reason.empty() ? nlohmann::json(nullptr) : nlohmann::json(v.plain_reason)},
+                       {"faces1", v.faces1},
+                       {"faces2", v.faces2},
+                       {"labelled_voxels", v.labelled_voxels},
+                       {"labelled_points", v.labelled_points},
+                       {"alignment_k_n_per_m", v.alignment_k_n_per_m},
+                       {"frames_concentric", concentric},
+                       {"frames_planar", planar},
+                       {"max_constraint_x", max_x}};
+    }
   }
   nlohmann::json loop = nullptr;
   if (run.session) {
@@ -128,7 +149,7 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
       {"scene", scene.name},
       {"scene_file", scene.source_path},
       {"units", scene.units},
-      {"method", run.vps ? "vps" : "snapfit"},
+      {"method", method_name(run.pair->scene.method)},
       {"vps", vps},
       {"device", run.device.name},
       {"driver", run.device.driver_version},

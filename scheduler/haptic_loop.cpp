@@ -362,7 +362,8 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     report.wake_late_ms.push_back(1e3 * (woke - tick_time));
     if (config.keep_log)
       report.log.push_back(FrameRecord{tick_time, frame_ms, handle.pose, queried, q.energy, geometric, contact.wrench,
-                                       contact.depth, geometric_error, sent, q.modes, q.flags, missed});
+                                       contact.depth, geometric_error, sent, q.modes, q.flags, missed,
+                                       q.constraint, q.constraint_weight});
     ++report.frames;
     if (missed) ++report.misses;
 

@@ -9,7 +9,7 @@
 
 namespace snapfit {
 
-VpsResult vps_wrench(const VpsModel& model, const BodyState& part) {
+VpsResult vps_wrench(const VpsModel& model, const BodyState& part, const VpsContactSink* sink) {
   const auto start = std::chrono::steady_clock::now();
   const Voxmap& map = model.voxmap;
   const PointShell& shell = model.shell;
@@ -61,8 +61,10 @@ VpsResult vps_wrench(const VpsModel& model, const BodyState& part) {
       const double depth = std::max(0.0, (map.centre(ijk.x(), ijk.y(), ijk.z()) - p).dot(n) + interior);
       if (depth <= 0) continue;
       const Eigen::Vector3d f = model.stiffness * u * depth * n;  // eq. 3, N
+      const Eigen::Vector3d torque = r.cross(f);  // N per scene unit of lever arm
       q.force += f;
-      q.torque += r.cross(f);                                 // N per scene unit of lever arm
+      q.torque += torque;
+      if (sink) sink->contact(sink->context, id, i, f, torque);
       q.energy += 0.5 * model.stiffness * u * depth * depth;  // J / metres_per_unit
       out.max_depth = std::max(out.max_depth, depth);
       ++out.contacts;

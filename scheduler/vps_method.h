@@ -43,7 +43,14 @@ struct VpsResult {
   std::size_t braking_points = 0;
   double max_depth = 0;  // scene units, the deepest point's d
 };
-VpsResult vps_wrench(const VpsModel& model, const BodyState& part);
+// `sink`, when given, receives each contact point's force and torque (as summed into
+// the query) with its voxel's and shell point's indices: what the hybrid method blends.
+struct VpsContactSink {
+  void* context = nullptr;
+  void (*contact)(void* context, std::size_t voxel, std::size_t point, const Eigen::Vector3d& force,
+                  const Eigen::Vector3d& torque) = nullptr;
+};
+VpsResult vps_wrench(const VpsModel& model, const BodyState& part, const VpsContactSink* sink = nullptr);
 
 // The model of a scene: voxel size (default `spacing`), k_ff and shell density from its
 // `vps` section, mass and inertia from the coupling. Throws snapfit::Error for bad input.

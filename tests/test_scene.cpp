@@ -200,7 +200,7 @@ TEST_CASE("scene: method and vps fields round-trip, and bad ones are named") {
   };
   json bad = j;
   bad["method"] = "voxels";
-  CHECK_ERROR(bad, "test.json: method: unknown method 'voxels' (expected snapfit or vps)");
+  CHECK_ERROR(bad, "test.json: method: unknown method 'voxels' (expected snapfit, vps or vps_hybrid)");
   bad["method"] = 1;
   CHECK_ERROR(bad, "method: expected a string");
   CHECK_ERROR(with("voxel_size", -1), "vps.voxel_size: must be > 0");

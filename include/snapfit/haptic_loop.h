@@ -159,6 +159,8 @@ struct FrameRecord {
   std::size_t modes = 0;
   std::uint32_t flags = 0;  // QueryFlags of the engine
   bool missed = false;
+  std::uint8_t constraint = 0;   // QueryResult::constraint: the hybrid's engaged constraint
+  double constraint_weight = 0;  // and its blend weight x
 };
 
 struct ModeChange {

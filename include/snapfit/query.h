@@ -93,6 +93,10 @@ struct QueryResult {
   std::uint32_t flags = query_ok;
   std::size_t modes = 0;  // m' used
   double seconds = 0;     // wall time of this query (batch: of the whole batch / count)
+  // A constraint hybrid's (scheduler/vps_hybrid.h) engaged constraint of largest weight:
+  // 0 none, 1 concentric, 2 planar, and its blend weight x in [0, 1]; 0 for other methods.
+  std::uint8_t constraint = 0;
+  double constraint_weight = 0;
 };
 
 // The per-frame engine of an assembly pair on one device. Two implementations: the

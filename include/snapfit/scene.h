@@ -124,7 +124,17 @@ struct HapticsParams {
 enum class Method {
   snapfit,  // skeletal densities and truncated Fourier sums (seed 000)
   vps,      // Voxmap PointShell (seed 002 section 4.1; scheduler/vps_method.h)
+  // Voxmap PointShell with geometric constraints phased in between analytic faces (seed
+  // 002 chapter 5; scheduler/vps_hybrid.h); plain VPS for a part without analytic faces.
+  vps_hybrid,
 };
+
+// Whether the run voxelises part 1 and samples part 2's point shell (vps, vps_hybrid).
+inline bool uses_vps(Method m) { return m == Method::vps || m == Method::vps_hybrid; }
+// The method's name in scene files and reports.
+inline const char* method_name(Method m) {
+  return m == Method::vps ? "vps" : m == Method::vps_hybrid ? "vps_hybrid" : "snapfit";
+}
 
 // Voxmap PointShell's parameters (the scene's `vps` section; every field optional).
 struct VpsParams {

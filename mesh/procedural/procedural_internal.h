@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "mesh/analytic_faces.h"
 #include "mesh/mesh.h"
 
 namespace snapfit::procedural {
@@ -64,6 +65,10 @@ Mesh make_peg(const PegParams& p);
 Mesh make_hole_block(const HoleBlockParams& p);
 Mesh make_three_peg_base(const ThreePegParams& p);
 Mesh make_three_peg_cover(const ThreePegParams& p);
+
+// The analytic faces the peg and the hole block are tessellations of (procedural_faces.cpp).
+std::vector<AnalyticFace> peg_faces(const PegParams& p);
+std::vector<AnalyticFace> hole_block_faces(const HoleBlockParams& p);
 
 // ---- mesh-building helpers
 

@@ -220,4 +220,12 @@ Mesh make_procedural_part(const ProceduralPartSpec& spec) {
   return procedural::make_three_peg_cover(read_three_peg(in));
 }
 
+std::vector<AnalyticFace> procedural_part_faces(const ProceduralPartSpec& spec) {
+  check_procedural_spec(spec);
+  const Params in{spec};
+  if (spec.type == "peg") return procedural::peg_faces(read_peg(in));
+  if (spec.type == "hole_block") return procedural::hole_block_faces(read_hole_block(in));
+  return {};
+}
+
 }  // namespace snapfit

@@ -20,6 +20,7 @@
 //     surface's vertices and together fill the box [footprint] x [-base_thickness, top].
 #include <string>
 
+#include "mesh/analytic_faces.h"
 #include "mesh/mesh.h"
 #include "snapfit/scene.h"
 
@@ -31,5 +32,11 @@ void check_procedural_spec(const ProceduralPartSpec& spec);
 
 // Builds the part (checks the spec first).
 Mesh make_procedural_part(const ProceduralPartSpec& spec);
+
+// The analytic faces the part's mesh tessellates (mesh/analytic_faces.h), in the part's
+// frame: planes, cylinders and cones of the peg and the hole block. Empty for a type
+// without a face description (the three-peg pair: its fillets are toroidal). Checks the
+// spec first.
+std::vector<AnalyticFace> procedural_part_faces(const ProceduralPartSpec& spec);
 
 }  // namespace snapfit

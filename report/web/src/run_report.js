@@ -29,7 +29,7 @@ function stiffnessItem(k) {
 
 // The tuned m' and what the loop rendered: the loop steps m' down when frames run late.
 function modesText(s) {
-  if (s.method === 'vps') return `none (${s.modes_source})`;
+  if (s.method.startsWith('vps')) return `none (${s.modes_source})`;
   const r = s.modes_rendered;
   if (!r) return `${s.modes} (${s.modes_source})`;
   const share = formatNumber(100 * r.most_frequent_share, 3);
@@ -126,7 +126,7 @@ function main() {
     legendRow(COLORS.force, 'force sent (N)', 'value-force'),
     legendRow(COLORS.torque, 'torque sent (N m)', 'value-torque'),
     legendRow('transparent', 'energy', 'value-energy'),
-    ...(data.summary.method === 'vps' ? [] : [legendRow('transparent', "m'", 'value-modes')]),
+    ...(data.summary.method.startsWith('vps') ? [] : [legendRow('transparent', "m'", 'value-modes')]),
     legendRow('transparent', 'time (s)', 'value-time'));
   side.append(table);
   if (pb) {
@@ -252,7 +252,7 @@ function main() {
     root.append(tuning);
     entries.push({ chart: createChart(tuning, data.tuning_chart, { height: 320 }), container: tuning });
   } else {
-    const why = data.summary.method === 'vps' ? "Voxmap PointShell has no m' to tune." :
+    const why = data.summary.method.startsWith('vps') ? "Voxmap PointShell has no m' to tune." :
       "m' was fixed by --modes: no tuning sweep ran.";
     root.append(element('p', { class: 'note', id: 'no-tuning', text: why }));
   }

@@ -27,7 +27,7 @@ try {
   t.check(dom.scene && dom.scene.value === summary.scene && dom.scene.text.includes(summary.scene), `scene is "${summary.scene}"`);
   t.check(dom.device && dom.device.value === summary.device, `device is "${summary.device}"`);
   t.check(dom.loop_device && dom.loop_device.value === summary.loop_device, 'loop device as in summary.json');
-  if (summary.method === 'vps') {
+  if (summary.method.startsWith('vps')) {
     t.check(dom.modes && dom.modes.text.startsWith('none'), "Voxmap PointShell: no m'");
   } else {
     t.check(dom.modes && dom.modes.value === summary.tuning.chosen_modes &&
@@ -55,7 +55,7 @@ try {
             dom.final_error.text.includes(' N sent') &&
             Math.abs(dom.final_error.value.axial - fe.axial) < 1e-9 && Math.abs(dom.final_error.value.lateral - fe.lateral) < 1e-9,
             `final error: axial ${fe.axial}, lateral ${fe.lateral} (signed, as in summary.json)`);
-    if (summary.method !== 'vps') {
+    if (!summary.method.startsWith('vps')) {
       const changes = loop.modes.changes.length;
       t.check(dom.modes.text.includes('the loop rendered') && dom.modes.text.includes(`${changes} changes`),
               `m': tuned and rendered (${changes} changes)`);
@@ -92,7 +92,7 @@ try {
   t.check(chartCount === timeCharts + (loop ? 1 : 0) + (tuned ? 1 : 0), `${chartCount} charts on the page`);
   if (!tuned) {
     const note = await page.locator('#no-tuning').textContent();
-    t.check(summary.method === 'vps' ? note.includes('Voxmap PointShell') : note.includes('--modes'),
+    t.check(summary.method.startsWith('vps') ? note.includes('Voxmap PointShell') : note.includes('--modes'),
             `no sweep ran, and the page says why: "${note}"`);
   }
   for (let i = 0; i < chartCount; i++) {
@@ -106,9 +106,9 @@ try {
 
   // --- the field figures
   const images = await page.evaluate(() => [...document.querySelectorAll('.slices img')].map((i) => i.naturalWidth));
-  if (summary.method === 'vps') t.check(images.length === 0, 'Voxmap PointShell: no field figures');
+  if (summary.method.startsWith('vps')) t.check(images.length === 0, 'Voxmap PointShell: no field figures');
   else t.check(images.length === 2 && images.every((w) => w > 200), `field figures: ${images.join(', ')} pixels wide`);
-  if (summary.method === 'vps')
+  if (summary.method.startsWith('vps'))
     t.check(await page.locator('#value-modes').count() === 0, "Voxmap PointShell: no m' beside the view");
 
   if (loop) {

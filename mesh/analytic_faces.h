@@ -1,0 +1,68 @@
+#pragma once
+// Analytic (B-rep-like) faces of a part and the face each voxel of a voxmap or each point
+// of a point shell lies on: the "voxel data expansion" of the Voxmap PointShell -
+// constraint hybrid (seed 002 section 5.2, Figs. 20-21), so that colliding voxel / point
+// pairs name the faces in contact and a geometric constraint can be recognised between
+// them (seed 002 section 5.3).
+//
+// A face is plain data in the part's own frame:
+//   plane     a point on it, its unit normal pointing out of the material, and its
+//             extent: an in-plane box [lo, hi] and a radial range [r_in, r_out] about
+//             the point (a disc, an annulus, a rectangle, a square with a hole);
+//   cylinder  a surface of revolution about an axis (point + unit direction) whose
+//   cone      profile is the segment from (a0, r0) to (a1, r1) in (axial, radial)
+//             coordinates (r0 == r1 for a cylinder), material on the inside of the
+//             radius (a peg) or on the outside (a hole).
+#include <Eigen/Core>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "mesh/voxmap.h"
+
+namespace snapfit {
+
+enum class FaceKind : std::uint8_t { plane, cylinder, cone };
+
+struct AnalyticFace {
+  FaceKind kind = FaceKind::plane;
+  const char* name = "";                              // static text: "side", "hole wall", ...
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();   // plane: a point on it; others: on the axis
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();    // plane: outward unit normal; others: unit axis
+  // plane: the in-plane box and the radial range about `origin`
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  double r_in = 0, r_out = std::numeric_limits<double>::infinity();
+  // cylinder, cone: the profile segment (a0, r0) - (a1, r1), a along `axis` from `origin`
+  double a0 = 0, a1 = 0, r0 = 0, r1 = 0;
+  bool material_inside = true;  // cylinder, cone: a peg (true) or a hole (false)
+
+  double radius() const { return 0.5 * (r0 + r1); }
+};
+
+// Label of a voxel or point that lies on no face within the tolerance, or on an edge:
+// within `edge_band` of two faces, so that it belongs to neither constraint.
+constexpr std::int16_t kNoFace = -1;
+constexpr std::int16_t kEdge = -2;
+
+// Distance from p (part frame) to the face (to its bounded extent, not the whole surface).
+double face_distance(const AnalyticFace& face, const Eigen::Vector3d& p);
+
+// The index of the face nearest p if it lies within `tolerance`; kEdge if a second face
+// also lies within `edge_band` (the point sits on the edge between them); kNoFace when
+// none is within `tolerance`. Throws snapfit::Error for more than 32767 faces or a
+// tolerance or band that is not > 0.
+std::int16_t face_at(const std::vector<AnalyticFace>& faces, const Eigen::Vector3d& p, double tolerance,
+                     double edge_band);
+
+// Labels of the surface layer of a voxmap (kNoFace for every other voxel), one per voxel
+// in the map's order, from the voxel centres: tolerance one voxel, edge band half a voxel
+// (a face that passes within half a voxel of the centre crosses the voxel's core).
+std::vector<std::int16_t> label_voxmap(const Voxmap& map, const std::vector<AnalyticFace>& faces);
+
+// Labels of the points of a point shell, which lie on the surface: tolerance one
+// spacing, edge band half the spacing (as for voxels: a rim point that can sit inside the
+// other part's surface voxels along the adjacent face is on the edge).
+std::vector<std::int16_t> label_point_shell(const PointShell& shell, const std::vector<AnalyticFace>& faces);
+
+}  // namespace snapfit
