@@ -319,7 +319,8 @@ void add_search_command(CLI::App& app) {
       ->check(positive_number());
   cmd->add_option("--refine-queries", opt->refine_queries, "Queries per refined pose at most (default 200)");
   cmd->add_option("--map-fft", opt->map_fft,
-                  "Inverse FFT of the maps: auto (the fastest, measured once per device and size), clfft or fftw");
+                  "Inverse FFT of the maps: auto (the fastest, measured once per device and size), clfft, fftw or "
+                  "vkfft (those this build has)");
   cmd->callback([opt] {
     const SearchRanks ranks;
     try {

@@ -9,6 +9,9 @@
 #ifdef SNAPFIT_HAVE_FFTW
 #include "engine/fftw_real_inverse.h"
 #endif
+#ifdef SNAPFIT_HAVE_VKFFT
+#include "engine/vkfft_inverse.h"
+#endif
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -38,8 +41,8 @@ float low_pass_w2(const PairSpectra& spectra, std::size_t modes) {
 }  // namespace
 
 struct TranslationMapper::Slot {
-  cl::Buffer result;       // clfft: the complex inverse FFT, on the device
-  std::vector<Complex> f;  // clfft: the same read back (sized at the first read)
+  cl::Buffer result;       // clfft, vkfft: the complex inverse FFT, on the device
+  std::vector<Complex> f;  // clfft, vkfft: the same read back (sized at the first read)
   cl::Event read;
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   MapOutput output = MapOutput::energy;
@@ -53,6 +56,17 @@ struct TranslationMapper::HostFft {
 };
 #else
 struct TranslationMapper::HostFft {};
+#endif
+
+#ifdef SNAPFIT_HAVE_VKFFT
+struct TranslationMapper::VkFft {
+  VkfftInverse fft;
+  VkFft(const ComputeContext& ctx, const std::array<std::size_t, 3>& dims, const cl::Buffer& product,
+        const cl::Buffer& map)
+      : fft(ctx, dims, product, map) {}
+};
+#else
+struct TranslationMapper::VkFft {};
 #endif
 
 TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeContext& ctx, const PairSpectra& spectra,
@@ -83,16 +97,16 @@ TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeCon
     kernel_ = cl::Kernel(
         build_program(ctx, "full_map", kernel_source("spectrum_sample") + kernel_source("full_map"), options, cache)
             .program,
-        fft == MapFft::clfft ? "spectrum_product" : "spectrum_product_half");
+        map_fft_on_device(fft) ? "spectrum_product" : "spectrum_product_half");
     auto upload = [&](const std::vector<Complex>& v) {
       return cl::Buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(Complex) * v.size(),
                         const_cast<Complex*>(v.data()));
     };
     s1_ = upload(spectra.part1.rho);
     s2_ = upload(spectra.part2.rho);
-    product_ = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * (fft == MapFft::clfft ? total : half));
+    product_ = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * (map_fft_on_device(fft) ? total : half));
     // One map per slot: a slot's map stays on the device until it is collected.
-    if (fft == MapFft::clfft)
+    if (map_fft_on_device(fft))
       for (int s = 0; s < slots; ++s)
         slot_[s].result = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * total);
     kernel_.setArg(0, s1_);
@@ -106,8 +120,11 @@ TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeCon
   } catch (const cl::Error& e) {
     rethrow(ctx, e);
   }
-  if (fft == MapFft::clfft) {
-    fft_ = std::make_unique<Fft3d>(library, ctx, dims);
+  if (fft == MapFft::clfft) fft_ = std::make_unique<Fft3d>(library, ctx, dims);
+#ifdef SNAPFIT_HAVE_VKFFT
+  if (fft == MapFft::vkfft) vkfft_ = std::make_unique<VkFft>(ctx, dims, product_, slot_[0].result);
+#endif
+  if (map_fft_on_device(fft)) {
     device_minima_ = std::make_unique<DeviceMinima>(ctx, dims, slots, cache);
     try {
       side_ = cl::CommandQueue(ctx.context, ctx.device.device, 0);
@@ -135,17 +152,20 @@ void TranslationMapper::enqueue_product(const Eigen::Matrix3d& R) {
   kernel_.setArg(4, pose);
   ctx_.queue.enqueueNDRangeKernel(
       kernel_, cl::NullRange,
-      cl::NDRange(fft_kind_ == MapFft::clfft ? d[0] * d[1] * d[2] : (d[0] / 2 + 1) * d[1] * d[2]));
+      cl::NDRange(map_fft_on_device(fft_kind_) ? d[0] * d[1] * d[2] : (d[0] / 2 + 1) * d[1] * d[2]));
 }
 
+// f(t_j) = sum_k P_k e^{2 pi i k.j / N} into the slot's map (FFTW's runs on the host).
 void TranslationMapper::enqueue_fft(int slot) {
-  if (fft_kind_ == MapFft::clfft)
-    fft_->enqueue(FftDirection::inverse, product_, slot_[slot].result);  // f(t_j) = sum_k P_k e^{2 pi i k.j / N}
+  if (fft_kind_ == MapFft::clfft) fft_->enqueue(FftDirection::inverse, product_, slot_[slot].result);
+#ifdef SNAPFIT_HAVE_VKFFT
+  if (fft_kind_ == MapFft::vkfft) vkfft_->fft.enqueue(product_, slot_[slot].result);
+#endif
 }
 
 void TranslationMapper::enqueue_read(int slot, cl::Event* done) {
   Slot& s = slot_[slot];
-  if (fft_kind_ == MapFft::clfft) {
+  if (map_fft_on_device(fft_kind_)) {
     if (s.output == MapOutput::minima) {
       device_minima_->enqueue_read(ctx_.queue, slot, done);
       return;
@@ -170,7 +190,7 @@ void TranslationMapper::submit(int slot, const Eigen::Matrix3d& R, MapOutput out
     s.output = output;
     enqueue_product(R);
     enqueue_fft(slot);
-    if (fft_kind_ == MapFft::clfft && output == MapOutput::minima)
+    if (map_fft_on_device(fft_kind_) && output == MapOutput::minima)
       device_minima_->enqueue_reduce(ctx_.queue, slot, s.result, aliasing_box(R));
     enqueue_read(slot, &s.read);
     ctx_.queue.flush();
@@ -213,7 +233,7 @@ MapBox TranslationMapper::aliasing_box(const Eigen::Matrix3d& R) {
 void TranslationMapper::finish_map(int slot, std::vector<float>& energy, MapStageSeconds* stages) {
   Slot& s = slot_[slot];
   auto t0 = std::chrono::steady_clock::now();
-  // Re f at FFT index j: real[j] (fftw) or s.f[j].real() (clfft).
+  // Re f at FFT index j: real[j] (fftw) or s.f[j].real() (clfft, vkfft).
   const float* real = nullptr;
 #ifdef SNAPFIT_HAVE_FFTW
   if (fft_kind_ == MapFft::fftw) {
@@ -255,7 +275,7 @@ void TranslationMapper::wait_for(int slot) {
 }
 
 void TranslationMapper::collect(int slot, std::vector<float>& energy) {
-  if (slot_[slot].pending && fft_kind_ == MapFft::clfft && slot_[slot].output == MapOutput::minima)
+  if (slot_[slot].pending && map_fft_on_device(fft_kind_) && slot_[slot].output == MapOutput::minima)
     throw Error("full map: slot " + std::to_string(slot) + " was submitted for its minima (collect_minima)");
   wait_for(slot);
   finish_map(slot, energy, nullptr);
@@ -274,7 +294,7 @@ void TranslationMapper::host_minima(int slot, std::size_t count, double separati
 void TranslationMapper::collect_minima(int slot, std::size_t count, double separation, MapMinimaResult& out) {
   wait_for(slot);
   Slot& s = slot_[slot];
-  if (fft_kind_ != MapFft::clfft || s.output != MapOutput::minima) {
+  if (!map_fft_on_device(fft_kind_) || s.output != MapOutput::minima) {
     host_minima(slot, count, separation, out, nullptr);
     return;
   }
@@ -320,7 +340,7 @@ MapStageSeconds TranslationMapper::time_stages(const Eigen::Matrix3d& R, std::ve
     enqueue_product(R);
     ctx_.queue.finish();
     t.product = lap();
-    if (fft_kind_ == MapFft::clfft) {
+    if (map_fft_on_device(fft_kind_)) {
       enqueue_fft(0);
       ctx_.queue.finish();
       t.fft = lap();
@@ -340,7 +360,7 @@ MapStageSeconds TranslationMapper::time_stages(const Eigen::Matrix3d& R, std::ve
 
 MapStageSeconds TranslationMapper::time_minima_stages(const Eigen::Matrix3d& R, std::size_t count, double separation,
                                                       MapMinimaResult& out) {
-  if (fft_kind_ != MapFft::clfft) {
+  if (!map_fft_on_device(fft_kind_)) {
     MapStageSeconds t = time_stages(R, energy_);
     const auto t0 = std::chrono::steady_clock::now();
     map_minima(grid_, energy_, count, separation, out);

@@ -52,7 +52,8 @@ struct MapMinimaCounts {
 // host finishes one slot's map, the device computes the other's (one in-order queue).
 // With MapFft::clfft the queue runs the product, clFFT's inverse into the slot's map and
 // a non-blocking read of the complex map, or, for MapOutput::minima, the minima kernel
-// (engine/device_minima.h) and a read of its short list; with MapFft::fftw it runs the
+// (engine/device_minima.h) and a read of its short list; MapFft::vkfft is the same with
+// VkFFT's inverse (engine/vkfft_inverse.h); with MapFft::fftw it runs the
 // product on the half spectrum and a non-blocking read of that, and collect() (or
 // collect_minima(), which then finds the minima on the host) runs FFTW's complex-to-real
 // inverse on the host.
@@ -89,13 +90,14 @@ class TranslationMapper {
   // The same for submit(.., MapOutput::minima) + collect_minima.
   MapStageSeconds time_minima_stages(const Eigen::Matrix3d& R, std::size_t count, double separation,
                                      MapMinimaResult& out);
-  // True when MapOutput::minima reduces the maps on the device (clFFT).
-  bool minima_on_device() const { return fft_kind_ == MapFft::clfft; }
+  // True when MapOutput::minima reduces the maps on the device (clFFT, VkFFT).
+  bool minima_on_device() const { return map_fft_on_device(fft_kind_); }
   MapMinimaCounts minima_counts() const;
 
  private:
   struct Slot;
   struct HostFft;
+  struct VkFft;
   void enqueue_product(const Eigen::Matrix3d& R);
   void enqueue_fft(int slot);
   void enqueue_read(int slot, cl::Event* done);
@@ -112,12 +114,13 @@ class TranslationMapper {
   cl::Buffer s1_, s2_, product_;
   MapFft fft_kind_;
   std::unique_ptr<Fft3d> fft_;                   // clfft
-  std::unique_ptr<DeviceMinima> device_minima_;  // clfft
-  cl::CommandQueue side_;                        // clfft: reads of a collected slot while the queue runs the other
-  std::unique_ptr<HostFft> host_fft_;            // fftw
-  std::vector<std::size_t> fft_index_;           // grid index -> FFT index of the same translation
-  std::vector<float> energy_;                    // collect_minima's map on the host
-  std::array<std::vector<char>, 3> inside_;      // per axis: the translations that do not alias
+  std::unique_ptr<DeviceMinima> device_minima_;  // clfft, vkfft
+  cl::CommandQueue side_;                    // clfft, vkfft: reads of a collected slot while the queue runs the other
+  std::unique_ptr<HostFft> host_fft_;        // fftw
+  std::unique_ptr<VkFft> vkfft_;             // vkfft
+  std::vector<std::size_t> fft_index_;       // grid index -> FFT index of the same translation
+  std::vector<float> energy_;                // collect_minima's map on the host
+  std::array<std::vector<char>, 3> inside_;  // per axis: the translations that do not alias
   MapMinimaCounts counts_;
   std::unique_ptr<Slot[]> slot_;
 };

@@ -10,15 +10,16 @@
 // --scene the scene's pair at its own FFT size (maps with the minima of real parts), trilinear
 // and tricubic resampling of the rotated spectrum (--quick: trilinear only), each inverse
 // FFT this build has (engine/map_fft.h) side by side, and the one choose_map_fft picks;
-// with clFFT both ways of finding each map's minima: on the device (the search's way,
-// engine/device_minima.h: the minima kernel, then a short list read back and thinned on
-// the host) and on the host (the whole complex map read back, put in grid order, then
-// map_minima), so the two compare in one run. FFTW's maps are on the host: host only.
+// with clFFT and VkFFT (the device FFTs) both ways of finding each map's minima: on the
+// device (the search's way, engine/device_minima.h: the minima kernel, then a short list
+// read back and thinned on the host) and on the host (the whole complex map read back, put
+// in grid order, then map_minima), so the two compare in one run. FFTW's maps are on the
+// host: host only.
 // Per row: where one map's time goes (TranslationMapper::time_minima_stages, or
 // time_stages then map_minima: each stage waited for in turn, median of 3), the
 // set-up (mapper constructor: uploads, kernels, plan), 2 warm-up maps, then N rotations of
 // so3_grid_for_count(N) (default 64^3: 200, 128^3 and a scene: 40; --quick 24 and 6) with 4 minima
-// per map, two maps in flight (scan_rotations; the host way with clFFT: the same loop
+// per map, two maps in flight (scan_rotations; the host way on a device FFT: the same loop
 // with collect and map_minima, as scan_rotations ran before the device found minima);
 // the interval between consecutive finished maps is one rotation's cost; rotations/s =
 // 1 / median interval, and the whole scan's count over its wall time. One-shot: 3 calls
@@ -127,7 +128,7 @@ int main(int argc, char** argv) {
                   << ": choose_map_fft picks " << describe_map_fft_choice(choice) << "\n";
         for (const MapFft kind : map_ffts_built())
           for (const bool on_device : {true, false}) {
-            if (on_device && kind != MapFft::clfft) continue;  // FFTW's maps are on the host
+            if (on_device && !map_fft_on_device(kind)) continue;  // FFTW's maps are on the host
             Row row;
             row.workload = pair ? scene_path : "synthetic";
             row.n = n;
@@ -146,7 +147,7 @@ int main(int argc, char** argv) {
             for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
             const ScanOptions options{4, 1.0};
             auto scan = [&](const std::vector<std::size_t>& indices, const std::function<void()>& done) {
-              if (on_device || kind != MapFft::clfft)
+              if (on_device || !map_fft_on_device(kind))
                 scan_rotations(mapper, grid.rotations, indices, options, done);
               else
                 scan_on_host(mapper, grid.rotations, indices, options, done);

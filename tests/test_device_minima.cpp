@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <doctest/doctest.h>
+#include <memory>
 #include <random>
 
 #include "core/so3_grid.h"
@@ -246,49 +247,66 @@ TEST_CASE("device minima: the shipped default scene's maps, pipelined, equal map
   const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, options);
   const PairSpectra& spectra = pair.spectra;
   const double separation = 2 * spectra.spacing;
-  TranslationMapper mapper(fft, test::test_context(), spectra, Interpolation::trilinear, 0, MapFft::clfft,
-                           test::test_program_cache());
-  REQUIRE(mapper.minima_on_device());
   const So3Grid grid = so3_grid_for_count(24);
   std::vector<std::size_t> picked{0, 5, 11, 17, 23};
   std::vector<Eigen::Quaterniond> rotations;
   for (std::size_t i : picked) rotations.push_back(grid.rotations[i]);
   if (scene.assembled_pose) rotations.push_back(scene.assembled_pose->rotation);
-  // The reference: each whole map read back, map_minima on the host.
-  std::vector<MapMinimaResult> every, top;
-  std::vector<float> energy;
-  for (const Eigen::Quaterniond& q : rotations) {
-    mapper.submit(0, q.toRotationMatrix(), MapOutput::energy);
-    mapper.collect(0, energy);
-    every.emplace_back();
-    map_minima(mapper.grid(), energy, 1000000, 0.0, every.back());
-    top.emplace_back();
-    map_minima(mapper.grid(), energy, 4, separation, top.back());
-  }
-  // Device minima, two maps in flight: every minimum, and the search's four.
-  std::size_t total = 0;
-  for (const bool all : {true, false}) {
-    const std::size_t count = all ? 1000000 : 4;
-    const double sep = all ? 0.0 : separation;
-    const std::vector<MapMinimaResult>& want = all ? every : top;
-    MapMinimaResult got;
-    mapper.submit(0, rotations[0].toRotationMatrix(), MapOutput::minima);
-    mapper.submit(1, rotations[1].toRotationMatrix(), MapOutput::minima);
-    CHECK_THROWS_AS(mapper.collect(0, energy), Error);  // submitted for its minima
-    for (std::size_t i = 0; i < rotations.size(); ++i) {
-      mapper.collect_minima(int(i % 2), count, sep, got);
-      if (i + 2 < rotations.size()) mapper.submit(int(i % 2), rotations[i + 2].toRotationMatrix(), MapOutput::minima);
-      check_same(got, want[i], std::string(all ? "every minimum" : "top 4") + ", rotation " + std::to_string(i));
-      if (all) total += got.minima.size();
+  // Every device FFT built (clFFT, VkFFT), each against its own maps read back.
+  std::unique_ptr<TranslationMapper> clfft_mapper;
+  std::vector<MapMinimaResult> clfft_every, clfft_top;  // for the checks after
+  for (const MapFft kind : map_ffts_built()) {
+    if (!map_fft_on_device(kind)) continue;
+    auto mapper = std::make_unique<TranslationMapper>(fft, test::test_context(), spectra, Interpolation::trilinear, 0,
+                                                      kind, test::test_program_cache());
+    REQUIRE(mapper->minima_on_device());
+    // The reference: each whole map read back, map_minima on the host.
+    std::vector<MapMinimaResult> every, top;
+    std::vector<float> energy;
+    for (const Eigen::Quaterniond& q : rotations) {
+      mapper->submit(0, q.toRotationMatrix(), MapOutput::energy);
+      mapper->collect(0, energy);
+      every.emplace_back();
+      map_minima(mapper->grid(), energy, 1000000, 0.0, every.back());
+      top.emplace_back();
+      map_minima(mapper->grid(), energy, 4, separation, top.back());
+    }
+    // Device minima, two maps in flight: every minimum, and the search's four.
+    std::size_t total = 0;
+    for (const bool all : {true, false}) {
+      const std::size_t count = all ? 1000000 : 4;
+      const double sep = all ? 0.0 : separation;
+      const std::vector<MapMinimaResult>& want = all ? every : top;
+      MapMinimaResult got;
+      mapper->submit(0, rotations[0].toRotationMatrix(), MapOutput::minima);
+      mapper->submit(1, rotations[1].toRotationMatrix(), MapOutput::minima);
+      CHECK_THROWS_AS(mapper->collect(0, energy), Error);  // submitted for its minima
+      for (std::size_t i = 0; i < rotations.size(); ++i) {
+        mapper->collect_minima(int(i % 2), count, sep, got);
+        if (i + 2 < rotations.size())
+          mapper->submit(int(i % 2), rotations[i + 2].toRotationMatrix(), MapOutput::minima);
+        check_same(got, want[i],
+                   map_fft_name(kind) + (all ? ", every minimum" : ", top 4") + ", rotation " + std::to_string(i));
+        if (all) total += got.minima.size();
+      }
+    }
+    const MapMinimaCounts counts = mapper->minima_counts();
+    MESSAGE(map_fft_name(kind) << ", default scene, " << mapper->grid().dims.transpose() << " translations: " << total
+                               << " minima in " << rotations.size() << " maps, longest list " << counts.longest << ", "
+                               << counts.long_lists << " lists longer than their first read");
+    CHECK(total >= rotations.size());
+    CHECK(counts.on_device == 2 * rotations.size());
+    CHECK(counts.fallbacks == 0);
+    if (kind == MapFft::clfft) {
+      clfft_mapper = std::move(mapper);
+      clfft_every = every;
+      clfft_top = top;
     }
   }
-  const MapMinimaCounts counts = mapper.minima_counts();
-  MESSAGE("default scene, " << mapper.grid().dims.transpose() << " translations: " << total << " minima in "
-                            << rotations.size() << " maps, longest list " << counts.longest << ", " << counts.long_lists
-                            << " lists longer than their first read");
-  CHECK(total >= rotations.size());
-  CHECK(counts.on_device == 2 * rotations.size());
-  CHECK(counts.fallbacks == 0);
+  REQUIRE(clfft_mapper);
+  TranslationMapper& mapper = *clfft_mapper;
+  const std::vector<MapMinimaResult>& every = clfft_every;
+  const std::vector<MapMinimaResult>& top = clfft_top;
 
   // scan_rotations (device minima) gives the reference's candidates and lowest energies.
   std::vector<std::size_t> indices(rotations.size());

@@ -1,6 +1,7 @@
 // The inverse FFT of full maps chosen by measurement (engine/map_fft_choice.h): every
 // backend built is timed, the fastest is picked, and the pick is read back from the
 // cache on the next call; names parse both ways.
+#include <algorithm>
 #include <doctest/doctest.h>
 
 #include "engine/device.h"
@@ -56,4 +57,13 @@ TEST_CASE("map FFT names: each backend built parses back; an unknown name is an 
   for (const MapFft f : map_ffts_built()) CHECK(parse_map_fft(map_fft_name(f)) == f);
   CHECK(map_ffts_built().front() == MapFft::clfft);
   CHECK_THROWS_WITH_AS(parse_map_fft("cufft"), doctest::Contains("cufft"), Error);
+  // The optional backends this build lacks are named with the package that brings them.
+  for (const MapFft f : {MapFft::fftw, MapFft::vkfft}) {
+    const auto built = map_ffts_built();
+    if (std::find(built.begin(), built.end(), f) == built.end())
+      CHECK_THROWS_WITH_AS(parse_map_fft(map_fft_name(f)), doctest::Contains("this build has no"), Error);
+  }
+  CHECK(map_fft_on_device(MapFft::clfft));
+  CHECK(map_fft_on_device(MapFft::vkfft));
+  CHECK_FALSE(map_fft_on_device(MapFft::fftw));
 }

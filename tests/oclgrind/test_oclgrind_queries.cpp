@@ -140,7 +140,8 @@ TEST_CASE("oclgrind: spectra (clFFT forward transforms, deconvolution) and full 
   }
   const Eigen::Matrix3d R = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
   // clFFT's path at both interpolations and low-passes; the half-spectrum product of
-  // FFTW's path (kernels/full_map.cl spectrum_product_half) once, when built.
+  // FFTW's path (kernels/full_map.cl spectrum_product_half) and VkFFT's inverse once each,
+  // when built.
   struct MapCase {
     Interpolation interpolation;
     std::size_t modes;
@@ -150,7 +151,8 @@ TEST_CASE("oclgrind: spectra (clFFT forward transforms, deconvolution) and full 
   for (const Interpolation interpolation : {Interpolation::trilinear, Interpolation::tricubic})
     for (const std::size_t modes : {std::size_t(0), std::size_t(500)})
       cases.push_back({interpolation, modes, MapFft::clfft});
-  if (map_ffts_built().size() > 1) cases.push_back({Interpolation::trilinear, 0, map_ffts_built().back()});
+  for (const MapFft fft : map_ffts_built())
+    if (fft != MapFft::clfft) cases.push_back({Interpolation::trilinear, 0, fft});
   for (const MapCase& c : cases) {
     const Interpolation interpolation = c.interpolation;
     const std::size_t modes = c.modes;
