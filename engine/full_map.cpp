@@ -322,30 +322,42 @@ MapMinimaCounts TranslationMapper::minima_counts() const {
   return c;
 }
 
-MapStageSeconds TranslationMapper::time_stages(const Eigen::Matrix3d& R, std::vector<float>& energy) {
+// A stopwatch of consecutive stages: each call gives the seconds since the last.
+class StageLap {
+ public:
+  double operator()() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return s;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+void TranslationMapper::time_product_and_fft(const Eigen::Matrix3d& R, MapStageSeconds& t, StageLap& lap) {
   for (int s = 0; s < slots; ++s)
     if (slot_[s].pending) slot_[s].read.wait();
   slot_[0].pending = slot_[1].pending = false;
+  ctx_.queue.finish();
+  lap();
+  enqueue_product(R);
+  ctx_.queue.finish();
+  t.product = lap();
+  if (map_fft_on_device(fft_kind_)) {
+    enqueue_fft(0);
+    ctx_.queue.finish();
+    t.fft = lap();
+  }
+  slot_[0].R = R;
+}
+
+MapStageSeconds TranslationMapper::time_stages(const Eigen::Matrix3d& R, std::vector<float>& energy) {
   MapStageSeconds t;
-  using Clock = std::chrono::steady_clock;
-  auto lap = [last = Clock::now()]() mutable {
-    const auto now = Clock::now();
-    const double s = std::chrono::duration<double>(now - last).count();
-    last = now;
-    return s;
-  };
+  StageLap lap;
   try {
-    ctx_.queue.finish();
-    lap();
-    enqueue_product(R);
-    ctx_.queue.finish();
-    t.product = lap();
-    if (map_fft_on_device(fft_kind_)) {
-      enqueue_fft(0);
-      ctx_.queue.finish();
-      t.fft = lap();
-    }
-    slot_[0].R = R;
+    time_product_and_fft(R, t, lap);
     slot_[0].output = MapOutput::energy;
     cl::Event read;
     enqueue_read(0, &read);
@@ -362,33 +374,16 @@ MapStageSeconds TranslationMapper::time_minima_stages(const Eigen::Matrix3d& R, 
                                                       MapMinimaResult& out) {
   if (!map_fft_on_device(fft_kind_)) {
     MapStageSeconds t = time_stages(R, energy_);
-    const auto t0 = std::chrono::steady_clock::now();
+    StageLap lap;
     map_minima(grid_, energy_, count, separation, out);
-    t.minima = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    t.minima = lap();
     return t;
   }
-  for (int s = 0; s < slots; ++s)
-    if (slot_[s].pending) slot_[s].read.wait();
-  slot_[0].pending = slot_[1].pending = false;
   MapStageSeconds t;
-  using Clock = std::chrono::steady_clock;
-  auto lap = [last = Clock::now()]() mutable {
-    const auto now = Clock::now();
-    const double s = std::chrono::duration<double>(now - last).count();
-    last = now;
-    return s;
-  };
+  StageLap lap;
   Slot& s = slot_[0];
   try {
-    ctx_.queue.finish();
-    lap();
-    enqueue_product(R);
-    ctx_.queue.finish();
-    t.product = lap();
-    enqueue_fft(0);
-    ctx_.queue.finish();
-    t.fft = lap();
-    s.R = R;
+    time_product_and_fft(R, t, lap);
     s.output = MapOutput::minima;
     device_minima_->enqueue_reduce(ctx_.queue, 0, s.result, aliasing_box(R));
     ctx_.queue.finish();

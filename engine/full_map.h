@@ -47,6 +47,8 @@ struct MapMinimaCounts {
   std::size_t long_lists = 0;  // device maps whose list was longer than its first read
 };
 
+class StageLap;  // engine/full_map.cpp: the timed stages' stopwatch
+
 // Maps of one pair for many rotations on one device: both spectra uploaded, the product
 // kernel built and the inverse FFT planned once. Two slots pipeline the work: while the
 // host finishes one slot's map, the device computes the other's (one in-order queue).
@@ -106,6 +108,9 @@ class TranslationMapper {
   MapBox aliasing_box(const Eigen::Matrix3d& R);
   void finish_map(int slot, std::vector<float>& energy, MapStageSeconds* stages);
   void host_minima(int slot, std::size_t count, double separation, MapMinimaResult& out, MapStageSeconds* stages);
+  // For the timed stages: waits for both slots, then the product and (on the device) the
+  // inverse FFT into slot 0, each waited for and timed by `lap`.
+  void time_product_and_fft(const Eigen::Matrix3d& R, MapStageSeconds& t, StageLap& lap);
   const ComputeContext& ctx_;
   const PairSpectra& spectra_;
   GridSpec grid_;
