@@ -41,7 +41,7 @@ constexpr double kDeg = M_PI / 180.0;
 
 struct SearchOptions {
   std::string scene;
-  std::optional<double> step_deg;          // default 30 degrees
+  std::optional<double> step_deg;  // default 30 degrees
   std::optional<std::size_t> rotations;
   std::size_t top = 10;
   std::size_t per_rotation = 4;
@@ -52,6 +52,7 @@ struct SearchOptions {
   std::size_t refine_modes = 65536;
   std::size_t refine_queries = 200;
   std::string map_fft = "auto";  // auto: measured per (device, size), engine/map_fft_choice.h
+  std::size_t map_batch = 0;     // rotations per batch; 0: the measured pick with auto, else 1
 };
 
 std::string device_for_rank(const std::string& list, int local_rank) {
@@ -162,15 +163,19 @@ void run_search(const SearchOptions& opt, const SearchRanks& ranks) {
           make_compute_context(select_device(device_for_rank(opt.devices, ranks.local_rank()))));
       fft = std::make_unique<FftLibrary>();
       MapFft kind = MapFft::clfft;
+      std::size_t batch = opt.map_batch ? opt.map_batch : 1;
       if (opt.map_fft == "auto") {
         const MapFftChoice choice = choose_map_fft(*fft, *ctx, pair.spectra, interpolation, opt.modes);
         kind = choice.fft;
+        if (!opt.map_batch) batch = choice.batch;
         fft_used = describe_map_fft_choice(choice);
       } else {
         kind = parse_map_fft(opt.map_fft);
         fft_used = map_fft_name(kind) + " (--map-fft)";
       }
-      mapper = std::make_unique<TranslationMapper>(*fft, *ctx, pair.spectra, interpolation, opt.modes, kind);
+      if (opt.map_batch) fft_used += ", " + std::to_string(batch) + " rotations per batch (--map-batch)";
+      mapper = std::make_unique<TranslationMapper>(*fft, *ctx, pair.spectra, interpolation, opt.modes, kind,
+                                                   default_program_cache(), batch);
     } catch (const std::exception& e) {
       error = e.what();
     }
@@ -265,6 +270,7 @@ void run_search(const SearchOptions& opt, const SearchRanks& ranks) {
     line["rank"] = k + 1;
     line["energy"] = top[k].energy;
     line["map_fft"] = map_fft_name(mapper->fft());
+    line["map_batch"] = mapper->batch();
     try {
       const DescentResult refined = descend_pose(*engine, top[k].pose, descent);
       nlohmann::json by_energy = pose_json(refined.pose);
@@ -321,6 +327,9 @@ void add_search_command(CLI::App& app) {
   cmd->add_option("--map-fft", opt->map_fft,
                   "Inverse FFT of the maps: auto (the fastest, measured once per device and size), clfft, fftw or "
                   "vkfft (those this build has)");
+  cmd->add_option("--map-batch", opt->map_batch,
+                  "Rotations mapped per batch on a device FFT (default: measured with --map-fft auto, else 1)")
+      ->check(positive_number());
   cmd->callback([opt] {
     const SearchRanks ranks;
     try {

@@ -62,7 +62,8 @@ DeviceMinima::DeviceMinima(const ComputeContext& ctx, const std::array<std::size
   read_.assign(std::size_t(slots), 0);
 }
 
-void DeviceMinima::enqueue_reduce(const cl::CommandQueue& queue, int slot, const cl::Buffer& f, const MapBox& box) {
+void DeviceMinima::enqueue_reduce(const cl::CommandQueue& queue, int slot, const cl::Buffer& f, const MapBox& box,
+                                  std::size_t offset) {
   const cl::Buffer& list = lists_.at(std::size_t(slot));
   try {
     queue.enqueueWriteBuffer(list, CL_FALSE, 0, sizeof kHeaderReset, kHeaderReset);
@@ -70,6 +71,7 @@ void DeviceMinima::enqueue_reduce(const cl::CommandQueue& queue, int slot, const
     kernel_.setArg(2, cl_int4{{box.lo[0], box.lo[1], box.lo[2], 0}});
     kernel_.setArg(3, cl_int4{{box.hi[0], box.hi[1], box.hi[2], 0}});
     kernel_.setArg(5, list);
+    kernel_.setArg(6, cl_ulong(offset));
     queue.enqueueNDRangeKernel(kernel_, cl::NullRange,
                                cl::NDRange((dims_[0] + wg_ - 1) / wg_ * wg_, dims_[1], dims_[2]),
                                cl::NDRange(wg_, 1, 1));

@@ -4,10 +4,11 @@
 // the whole map: the same minima in the same order, with the same energies, as
 // map_minima (engine/map_minima.h) on the map in grid order, and the same lowest energy.
 //
-// A map is clFFT's complex inverse FFT in FFT order, E = -Re f (engine/full_map.h, the
-// clFFT path). Each of a few slots has its own list on the device, so the maps of a
-// pipeline (TranslationMapper's two slots) never share one: enqueue a slot's reduction
-// and read on the in-order queue after the map's FFT, wait for the read, then finish().
+// A map is the complex inverse FFT in FFT order, E = -Re f (engine/full_map.h, the clFFT
+// and VkFFT paths). Each of a few lists lives on the device, so the maps of a pipeline
+// (every map of TranslationMapper's batches in flight) never share one: enqueue a list's
+// reduction and read on the in-order queue after the map's FFT, wait for the read, then
+// finish(). The lists are called slots below.
 #include <CL/opencl.hpp>
 #include <array>
 #include <cstddef>
@@ -40,9 +41,11 @@ class DeviceMinima {
   DeviceMinima(const DeviceMinima&) = delete;
   DeviceMinima& operator=(const DeviceMinima&) = delete;
 
-  // Enqueues on `queue` the reduction of the map `f` (dims complex floats, FFT order) into
-  // the slot's list: its counters reset, then the kernel.
-  void enqueue_reduce(const cl::CommandQueue& queue, int slot, const cl::Buffer& f, const MapBox& box);
+  // Enqueues on `queue` the reduction of the map in `f` (dims complex floats, FFT order,
+  // from element `offset`: a map of a batch) into the slot's list: its counters reset,
+  // then the kernel.
+  void enqueue_reduce(const cl::CommandQueue& queue, int slot, const cl::Buffer& f, const MapBox& box,
+                      std::size_t offset = 0);
   // Enqueues on `queue` a non-blocking read of the slot's counters and of the first
   // entries of its list (as many as the longest list so far, at least 1,024), `done`
   // completing with it.

@@ -58,10 +58,12 @@ FftLibrary::FftLibrary() {
 
 FftLibrary::~FftLibrary() { clfftTeardown(); }
 
-Fft3d::Fft3d(const FftLibrary&, const ComputeContext& ctx, std::array<std::size_t, 3> dims) : ctx_(ctx), dims_(dims) {
+Fft3d::Fft3d(const FftLibrary&, const ComputeContext& ctx, std::array<std::size_t, 3> dims, std::size_t batch)
+    : ctx_(ctx), dims_(dims), batch_(batch) {
   for (std::size_t n : dims)
     if (!only_fast_factors(n))
       throw Error("FFT size " + dims_text(dims) + " has a factor other than 2, 3, 5, 7; use next_fft_size");
+  if (batch == 0) throw Error("FFT size " + dims_text(dims) + ": a batch of 0 transforms");
   const std::string where = "FFT plan " + dims_text(dims) + " on " + ctx.device.info.name;
   clfftPlanHandle plan = 0;
   std::size_t lengths[3] = {dims[0], dims[1], dims[2]};
@@ -72,6 +74,10 @@ Fft3d::Fft3d(const FftLibrary&, const ComputeContext& ctx, std::array<std::size_
     check(clfftSetLayout(plan, CLFFT_COMPLEX_INTERLEAVED, CLFFT_COMPLEX_INTERLEAVED), where);
     check(clfftSetResultLocation(plan, CLFFT_OUTOFPLACE), where);
     check(clfftSetPlanScale(plan, CLFFT_BACKWARD, 1.0f), where);  // unnormalized inverse (eq. 14 without 1/N)
+    if (batch > 1) {
+      check(clfftSetPlanBatchSize(plan, batch), where + ": batch of " + std::to_string(batch));
+      check(clfftSetPlanDistance(plan, count(), count()), where);
+    }
     cl_command_queue queue = ctx.queue();
     clfftStatus baked;
     {

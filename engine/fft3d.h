@@ -32,17 +32,19 @@ enum class FftDirection { forward, inverse };
 
 class Fft3d {
  public:
-  // dims: points along x, y, z; each must have only factors 2, 3, 5, 7.
+  // dims: points along x, y, z; each must have only factors 2, 3, 5, 7. `batch`
+  // transforms of count() points each, one after the other in the buffers, per call.
   // Throws snapfit::Error naming the dims and the device when the plan cannot be baked.
-  Fft3d(const FftLibrary& library, const ComputeContext& ctx, std::array<std::size_t, 3> dims);
+  Fft3d(const FftLibrary& library, const ComputeContext& ctx, std::array<std::size_t, 3> dims, std::size_t batch = 1);
   ~Fft3d();
   Fft3d(const Fft3d&) = delete;
   Fft3d& operator=(const Fft3d&) = delete;
 
   std::array<std::size_t, 3> dims() const { return dims_; }
   std::size_t count() const { return dims_[0] * dims_[1] * dims_[2]; }
+  std::size_t batch() const { return batch_; }
 
-  // Out-of-place transform of count() complex floats; blocks until done.
+  // Out-of-place transform of batch() x count() complex floats; blocks until done.
   void transform(FftDirection direction, const cl::Buffer& input, const cl::Buffer& output) const;
   // The same transform enqueued on the context's queue without waiting (later commands
   // on that in-order queue see its result).
@@ -51,6 +53,7 @@ class Fft3d {
  private:
   const ComputeContext& ctx_;
   std::array<std::size_t, 3> dims_;
+  std::size_t batch_ = 1;
   std::size_t plan_ = 0;  // clfftPlanHandle
 };
 

@@ -41,12 +41,16 @@ float low_pass_w2(const PairSpectra& spectra, std::size_t modes) {
 }  // namespace
 
 struct TranslationMapper::Slot {
-  cl::Buffer result;       // clfft, vkfft: the complex inverse FFT, on the device
-  std::vector<Complex> f;  // clfft, vkfft: the same read back (sized at the first read)
+  cl::Buffer result;               // clfft, vkfft: the batch's complex inverse FFTs, on the device
+  std::vector<Complex> f;          // clfft, vkfft: the same read back (sized at the first read)
+  cl::Buffer poses;                // the batch's poses for the product kernel
+  std::vector<cl_float16> pose;    // the same on the host, kept until the write is done
+  std::vector<Eigen::Matrix3d> R;  // the batch's rotations
+  std::vector<char> collected;     // per member of the batch
+  std::size_t count = 0;           // members submitted
   cl::Event read;
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   MapOutput output = MapOutput::energy;
-  bool pending = false;
+  bool pending = false;  // the read is not waited for yet
 };
 
 #ifdef SNAPFIT_HAVE_FFTW
@@ -62,8 +66,8 @@ struct TranslationMapper::HostFft {};
 struct TranslationMapper::VkFft {
   VkfftInverse fft;
   VkFft(const ComputeContext& ctx, const std::array<std::size_t, 3>& dims, const cl::Buffer& product,
-        const cl::Buffer& map)
-      : fft(ctx, dims, product, map) {}
+        const cl::Buffer& map, std::size_t batch)
+      : fft(ctx, dims, product, map, batch) {}
 };
 #else
 struct TranslationMapper::VkFft {};
@@ -71,12 +75,24 @@ struct TranslationMapper::VkFft {};
 
 TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeContext& ctx, const PairSpectra& spectra,
                                      Interpolation interpolation, std::size_t modes, MapFft fft,
-                                     const ProgramCacheConfig& cache)
-    : ctx_(ctx), spectra_(spectra), max_w2_(low_pass_w2(spectra, modes)), fft_kind_(fft), slot_(new Slot[slots]) {
+                                     const ProgramCacheConfig& cache, std::size_t batch)
+    : ctx_(ctx),
+      spectra_(spectra),
+      max_w2_(low_pass_w2(spectra, modes)),
+      batch_(batch),
+      fft_kind_(fft),
+      slot_(new Slot[slots]) {
   parse_map_fft(map_fft_name(fft));  // throws for a backend this build lacks
   const auto& dims = spectra.dims;
   const std::size_t total = dims[0] * dims[1] * dims[2];
   const std::size_t half = (dims[0] / 2 + 1) * dims[1] * dims[2];
+  if (batch == 0 || (batch > 1 && !map_fft_on_device(fft)))
+    throw Error("full map: a batch of " + std::to_string(batch) + " rotations is not supported with " +
+                map_fft_name(fft) + " (1 with FFTW's host inverse, 1 or more with a device FFT)");
+  if (batch > map_batch_limit(ctx, dims, batch))
+    throw Error("full map: a batch of " + std::to_string(batch) + " maps of " + std::to_string(dims[0]) + " x " +
+                std::to_string(dims[1]) + " x " + std::to_string(dims[2]) + " does not fit " + ctx.device.info.name +
+                "'s memory (at most " + std::to_string(map_batch_limit(ctx, dims, batch)) + ")");
   // Regular order: translation index j' from -floor(N/2) to N - 1 - floor(N/2) per axis;
   // its FFT index is j = j' mod N.
   grid_.spacing = spectra.spacing;
@@ -104,11 +120,21 @@ TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeCon
     };
     s1_ = upload(spectra.part1.rho);
     s2_ = upload(spectra.part2.rho);
-    product_ = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * (map_fft_on_device(fft) ? total : half));
-    // One map per slot: a slot's map stays on the device until it is collected.
-    if (map_fft_on_device(fft))
-      for (int s = 0; s < slots; ++s)
-        slot_[s].result = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * total);
+    const std::size_t product_bytes = sizeof(Complex) * batch * (map_fft_on_device(fft) ? total : half);
+    product_ = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, product_bytes);
+    // A batch's members past those submitted are transformed too: zeros, not whatever
+    // the allocation held.
+    ctx.queue.enqueueFillBuffer(product_, Complex(0.0f, 0.0f), 0, product_bytes);
+    // One batch of maps per slot: a slot's maps stay on the device until they are collected.
+    for (int s = 0; s < slots; ++s) {
+      Slot& slot = slot_[s];
+      if (map_fft_on_device(fft))
+        slot.result = cl::Buffer(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * total * batch);
+      slot.poses = cl::Buffer(ctx.context, CL_MEM_READ_ONLY, sizeof(cl_float16) * batch);
+      slot.pose.resize(batch);
+      slot.R.resize(batch);
+      slot.collected.resize(batch);
+    }
     kernel_.setArg(0, s1_);
     kernel_.setArg(1, s2_);
     kernel_.setArg(2, cl_int4{{int(dims[0]), int(dims[1]), int(dims[2]), 0}});
@@ -120,12 +146,12 @@ TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeCon
   } catch (const cl::Error& e) {
     rethrow(ctx, e);
   }
-  if (fft == MapFft::clfft) fft_ = std::make_unique<Fft3d>(library, ctx, dims);
+  if (fft == MapFft::clfft) fft_ = std::make_unique<Fft3d>(library, ctx, dims, batch);
 #ifdef SNAPFIT_HAVE_VKFFT
-  if (fft == MapFft::vkfft) vkfft_ = std::make_unique<VkFft>(ctx, dims, product_, slot_[0].result);
+  if (fft == MapFft::vkfft) vkfft_ = std::make_unique<VkFft>(ctx, dims, product_, slot_[0].result, batch);
 #endif
   if (map_fft_on_device(fft)) {
-    device_minima_ = std::make_unique<DeviceMinima>(ctx, dims, slots, cache);
+    device_minima_ = std::make_unique<DeviceMinima>(ctx, dims, slots * int(batch), cache);
     try {
       side_ = cl::CommandQueue(ctx.context, ctx.device.device, 0);
     } catch (const cl::Error& e) {
@@ -142,20 +168,29 @@ TranslationMapper::~TranslationMapper() {
     if (slot_[s].pending) slot_[s].read.wait();  // the read writes into the slot's host buffer
 }
 
-void TranslationMapper::enqueue_product(const Eigen::Matrix3d& R) {
-  const Eigen::Vector3d shift = R * spectra_.part2.centre - spectra_.part1.centre;
-  cl_float16 pose{};
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) pose.s[3 * r + c] = static_cast<float>(R(r, c));
-  for (int a = 0; a < 3; ++a) pose.s[9 + a] = static_cast<float>(shift[a]);
+// The products of the slot's batch, one launch: R row-major and the shift R c2 - c1 per
+// member (kernels/full_map.cl).
+void TranslationMapper::enqueue_product(int slot) {
+  Slot& s = slot_[slot];
+  for (std::size_t m = 0; m < s.count; ++m) {
+    const Eigen::Matrix3d& R = s.R[m];
+    const Eigen::Vector3d shift = R * spectra_.part2.centre - spectra_.part1.centre;
+    cl_float16& pose = s.pose[m];
+    pose = cl_float16{};
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) pose.s[3 * r + c] = static_cast<float>(R(r, c));
+    for (int a = 0; a < 3; ++a) pose.s[9 + a] = static_cast<float>(shift[a]);
+  }
+  ctx_.queue.enqueueWriteBuffer(s.poses, CL_FALSE, 0, sizeof(cl_float16) * s.count, s.pose.data());
   const auto& d = spectra_.dims;
-  kernel_.setArg(4, pose);
+  kernel_.setArg(4, s.poses);
   ctx_.queue.enqueueNDRangeKernel(
       kernel_, cl::NullRange,
-      cl::NDRange(map_fft_on_device(fft_kind_) ? d[0] * d[1] * d[2] : (d[0] / 2 + 1) * d[1] * d[2]));
+      cl::NDRange(map_fft_on_device(fft_kind_) ? d[0] * d[1] * d[2] : (d[0] / 2 + 1) * d[1] * d[2], s.count));
 }
 
-// f(t_j) = sum_k P_k e^{2 pi i k.j / N} into the slot's map (FFTW's runs on the host).
+// f(t_j) = sum_k P_k e^{2 pi i k.j / N} into the slot's maps, the whole batch (FFTW's
+// runs on the host).
 void TranslationMapper::enqueue_fft(int slot) {
   if (fft_kind_ == MapFft::clfft) fft_->enqueue(FftDirection::inverse, product_, slot_[slot].result);
 #ifdef SNAPFIT_HAVE_VKFFT
@@ -167,11 +202,14 @@ void TranslationMapper::enqueue_read(int slot, cl::Event* done) {
   Slot& s = slot_[slot];
   if (map_fft_on_device(fft_kind_)) {
     if (s.output == MapOutput::minima) {
-      device_minima_->enqueue_read(ctx_.queue, slot, done);
+      // One in-order queue: the last list's read completes after the others.
+      for (std::size_t m = 0; m < s.count; ++m)
+        device_minima_->enqueue_read(ctx_.queue, minima_list(slot, m), m + 1 == s.count ? done : nullptr);
       return;
     }
-    s.f.resize(fft_index_.size());  // allocates at the first read only
-    ctx_.queue.enqueueReadBuffer(s.result, CL_FALSE, 0, sizeof(Complex) * s.f.size(), s.f.data(), nullptr, done);
+    s.f.resize(fft_index_.size() * batch_);  // allocates at the first read only
+    ctx_.queue.enqueueReadBuffer(s.result, CL_FALSE, 0, sizeof(Complex) * fft_index_.size() * s.count, s.f.data(),
+                                 nullptr, done);
     return;
   }
 #ifdef SNAPFIT_HAVE_FFTW
@@ -181,17 +219,24 @@ void TranslationMapper::enqueue_read(int slot, cl::Event* done) {
 #endif
 }
 
-void TranslationMapper::submit(int slot, const Eigen::Matrix3d& R, MapOutput output) {
+void TranslationMapper::submit(int slot, const Eigen::Matrix3d* R, std::size_t count, MapOutput output) {
+  if (slot < 0 || slot >= slots || count == 0 || count > batch_)
+    throw Error("full map: " + std::to_string(count) + " rotations into slot " + std::to_string(slot) + " (slots 0-" +
+                std::to_string(slots - 1) + ", 1 to " + std::to_string(batch_) + " rotations each)");
   Slot& s = slot_[slot];
   try {
-    if (s.pending) s.read.wait();  // an uncollected map is dropped
+    if (s.pending) s.read.wait();  // uncollected maps are dropped
     s.pending = false;
-    s.R = R;
+    s.count = count;
+    std::copy(R, R + count, s.R.begin());
+    std::fill(s.collected.begin(), s.collected.end(), 0);
     s.output = output;
-    enqueue_product(R);
+    enqueue_product(slot);
     enqueue_fft(slot);
     if (map_fft_on_device(fft_kind_) && output == MapOutput::minima)
-      device_minima_->enqueue_reduce(ctx_.queue, slot, s.result, aliasing_box(R));
+      for (std::size_t m = 0; m < count; ++m)
+        device_minima_->enqueue_reduce(ctx_.queue, minima_list(slot, m), s.result, aliasing_box(s.R[m]),
+                                       m * fft_index_.size());
     enqueue_read(slot, &s.read);
     ctx_.queue.flush();
   } catch (const cl::Error& e) {
@@ -230,11 +275,12 @@ MapBox TranslationMapper::aliasing_box(const Eigen::Matrix3d& R) {
   return box;
 }
 
-void TranslationMapper::finish_map(int slot, std::vector<float>& energy, MapStageSeconds* stages) {
+void TranslationMapper::finish_map(int slot, std::size_t member, std::vector<float>& energy, MapStageSeconds* stages) {
   Slot& s = slot_[slot];
   auto t0 = std::chrono::steady_clock::now();
-  // Re f at FFT index j: real[j] (fftw) or s.f[j].real() (clfft, vkfft).
+  // Re f at FFT index j: real[j] (fftw) or f[j].real() (clfft, vkfft).
   const float* real = nullptr;
+  const Complex* f = s.f.data() + member * fft_index_.size();
 #ifdef SNAPFIT_HAVE_FFTW
   if (fft_kind_ == MapFft::fftw) {
     host_fft_->fft.execute(slot);  // Re f = inverse FFT of the Hermitian part (kernels/full_map.cl)
@@ -246,7 +292,7 @@ void TranslationMapper::finish_map(int slot, std::vector<float>& energy, MapStag
     }
   }
 #endif
-  aliasing_mask(s.R, inside_);
+  aliasing_mask(s.R[member], inside_);
   const auto& inside = inside_;
   energy.resize(fft_index_.size());
   const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -257,60 +303,67 @@ void TranslationMapper::finish_map(int slot, std::vector<float>& energy, MapStag
       if (real)
         for (int x = 0; x < grid_.dims.x(); ++x, ++g) energy[g] = row && inside[0][x] ? -real[fft_index_[g]] : nan;
       else
-        for (int x = 0; x < grid_.dims.x(); ++x, ++g)
-          energy[g] = row && inside[0][x] ? -s.f[fft_index_[g]].real() : nan;
+        for (int x = 0; x < grid_.dims.x(); ++x, ++g) energy[g] = row && inside[0][x] ? -f[fft_index_[g]].real() : nan;
     }
   if (stages) stages->host = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void TranslationMapper::wait_for(int slot) {
+// Waits for the slot's read once, and marks the member collected.
+void TranslationMapper::wait_for(int slot, std::size_t member) {
   Slot& s = slot_[slot];
-  if (!s.pending) throw Error("full map: slot " + std::to_string(slot) + " has no map submitted");
-  try {
-    s.read.wait();
-  } catch (const cl::Error& e) {
-    rethrow(ctx_, e);
+  if (slot < 0 || slot >= slots || member >= s.count || s.collected[member])
+    throw Error("full map: slot " + std::to_string(slot) + " has no map " + std::to_string(member) + " submitted");
+  if (s.pending) {
+    try {
+      s.read.wait();
+    } catch (const cl::Error& e) {
+      rethrow(ctx_, e);
+    }
+    s.pending = false;
   }
-  s.pending = false;
+  s.collected[member] = 1;
 }
 
-void TranslationMapper::collect(int slot, std::vector<float>& energy) {
-  if (slot_[slot].pending && map_fft_on_device(fft_kind_) && slot_[slot].output == MapOutput::minima)
+void TranslationMapper::collect(int slot, std::vector<float>& energy, std::size_t member) {
+  if (slot >= 0 && slot < slots && map_fft_on_device(fft_kind_) && slot_[slot].output == MapOutput::minima)
     throw Error("full map: slot " + std::to_string(slot) + " was submitted for its minima (collect_minima)");
-  wait_for(slot);
-  finish_map(slot, energy, nullptr);
+  wait_for(slot, member);
+  finish_map(slot, member, energy, nullptr);
 }
 
 // map_minima and the lowest finite E on the whole map, on the host.
-void TranslationMapper::host_minima(int slot, std::size_t count, double separation, MapMinimaResult& out,
-                                    MapStageSeconds* stages) {
-  finish_map(slot, energy_, stages);
+void TranslationMapper::host_minima(int slot, std::size_t member, std::size_t count, double separation,
+                                    MapMinimaResult& out, MapStageSeconds* stages) {
+  finish_map(slot, member, energy_, stages);
   const auto t0 = std::chrono::steady_clock::now();
   map_minima(grid_, energy_, count, separation, out);
   ++counts_.on_host;
   if (stages) stages->minima = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void TranslationMapper::collect_minima(int slot, std::size_t count, double separation, MapMinimaResult& out) {
-  wait_for(slot);
+void TranslationMapper::collect_minima(int slot, std::size_t count, double separation, MapMinimaResult& out,
+                                       std::size_t member) {
+  wait_for(slot, member);
   Slot& s = slot_[slot];
   if (!map_fft_on_device(fft_kind_) || s.output != MapOutput::minima) {
-    host_minima(slot, count, separation, out, nullptr);
+    host_minima(slot, member, count, separation, out, nullptr);
     return;
   }
-  if (device_minima_->finish(side_, slot, grid_, count, separation, out.minima, out.best)) {
+  if (device_minima_->finish(side_, minima_list(slot, member), grid_, count, separation, out.minima, out.best)) {
     ++counts_.on_device;
     return;
   }
-  // The list overflowed or E was infinite: the slot's map is still on the device.
+  // The list overflowed or E was infinite: the member's map is still on the device.
   ++counts_.fallbacks;
-  s.f.resize(fft_index_.size());
+  const std::size_t n = fft_index_.size();
+  s.f.resize(n * batch_);
   try {
-    side_.enqueueReadBuffer(s.result, CL_TRUE, 0, sizeof(Complex) * s.f.size(), s.f.data());
+    side_.enqueueReadBuffer(s.result, CL_TRUE, sizeof(Complex) * n * member, sizeof(Complex) * n,
+                            s.f.data() + n * member);
   } catch (const cl::Error& e) {
     rethrow(ctx_, e);
   }
-  host_minima(slot, count, separation, out, nullptr);
+  host_minima(slot, member, count, separation, out, nullptr);
 }
 
 MapMinimaCounts TranslationMapper::minima_counts() const {
@@ -340,9 +393,13 @@ void TranslationMapper::time_product_and_fft(const Eigen::Matrix3d& R, MapStageS
   for (int s = 0; s < slots; ++s)
     if (slot_[s].pending) slot_[s].read.wait();
   slot_[0].pending = slot_[1].pending = false;
+  Slot& s = slot_[0];
+  s.count = 1;
+  s.R[0] = R;
+  std::fill(s.collected.begin(), s.collected.end(), 0);
   ctx_.queue.finish();
   lap();
-  enqueue_product(R);
+  enqueue_product(0);
   ctx_.queue.finish();
   t.product = lap();
   if (map_fft_on_device(fft_kind_)) {
@@ -350,7 +407,6 @@ void TranslationMapper::time_product_and_fft(const Eigen::Matrix3d& R, MapStageS
     ctx_.queue.finish();
     t.fft = lap();
   }
-  slot_[0].R = R;
 }
 
 MapStageSeconds TranslationMapper::time_stages(const Eigen::Matrix3d& R, std::vector<float>& energy) {
@@ -366,7 +422,8 @@ MapStageSeconds TranslationMapper::time_stages(const Eigen::Matrix3d& R, std::ve
   } catch (const cl::Error& e) {
     rethrow(ctx_, e);
   }
-  finish_map(0, energy, &t);
+  slot_[0].collected[0] = 1;
+  finish_map(0, 0, energy, &t);
   return t;
 }
 
@@ -385,7 +442,7 @@ MapStageSeconds TranslationMapper::time_minima_stages(const Eigen::Matrix3d& R, 
   try {
     time_product_and_fft(R, t, lap);
     s.output = MapOutput::minima;
-    device_minima_->enqueue_reduce(ctx_.queue, 0, s.result, aliasing_box(R));
+    device_minima_->enqueue_reduce(ctx_.queue, minima_list(0, 0), s.result, aliasing_box(R));
     ctx_.queue.finish();
     t.reduce = lap();
     enqueue_read(0, &s.read);
@@ -406,6 +463,14 @@ TranslationMap TranslationMapper::map(const Eigen::Matrix3d& R) {
   submit(0, R);
   collect(0, out.energy);
   return out;
+}
+
+std::size_t map_batch_limit(const ComputeContext& ctx, const std::array<std::size_t, 3>& dims, std::size_t wanted) {
+  const double map_bytes = double(sizeof(Complex)) * double(dims[0]) * double(dims[1]) * double(dims[2]);
+  const double largest = double(ctx.device.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>());
+  const double global = double(ctx.device.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>());
+  const double fits = std::min(largest / map_bytes, global / (4.0 * 3.0 * map_bytes));
+  return std::max<std::size_t>(1, std::min(wanted, fits < 1 ? std::size_t(1) : std::size_t(fits)));
 }
 
 TranslationMap translational_energy_map(const FftLibrary& library, const ComputeContext& ctx,

@@ -51,7 +51,10 @@ class StageLap;  // engine/full_map.cpp: the timed stages' stopwatch
 
 // Maps of one pair for many rotations on one device: both spectra uploaded, the product
 // kernel built and the inverse FFT planned once. Two slots pipeline the work: while the
-// host finishes one slot's map, the device computes the other's (one in-order queue).
+// host finishes one slot's maps, the device computes the other's (one in-order queue).
+// A slot holds a batch of up to batch() rotations: one product launch for all of them,
+// one batched inverse FFT, their minima reduced into a list each, so a GPU gets a few
+// large launches per batch instead of a few small ones per rotation.
 // With MapFft::clfft the queue runs the product, clFFT's inverse into the slot's map and
 // a non-blocking read of the complex map, or, for MapOutput::minima, the minima kernel
 // (engine/device_minima.h) and a read of its short list; MapFft::vkfft is the same with
@@ -62,10 +65,13 @@ class StageLap;  // engine/full_map.cpp: the timed stages' stopwatch
 class TranslationMapper {
  public:
   // `modes` = 0 keeps every mode; otherwise the low-pass ball holding about that many.
-  // Throws snapfit::Error naming the device when a buffer, kernel or plan fails.
+  // `batch`: rotations per slot (1 for MapFft::fftw, whose inverse runs on the host one
+  // map at a time). Throws snapfit::Error naming the device when a buffer, kernel or
+  // plan fails, and for a batch of 0, a batch on FFTW, or one too large for the device
+  // (map_batch_limit).
   TranslationMapper(const FftLibrary& library, const ComputeContext& ctx, const PairSpectra& spectra,
                     Interpolation interpolation, std::size_t modes = 0, MapFft fft = MapFft::clfft,
-                    const ProgramCacheConfig& cache = default_program_cache());
+                    const ProgramCacheConfig& cache = default_program_cache(), std::size_t batch = 1);
   ~TranslationMapper();
   TranslationMapper(const TranslationMapper&) = delete;
   TranslationMapper& operator=(const TranslationMapper&) = delete;
@@ -73,18 +79,21 @@ class TranslationMapper {
   static constexpr int slots = 2;
   const GridSpec& grid() const { return grid_; }  // the translations of every map
   MapFft fft() const { return fft_kind_; }
-  // Enqueues the map of part 2 turned by R into `slot` (0 or 1) and returns at once.
-  void submit(int slot, const Eigen::Matrix3d& R, MapOutput output = MapOutput::energy);
-  // Waits for the slot's map and writes E(R, t) in grid order into `energy` (NaN where
-  // the periodic sum would alias). Throws snapfit::Error for a slot with nothing submitted
-  // or one submitted for its minima.
-  void collect(int slot, std::vector<float>& energy);
-  // Waits for the slot's map and writes what map_minima(grid(), E, count, separation)
-  // gives on its energy, and the map's lowest finite E. A slot submitted for its minima
-  // on clFFT reads only the device's list of minima (the whole map when that list
-  // overflowed or E was infinite); any other slot finds them in the whole map on the host.
-  // Throws snapfit::Error for a slot with nothing submitted.
-  void collect_minima(int slot, std::size_t count, double separation, MapMinimaResult& out);
+  std::size_t batch() const { return batch_; }
+  // Enqueues the maps of part 2 turned by R[0..count) (1 <= count <= batch()) into `slot`
+  // (0 or 1) and returns at once; maps the slot held and nobody collected are dropped.
+  void submit(int slot, const Eigen::Matrix3d* R, std::size_t count, MapOutput output = MapOutput::energy);
+  void submit(int slot, const Eigen::Matrix3d& R, MapOutput output = MapOutput::energy) { submit(slot, &R, 1, output); }
+  // Waits for the slot's maps and writes the member-th one's E(R, t) in grid order into
+  // `energy` (NaN where the periodic sum would alias). Throws snapfit::Error for a member
+  // not submitted or already collected, or a slot submitted for its minima.
+  void collect(int slot, std::vector<float>& energy, std::size_t member = 0);
+  // Waits for the slot's maps and writes what map_minima(grid(), E, count, separation)
+  // gives on the member-th one's energy, and that map's lowest finite E. A slot submitted
+  // for its minima on a device FFT reads only the device's list of minima (the whole map
+  // when that list overflowed or E was infinite); any other slot finds them in the whole
+  // map on the host. Throws snapfit::Error for a member not submitted or already collected.
+  void collect_minima(int slot, std::size_t count, double separation, MapMinimaResult& out, std::size_t member = 0);
   // submit + collect.
   TranslationMap map(const Eigen::Matrix3d& R);
   // One map with every stage waited for and timed in turn (no overlap), for benchmarks.
@@ -100,14 +109,16 @@ class TranslationMapper {
   struct Slot;
   struct HostFft;
   struct VkFft;
-  void enqueue_product(const Eigen::Matrix3d& R);
+  void enqueue_product(int slot);
   void enqueue_fft(int slot);
   void enqueue_read(int slot, cl::Event* done);
-  void wait_for(int slot);
+  void wait_for(int slot, std::size_t member);
   void aliasing_mask(const Eigen::Matrix3d& R, std::array<std::vector<char>, 3>& inside) const;
   MapBox aliasing_box(const Eigen::Matrix3d& R);
-  void finish_map(int slot, std::vector<float>& energy, MapStageSeconds* stages);
-  void host_minima(int slot, std::size_t count, double separation, MapMinimaResult& out, MapStageSeconds* stages);
+  void finish_map(int slot, std::size_t member, std::vector<float>& energy, MapStageSeconds* stages);
+  void host_minima(int slot, std::size_t member, std::size_t count, double separation, MapMinimaResult& out,
+                   MapStageSeconds* stages);
+  int minima_list(int slot, std::size_t member) const { return slot * int(batch_) + int(member); }
   // For the timed stages: waits for both slots, then the product and (on the device) the
   // inverse FFT into slot 0, each waited for and timed by `lap`.
   void time_product_and_fft(const Eigen::Matrix3d& R, MapStageSeconds& t, StageLap& lap);
@@ -115,6 +126,7 @@ class TranslationMapper {
   const PairSpectra& spectra_;
   GridSpec grid_;
   float max_w2_;
+  std::size_t batch_;
   cl::Kernel kernel_;
   cl::Buffer s1_, s2_, product_;
   MapFft fft_kind_;
@@ -129,6 +141,12 @@ class TranslationMapper {
   MapMinimaCounts counts_;
   std::unique_ptr<Slot[]> slot_;
 };
+
+// The largest batch up to `wanted` whose maps fit the device: each of a mapper's three
+// buffers of batch x dims complex floats (the products and the two slots' maps) within
+// the device's largest allocation, all three within a quarter of its global memory.
+// At least 1.
+std::size_t map_batch_limit(const ComputeContext& ctx, const std::array<std::size_t, 3>& dims, std::size_t wanted);
 
 // One map (a TranslationMapper used once).
 TranslationMap translational_energy_map(const FftLibrary& library, const ComputeContext& ctx,

@@ -16,7 +16,7 @@ namespace snapfit {
 namespace {
 
 constexpr const char* kKind = "snapfit map fft choice";
-constexpr std::uint32_t kVersion = 2;  // 2: timed with the minima, found on the device for clFFT
+constexpr std::uint32_t kVersion = 3;  // 3: batches of rotations timed too
 constexpr int kWarmUp = 2, kTimed = 5;
 
 std::string choice_key(const ComputeContext& ctx, const PairSpectra& spectra, Interpolation interpolation) {
@@ -31,12 +31,15 @@ std::string choice_key(const ComputeContext& ctx, const PairSpectra& spectra, In
   return key.str();
 }
 
-// Seconds per map as the search maps them (scan_rotations: two in flight, the minima
-// found on the device or the host), over fixed rotations: the time from the last
+// Seconds per map as the search maps them (scan_rotations: two batches in flight, the
+// minima found on the device or the host), over fixed rotations: the time from the last
 // warm-up map to the last map over the maps between. (Single intervals alternate between
-// a wait and a map already done, so a median of them would not be the rate.)
+// a wait and a map already done, so a median of them would not be the rate.) A batched
+// mapper warms up with a whole batch and is timed over the next.
 double seconds_per_map(TranslationMapper& mapper) {
-  const int n = kWarmUp + kTimed;
+  const int warm_up = std::max(kWarmUp, int(mapper.batch()));
+  const int timed = std::max(kTimed, int(mapper.batch()));
+  const int n = warm_up + timed;
   std::vector<Eigen::Quaterniond> rotations;
   std::vector<std::size_t> indices;
   for (int i = 0; i < n; ++i) {
@@ -46,30 +49,41 @@ double seconds_per_map(TranslationMapper& mapper) {
   auto start = std::chrono::steady_clock::now();
   int done = 0;
   scan_rotations(mapper, rotations, indices, ScanOptions{4, 2 * mapper.grid().spacing}, [&] {
-    if (++done == kWarmUp) start = std::chrono::steady_clock::now();
+    if (++done == warm_up) start = std::chrono::steady_clock::now();
   });
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / kTimed;
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / timed;
 }
 
 std::string encode(const MapFftChoice& c) {
   std::ostringstream s;
   s.precision(17);
-  s << map_fft_name(c.fft);
-  for (const MapFftTiming& t : c.timings) s << " " << map_fft_name(t.fft) << " " << t.seconds;
+  s << map_fft_name(c.fft) << " " << c.batch;
+  for (const MapFftTiming& t : c.timings) s << " " << map_fft_name(t.fft) << " " << t.batch << " " << t.seconds;
   return s.str();
 }
 
-bool decode(const std::string& text, MapFftChoice& c) {
+bool decode(const std::string& text, MapFftChoice& c, std::size_t candidates) {
   std::istringstream s(text);
   std::string name;
-  if (!(s >> name)) return false;
+  if (!(s >> name >> c.batch) || c.batch == 0) return false;
   try {
     c.fft = parse_map_fft(name);
-    for (double seconds; s >> name >> seconds;) c.timings.push_back({parse_map_fft(name), seconds});
+    std::size_t batch = 0;
+    for (double seconds; s >> name >> batch >> seconds;) c.timings.push_back({parse_map_fft(name), batch, seconds});
   } catch (const Error&) {
     return false;
   }
-  return c.timings.size() == map_ffts_built().size();
+  return c.timings.size() == candidates;
+}
+
+// Each backend one rotation at a time, then the device FFTs in batches of `batch` (> 1).
+std::vector<MapFftTiming> candidates(std::size_t batch) {
+  std::vector<MapFftTiming> list;
+  for (MapFft fft : map_ffts_built()) list.push_back({fft, 1, 0.0});
+  if (batch > 1)
+    for (MapFft fft : map_ffts_built())
+      if (map_fft_on_device(fft)) list.push_back({fft, batch, 0.0});
+  return list;
 }
 
 }  // namespace
@@ -78,21 +92,24 @@ MapFftChoice choose_map_fft(const FftLibrary& library, const ComputeContext& ctx
                             Interpolation interpolation, std::size_t modes, const ProgramCacheConfig& cache) {
   const std::string key = choice_key(ctx, spectra, interpolation);
   const std::string path = cache_root() + "/map_fft/" + hex64(fnv1a64(key)) + ".choice";
+  const std::vector<MapFftTiming> tried = candidates(map_batch_limit(ctx, spectra.dims, kMapBatch));
   MapFftChoice choice;
   if (auto payload = read_cache_payload(path, kKind, kVersion, key, "map FFT choice", cache.note)) {
-    if (decode(std::string(payload->begin(), payload->end()), choice)) {
+    if (decode(std::string(payload->begin(), payload->end()), choice, tried.size())) {
       choice.cached = true;
       return choice;
     }
     choice = MapFftChoice{};
   }
-  for (MapFft fft : map_ffts_built()) {
-    TranslationMapper mapper(library, ctx, spectra, interpolation, modes, fft, cache);
-    choice.timings.push_back({fft, seconds_per_map(mapper)});
+  for (MapFftTiming t : tried) {
+    TranslationMapper mapper(library, ctx, spectra, interpolation, modes, t.fft, cache, t.batch);
+    t.seconds = seconds_per_map(mapper);
+    choice.timings.push_back(t);
   }
-  choice.fft = std::min_element(choice.timings.begin(), choice.timings.end(), [](const auto& a, const auto& b) {
-                 return a.seconds < b.seconds;
-               })->fft;
+  const MapFftTiming& best = *std::min_element(choice.timings.begin(), choice.timings.end(),
+                                               [](const auto& a, const auto& b) { return a.seconds < b.seconds; });
+  choice.fft = best.fft;
+  choice.batch = best.batch;
   const std::string text = encode(choice);
   try {
     write_cache_file(path, kKind, kVersion, key, text.data(), text.size());
@@ -103,11 +120,14 @@ MapFftChoice choose_map_fft(const FftLibrary& library, const ComputeContext& ctx
 }
 
 std::string describe_map_fft_choice(const MapFftChoice& choice) {
-  std::string text = map_fft_name(choice.fft) + " (per map:";
+  auto name = [](MapFft fft, std::size_t batch) {
+    return map_fft_name(fft) + (batch > 1 ? " x" + std::to_string(batch) : std::string());
+  };
+  std::string text = name(choice.fft, choice.batch) + " (per map:";
   char ms[32];
   for (std::size_t i = 0; i < choice.timings.size(); ++i) {
     std::snprintf(ms, sizeof ms, " %.1f ms", 1e3 * choice.timings[i].seconds);
-    text += (i ? "," : "") + std::string(" ") + map_fft_name(choice.timings[i].fft) + ms;
+    text += (i ? "," : "") + std::string(" ") + name(choice.timings[i].fft, choice.timings[i].batch) + ms;
   }
   return text + (choice.cached ? "; cached)" : "; measured)");
 }

@@ -1,8 +1,10 @@
 #pragma once
-// Which inverse FFT makes full maps fastest on this device at this size: every backend
-// this build has (engine/map_fft.h) maps the same few rotations through a
-// TranslationMapper as a search does (scan_rotations: two in flight, each map's minima
-// found, on the device with clFFT); the fewest seconds per map wins.
+// Which inverse FFT, and how many rotations per batch, make full maps fastest on this
+// device at this size: every backend this build has (engine/map_fft.h), one rotation at
+// a time and, for the device FFTs, also in batches (kMapBatch, or what fits the device),
+// maps the same rotations through a TranslationMapper as a search does (scan_rotations:
+// two batches in flight, each map's minima found, on the device with a device FFT); the
+// fewest seconds per map wins.
 // The pick and its timings are cached per (device, driver, FFT size, interpolation, the
 // map kernels' source, backends built) under cache_root()/map_fft (io/cache_file.h), so
 // a size is measured once per device.
@@ -14,15 +16,22 @@
 
 namespace snapfit {
 
+// The batch tried beside one rotation at a time on the device FFTs.
+constexpr std::size_t kMapBatch = 8;
+
 struct MapFftTiming {
   MapFft fft = MapFft::clfft;
-  double seconds = 0;  // seconds per map with its minima, two in flight
+  std::size_t batch = 1;  // rotations per batch
+  double seconds = 0;     // seconds per map with its minima, two batches in flight
 };
 
 struct MapFftChoice {
   MapFft fft = MapFft::clfft;
-  std::vector<MapFftTiming> timings;  // every backend built, in map_ffts_built() order
-  bool cached = false;                // read from the cache, not measured now
+  std::size_t batch = 1;
+  // Every backend built, in map_ffts_built() order, each with batch 1, then the device
+  // FFTs' batched runs when a batch larger than 1 fits (map_batch_limit).
+  std::vector<MapFftTiming> timings;
+  bool cached = false;  // read from the cache, not measured now
 };
 
 // Throws snapfit::Error as TranslationMapper does when a backend fails on the device.
@@ -30,7 +39,7 @@ MapFftChoice choose_map_fft(const FftLibrary& library, const ComputeContext& ctx
                             Interpolation interpolation, std::size_t modes = 0,
                             const ProgramCacheConfig& cache = default_program_cache());
 
-// "fftw (per map: clfft 52.1 ms, fftw 10.3 ms; measured)".
+// "clfft x8 (per map: clfft 52.1 ms, fftw 10.3 ms, clfft x8 9.7 ms; measured)".
 std::string describe_map_fft_choice(const MapFftChoice& choice);
 
 }  // namespace snapfit

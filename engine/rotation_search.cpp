@@ -15,24 +15,20 @@ RotationScan scan_rotations(TranslationMapper& mapper, const std::vector<Eigen::
   RotationScan scan;
   MapMinimaResult map;
   std::vector<float> energy;
-  // On clFFT the device finds each map's minima and only they are read back; otherwise
-  // the host finds them in the map, after queueing the next one.
+  // On a device FFT the device finds each map's minima and only they are read back;
+  // otherwise the host finds them in the map, after queueing the next batch.
   const bool on_device = mapper.minima_on_device();
   const MapOutput output = on_device ? MapOutput::minima : MapOutput::energy;
-  const std::size_t n = indices.size();
-  for (std::size_t i = 0; i < n && i < std::size_t(TranslationMapper::slots); ++i)
-    mapper.submit(int(i % TranslationMapper::slots), rotations[indices[i]].toRotationMatrix(), output);
-  for (std::size_t i = 0; i < n; ++i) {
-    const int slot = int(i % TranslationMapper::slots);
-    if (on_device)
-      mapper.collect_minima(slot, options.minima_per_rotation, options.separation, map);
-    else
-      mapper.collect(slot, energy);
-    // The slot is free again: queue the map after next before using this one.
-    if (i + TranslationMapper::slots < n)
-      mapper.submit(slot, rotations[indices[i + TranslationMapper::slots]].toRotationMatrix(), output);
-    if (!on_device) map_minima(mapper.grid(), energy, options.minima_per_rotation, options.separation, map);
-    const std::size_t r = indices[i];
+  const std::size_t n = indices.size(), batch = mapper.batch(), slots = TranslationMapper::slots;
+  const std::size_t batches = (n + batch - 1) / batch;
+  std::vector<Eigen::Matrix3d> R(batch);
+  // Batch b holds indices [b batch, min((b + 1) batch, n)) and goes to slot b % slots.
+  auto submit = [&](std::size_t b) {
+    const std::size_t first = b * batch, count = std::min(batch, n - first);
+    for (std::size_t m = 0; m < count; ++m) R[m] = rotations[indices[first + m]].toRotationMatrix();
+    mapper.submit(int(b % slots), R.data(), count, output);
+  };
+  auto keep = [&](std::size_t r) {
     scan.rotations.push_back(r);
     scan.best_energy.push_back(map.best);
     for (const MapMinimum& m : map.minima) {
@@ -45,6 +41,24 @@ RotationScan scan_rotations(TranslationMapper& mapper, const std::vector<Eigen::
       scan.candidates.push_back(c);
     }
     if (done) done();
+  };
+  for (std::size_t b = 0; b < batches && b < slots; ++b) submit(b);
+  for (std::size_t b = 0; b < batches; ++b) {
+    const int slot = int(b % slots);
+    const std::size_t first = b * batch, count = std::min(batch, n - first);
+    for (std::size_t m = 0; m < count; ++m) {
+      if (on_device) {
+        mapper.collect_minima(slot, options.minima_per_rotation, options.separation, map, m);
+      } else {
+        mapper.collect(slot, energy, m);
+        // The batch's last map is in `energy` and the slot is free: queue the batch
+        // after next before finding the minima on the host.
+        if (m + 1 == count && b + slots < batches) submit(b + slots);
+        map_minima(mapper.grid(), energy, options.minima_per_rotation, options.separation, map);
+      }
+      keep(indices[first + m]);
+    }
+    if (on_device && b + slots < batches) submit(b + slots);
   }
   return scan;
 }

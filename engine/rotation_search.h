@@ -30,8 +30,10 @@ struct RotationScan {
   std::vector<double> best_energy;     // per mapped rotation: its map's lowest finite E (NaN: none)
 };
 
-// Maps rotations[i] for every i in `indices`, in that order, two maps in flight (the
-// next one computes on the device while the host reads one). `done` runs after each map.
+// Maps rotations[i] for every i in `indices`, in that order, in batches of
+// mapper.batch() rotations, two batches in flight (the next computes on the device while
+// the host reads one). `done` runs after each map. The candidates do not depend on the
+// batch size.
 RotationScan scan_rotations(TranslationMapper& mapper, const std::vector<Eigen::Quaterniond>& rotations,
                             const std::vector<std::size_t>& indices, const ScanOptions& options,
                             const std::function<void()>& done = {});

@@ -27,7 +27,7 @@ struct VkfftInverse::Plan {
 };
 
 VkfftInverse::VkfftInverse(const ComputeContext& ctx, std::array<std::size_t, 3> dims, const cl::Buffer& spectrum,
-                           const cl::Buffer& map)
+                           const cl::Buffer& map, std::size_t batch)
     : plan_(std::make_unique<Plan>()) {
   Plan& p = *plan_;
   p.device = ctx.device.device();
@@ -35,11 +35,12 @@ VkfftInverse::VkfftInverse(const ComputeContext& ctx, std::array<std::size_t, 3>
   p.queue = ctx.queue();
   p.spectrum = spectrum();
   p.map = map();
-  p.bytes = std::uint64_t(2 * sizeof(float)) * dims[0] * dims[1] * dims[2];
+  p.bytes = std::uint64_t(2 * sizeof(float)) * dims[0] * dims[1] * dims[2] * batch;
   p.device_name = ctx.device.info.name;
   VkFFTConfiguration c{};
   c.FFTdim = 3;
   for (int a = 0; a < 3; ++a) c.size[a] = dims[std::size_t(a)];
+  c.numberBatches = batch;
   c.device = &p.device;
   c.context = &p.context;
   c.commandQueue = &p.queue;
@@ -54,8 +55,8 @@ VkfftInverse::VkfftInverse(const ComputeContext& ctx, std::array<std::size_t, 3>
   c.normalize = 0;
   const VkFFTResult r = initializeVkFFT(&p.app, c);
   if (r != VKFFT_SUCCESS)
-    throw Error("VkFFT cannot plan the " + dims_text(dims) + " inverse FFT on " + p.device_name + " (VkFFTResult " +
-                std::to_string(int(r)) + ")");
+    throw Error("VkFFT cannot plan the " + dims_text(dims) + " inverse FFT (batch of " + std::to_string(batch) +
+                ") on " + p.device_name + " (VkFFTResult " + std::to_string(int(r)) + ")");
   p.initialized = true;
 }
 

@@ -18,11 +18,12 @@ namespace snapfit {
 
 class VkfftInverse {
  public:
-  // Plans the inverse of dims points on ctx's device and queue, reading `spectrum` and
-  // writing `map` (buffers of dims complex floats; others of that size may be passed to
-  // enqueue). Throws snapfit::Error naming the size and the device when VkFFT cannot.
+  // Plans `batch` inverses of dims points each on ctx's device and queue, reading
+  // `spectrum` and writing `map` (buffers of batch x dims complex floats, one transform
+  // after the other; others of that size may be passed to enqueue). Throws snapfit::Error
+  // naming the size and the device when VkFFT cannot.
   VkfftInverse(const ComputeContext& ctx, std::array<std::size_t, 3> dims, const cl::Buffer& spectrum,
-               const cl::Buffer& map);
+               const cl::Buffer& map, std::size_t batch = 1);
   ~VkfftInverse();
   VkfftInverse(const VkfftInverse&) = delete;
   VkfftInverse& operator=(const VkfftInverse&) = delete;

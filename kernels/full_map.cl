@@ -2,6 +2,8 @@
 // the product P_k = S1(w_k) S2(-R^T w_k) exp(2 pi i w_k.(R c2 - c1)) dw on every FFT
 // node; one unnormalized inverse FFT of P then gives f(R, t) at every grid translation
 // t = h j (j signed, periodic). Nodes with |w|^2 > max_w2 are dropped (low-pass ball).
+// A launch makes the products of a batch of rotations: global id 1 is the member, whose
+// pose is poses[member] and whose product starts at member * (nodes per product).
 
 // P at FFT node (x, y, z). pose: R row-major in s0..s8, shift = R c2 - c1 in s9..sb.
 inline float2 product_at(__global const float2* s1, __global const float2* s2, const int4 dims, const float4 length,
@@ -22,12 +24,13 @@ inline float2 product_at(__global const float2* s1, __global const float2* s2, c
 
 // P on every node, for a complex-to-complex inverse FFT.
 __kernel void spectrum_product(__global const float2* s1, __global const float2* s2, const int4 dims,
-                               const float4 length, const float16 pose, const float dw, const float max_w2,
-                               __global float2* product) {
-  const int k = get_global_id(0);
-  if (k >= dims.x * dims.y * dims.z) return;
+                               const float4 length, __global const float16* poses, const float dw,
+                               const float max_w2, __global float2* product) {
+  const int k = get_global_id(0), member = get_global_id(1);
+  const int nodes = dims.x * dims.y * dims.z;
+  if (k >= nodes) return;
   const int x = k % dims.x, y = (k / dims.x) % dims.y, z = k / (dims.x * dims.y);
-  product[k] = product_at(s1, s2, dims, length, pose, dw, max_w2, x, y, z);
+  product[(size_t)member * nodes + k] = product_at(s1, s2, dims, length, poses[member], dw, max_w2, x, y, z);
 }
 
 // The energy needs Re f only, which is the inverse FFT of P's Hermitian part
@@ -37,11 +40,14 @@ __kernel void spectrum_product(__global const float2* s1, __global const float2*
 // -D CONJUGATE_PAIRS: both parts' samples real, or both imaginary, so P_{-k} = conj P_k
 // (engine/spectra.h sample_parity) and H = P: one product per node instead of two.
 __kernel void spectrum_product_half(__global const float2* s1, __global const float2* s2, const int4 dims,
-                                    const float4 length, const float16 pose, const float dw, const float max_w2,
-                                    __global float2* half_product) {
+                                    const float4 length, __global const float16* poses, const float dw,
+                                    const float max_w2, __global float2* half_product) {
   const int hx = dims.x / 2 + 1;
-  const int k = get_global_id(0);
-  if (k >= hx * dims.y * dims.z) return;
+  const int k = get_global_id(0), member = get_global_id(1);
+  const int nodes = hx * dims.y * dims.z;
+  if (k >= nodes) return;
+  const float16 pose = poses[member];
+  half_product += (size_t)member * nodes;
   const int x = k % hx, y = (k / hx) % dims.y, z = k / (hx * dims.y);
   const float2 p = product_at(s1, s2, dims, length, pose, dw, max_w2, x, y, z);
 #ifdef CONJUGATE_PAIRS

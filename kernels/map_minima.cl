@@ -2,7 +2,8 @@
 // so that a search reads back a short list per rotation instead of the whole map: the
 // points engine/map_minima.cpp finds on the host map, by the same rules.
 //
-// f: clFFT's complex inverse FFT of one map (engine/full_map.cpp), E = -Re f. Grid point
+// f: the complex inverse FFT of one map (engine/full_map.cpp), E = -Re f, starting at
+// element `offset` (a map of a batch in one buffer). Grid point
 // (x, y, z) in regular order (translation index x - N/2 per axis) is FFT node
 // (x + N - N/2) mod N per axis. Points outside lo..hi (per axis, inclusive: the aliasing
 // mask) have E = NaN.
@@ -28,7 +29,8 @@ inline int fft_node(const int i, const int n) {
 
 // One work-item per grid point (x, y, z) = global id (0, 1, 2).
 __kernel void map_local_minima(__global const float2* f, const int4 dims, const int4 lo, const int4 hi,
-                               const uint capacity, __global uint* out) {
+                               const uint capacity, __global uint* out, const ulong offset) {
+  f += offset;
   const int x = (int)get_global_id(0), y = (int)get_global_id(1), z = (int)get_global_id(2);
   if (x < lo.x || x > hi.x || y < lo.y || y > hi.y || z < lo.z || z > hi.z) return;
   // FFT nodes of the point's column, row and plane and of their neighbours (0: -1, 2: +1).

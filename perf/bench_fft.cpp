@@ -532,14 +532,16 @@ std::vector<MapRow> bench_maps(const snapfit::FftLibrary& lib, const snapfit::Co
   kernel.setArg(5, static_cast<float>(1.0 / (s.length.x() * s.length.y() * s.length.z())));
   kernel.setArg(6, std::numeric_limits<float>::infinity());
   kernel.setArg(7, product);
+  cl::Buffer poses(ctx.context, CL_MEM_READ_ONLY, sizeof(cl_float16));  // a batch of one rotation
+  kernel.setArg(4, poses);
   auto run_product = [&](const Eigen::Matrix3d& R) {
     const Eigen::Vector3d shift = R * s.part2.centre - s.part1.centre;
     cl_float16 pose{};
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) pose.s[3 * a + b] = static_cast<float>(R(a, b));
     for (int a = 0; a < 3; ++a) pose.s[9 + a] = static_cast<float>(shift[a]);
-    kernel.setArg(4, pose);
-    ctx.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n));
+    ctx.queue.enqueueWriteBuffer(poses, CL_TRUE, 0, sizeof pose, &pose);
+    ctx.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n, 1));
     ctx.queue.finish();
   };
   // Reference map for the check rotation: FFTW double of the product the kernel made.

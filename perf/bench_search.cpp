@@ -22,7 +22,10 @@
 // per map, two maps in flight (scan_rotations; the host way on a device FFT: the same loop
 // with collect and map_minima, as scan_rotations ran before the device found minima);
 // the interval between consecutive finished maps is one rotation's cost; rotations/s =
-// 1 / median interval, and the whole scan's count over its wall time. One-shot: 3 calls
+// 1 / median interval, and the whole scan's count over its wall time. The device FFTs
+// also map with their minima on the device in batches (engine/full_map.h; batch "x8" or
+// what fits the device): there one rotation's cost is a batch's interval over its
+// rotations, and the stages are not timed (they are the batch-1 row's). One-shot: 3 calls
 // (--quick 1), median.
 // Output in DIR (default results/bench_search): search.csv, search.json, charts.html.
 #include <algorithm>
@@ -56,7 +59,8 @@ struct Row {
   std::string workload;                    // "synthetic" or the scene file
   std::size_t n = 0;                       // FFT points along x
   std::string interpolation, fft, minima;  // minima: "device" or "host"
-  MapStageSeconds stages;                  // medians
+  std::size_t batch = 1;                   // rotations per batch
+  MapStageSeconds stages;                  // medians (NaN: not timed)
   std::size_t rotations = 0;
   double setup_s = 0, median_s = 0, p90_s = 0, scan_rate = 0, one_shot_s = 0, load_before = 0, load_after = 0;
   MapMinimaCounts counts;  // over the row's maps
@@ -126,110 +130,131 @@ int main(int argc, char** argv) {
         const MapFftChoice choice = choose_map_fft(fft, ctx, spectra, interpolation);
         std::cout << size << " " << (interpolation == Interpolation::tricubic ? "tricubic" : "trilinear")
                   << ": choose_map_fft picks " << describe_map_fft_choice(choice) << "\n";
+        std::vector<std::size_t> batches{1};
+        if (const std::size_t b = map_batch_limit(ctx, spectra.dims, kMapBatch); b > 1) batches.push_back(b);
         for (const MapFft kind : map_ffts_built())
-          for (const bool on_device : {true, false}) {
-            if (on_device && !map_fft_on_device(kind)) continue;  // FFTW's maps are on the host
-            Row row;
-            row.workload = pair ? scene_path : "synthetic";
-            row.n = n;
-            row.interpolation = interpolation == Interpolation::tricubic ? "tricubic" : "trilinear";
-            row.fft = map_fft_name(kind);
-            row.minima = on_device ? "device" : "host";
-            row.rotations = rotations > 0 ? std::size_t(rotations)
-                            : quick       ? (synthetic == 64 ? 24 : 6)
-                                          : (synthetic == 64 ? 200 : 40);
-            row.load_before = bench::load1();
-            auto t0 = Clock::now();
-            TranslationMapper mapper(fft, ctx, spectra, interpolation, 0, kind);
-            row.setup_s = bench::seconds_since(t0);
-            const So3Grid grid = so3_grid_for_count(row.rotations);
-            std::vector<std::size_t> warm{1, 2}, all(grid.rotations.size());
-            for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-            const ScanOptions options{4, 1.0};
-            auto scan = [&](const std::vector<std::size_t>& indices, const std::function<void()>& done) {
-              if (on_device || !map_fft_on_device(kind))
-                scan_rotations(mapper, grid.rotations, indices, options, done);
+          for (const std::size_t batch : batches)
+            for (const bool on_device : {true, false}) {
+              if (on_device && !map_fft_on_device(kind)) continue;  // FFTW's maps are on the host
+              if (batch > 1 && !on_device) continue;                // batches: the search's way only
+              Row row;
+              row.batch = batch;
+              row.workload = pair ? scene_path : "synthetic";
+              row.n = n;
+              row.interpolation = interpolation == Interpolation::tricubic ? "tricubic" : "trilinear";
+              row.fft = map_fft_name(kind);
+              row.minima = on_device ? "device" : "host";
+              row.rotations = rotations > 0 ? std::size_t(rotations)
+                              : quick       ? (synthetic == 64 ? 24 : 6)
+                                            : (synthetic == 64 ? 200 : 40);
+              row.load_before = bench::load1();
+              auto t0 = Clock::now();
+              TranslationMapper mapper(fft, ctx, spectra, interpolation, 0, kind, default_program_cache(), batch);
+              row.setup_s = bench::seconds_since(t0);
+              const So3Grid grid = so3_grid_for_count(row.rotations);
+              std::vector<std::size_t> warm{1, 2}, all(grid.rotations.size());
+              for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+              const ScanOptions options{4, 1.0};
+              auto scan = [&](const std::vector<std::size_t>& indices, const std::function<void()>& done) {
+                if (on_device || !map_fft_on_device(kind))
+                  scan_rotations(mapper, grid.rotations, indices, options, done);
+                else
+                  scan_on_host(mapper, grid.rotations, indices, options, done);
+              };
+              scan(warm, [] {});
+              std::vector<MapStageSeconds> stages;
+              std::vector<float> energy;
+              MapMinimaResult map;
+              for (std::size_t k = 0; k < (batch > 1 ? 0 : 3); ++k) {
+                const Eigen::Matrix3d R = grid.rotations[k].toRotationMatrix();
+                if (on_device) {
+                  stages.push_back(mapper.time_minima_stages(R, options.minima_per_rotation, options.separation, map));
+                } else {
+                  stages.push_back(mapper.time_stages(R, energy));
+                  t0 = Clock::now();
+                  map_minima(mapper.grid(), energy, options.minima_per_rotation, options.separation, map);
+                  stages.back().minima = bench::seconds_since(t0);
+                }
+              }
+              auto stage = [&](double MapStageSeconds::*field) {
+                std::vector<double> v;
+                for (const MapStageSeconds& s : stages) v.push_back(s.*field);
+                return v.empty() ? std::nan("") : median(v);
+              };
+              row.stages.product = stage(&MapStageSeconds::product);
+              row.stages.fft = stage(&MapStageSeconds::fft);
+              row.stages.reduce = stage(&MapStageSeconds::reduce);
+              row.stages.read = stage(&MapStageSeconds::read);
+              row.stages.host = stage(&MapStageSeconds::host);
+              row.stages.minima = stage(&MapStageSeconds::minima);
+              std::vector<double> intervals;
+              t0 = Clock::now();
+              auto last = t0;
+              scan(all, [&] {
+                const auto now = Clock::now();
+                intervals.push_back(std::chrono::duration<double>(now - last).count());
+                last = now;
+              });
+              const double scan_s = bench::seconds_since(t0);
+              if (batch > 1) {
+                // A batch's maps finish together: its interval over its rotations.
+                std::vector<double> per_rotation;
+                for (std::size_t i = 0; i < intervals.size(); i += batch) {
+                  const std::size_t end = std::min(intervals.size(), i + batch);
+                  double sum = 0;
+                  for (std::size_t j = i; j < end; ++j) sum += intervals[j];
+                  per_rotation.push_back(sum / double(end - i));
+                }
+                intervals = per_rotation;
+              }
+              row.rotations = all.size();
+              row.scan_rate = double(all.size()) / scan_s;
+              row.median_s = median(intervals);
+              row.p90_s = quantile(intervals, 0.9);
+              row.counts = mapper.minima_counts();
+              if (kind == MapFft::clfft && on_device && batch == 1) {
+                std::vector<double> one_shot;
+                for (int k = 0; k < (quick ? 1 : 3); ++k) {
+                  t0 = Clock::now();
+                  translational_energy_map(fft, ctx, spectra, grid.rotations[std::size_t(k)].toRotationMatrix(),
+                                           interpolation);
+                  one_shot.push_back(bench::seconds_since(t0));
+                }
+                row.one_shot_s = median(one_shot);
+              }
+              row.load_after = bench::load1();
+              auto ms = [](double s) { return bench::fixed(1e3 * s, 1); };
+              std::cout << size << " " << row.interpolation << " " << row.fft
+                        << (batch > 1 ? " x" + std::to_string(batch) : std::string()) << ", minima on the "
+                        << row.minima << ": ";
+              if (batch > 1)
+                std::cout << "stages not timed (batched; longest list " << row.counts.longest << ", "
+                          << row.counts.fallbacks << " whole maps read)";
+              else if (on_device)
+                std::cout << "stages product " << ms(row.stages.product) << " ms, inverse FFT " << ms(row.stages.fft)
+                          << " ms, minima kernel " << ms(row.stages.reduce) << " ms, read-back of the list "
+                          << ms(row.stages.read) << " ms, thinning " << ms(row.stages.minima) << " ms (longest list "
+                          << row.counts.longest << ", " << row.counts.long_lists << " read twice, "
+                          << row.counts.fallbacks << " whole maps read)";
               else
-                scan_on_host(mapper, grid.rotations, indices, options, done);
-            };
-            scan(warm, [] {});
-            std::vector<MapStageSeconds> stages;
-            std::vector<float> energy;
-            MapMinimaResult map;
-            for (std::size_t k = 0; k < 3; ++k) {
-              const Eigen::Matrix3d R = grid.rotations[k].toRotationMatrix();
-              if (on_device) {
-                stages.push_back(mapper.time_minima_stages(R, options.minima_per_rotation, options.separation, map));
-              } else {
-                stages.push_back(mapper.time_stages(R, energy));
-                t0 = Clock::now();
-                map_minima(mapper.grid(), energy, options.minima_per_rotation, options.separation, map);
-                stages.back().minima = bench::seconds_since(t0);
-              }
+                std::cout << "stages product " << ms(row.stages.product) << " ms, inverse FFT " << ms(row.stages.fft)
+                          << " ms, read-back " << ms(row.stages.read) << " ms, host map " << ms(row.stages.host)
+                          << " ms, minima " << ms(row.stages.minima) << " ms";
+              std::cout << "; " << row.rotations << " rotations, set-up " << bench::fixed(row.setup_s, 2)
+                        << " s, median " << ms(row.median_s) << " ms per rotation ("
+                        << bench::fixed(1 / row.median_s, 1) << " rotations/s; p90 " << ms(row.p90_s)
+                        << " ms), whole scan " << bench::fixed(row.scan_rate, 1) << " rotations/s";
+              if (row.one_shot_s > 0)
+                std::cout << "; one-shot translational_energy_map " << bench::fixed(1e3 * row.one_shot_s, 0) << " ms";
+              std::cout << "; load " << bench::fixed(row.load_before, 2) << " -> " << bench::fixed(row.load_after, 2)
+                        << "\n";
+              rows.push_back(row);
             }
-            auto stage = [&](double MapStageSeconds::*field) {
-              std::vector<double> v;
-              for (const MapStageSeconds& s : stages) v.push_back(s.*field);
-              return median(v);
-            };
-            row.stages.product = stage(&MapStageSeconds::product);
-            row.stages.fft = stage(&MapStageSeconds::fft);
-            row.stages.reduce = stage(&MapStageSeconds::reduce);
-            row.stages.read = stage(&MapStageSeconds::read);
-            row.stages.host = stage(&MapStageSeconds::host);
-            row.stages.minima = stage(&MapStageSeconds::minima);
-            std::vector<double> intervals;
-            t0 = Clock::now();
-            auto last = t0;
-            scan(all, [&] {
-              const auto now = Clock::now();
-              intervals.push_back(std::chrono::duration<double>(now - last).count());
-              last = now;
-            });
-            const double scan_s = bench::seconds_since(t0);
-            row.rotations = all.size();
-            row.scan_rate = double(all.size()) / scan_s;
-            row.median_s = median(intervals);
-            row.p90_s = quantile(intervals, 0.9);
-            row.counts = mapper.minima_counts();
-            if (kind == MapFft::clfft && on_device) {
-              std::vector<double> one_shot;
-              for (int k = 0; k < (quick ? 1 : 3); ++k) {
-                t0 = Clock::now();
-                translational_energy_map(fft, ctx, spectra, grid.rotations[std::size_t(k)].toRotationMatrix(),
-                                         interpolation);
-                one_shot.push_back(bench::seconds_since(t0));
-              }
-              row.one_shot_s = median(one_shot);
-            }
-            row.load_after = bench::load1();
-            auto ms = [](double s) { return bench::fixed(1e3 * s, 1); };
-            std::cout << size << " " << row.interpolation << " " << row.fft << ", minima on the " << row.minima
-                      << ": stages product " << ms(row.stages.product) << " ms, inverse FFT " << ms(row.stages.fft)
-                      << " ms, ";
-            if (on_device)
-              std::cout << "minima kernel " << ms(row.stages.reduce) << " ms, read-back of the list "
-                        << ms(row.stages.read) << " ms, thinning " << ms(row.stages.minima) << " ms (longest list "
-                        << row.counts.longest << ", " << row.counts.long_lists << " read twice, "
-                        << row.counts.fallbacks << " whole maps read)";
-            else
-              std::cout << "read-back " << ms(row.stages.read) << " ms, host map " << ms(row.stages.host)
-                        << " ms, minima " << ms(row.stages.minima) << " ms";
-            std::cout << "; " << row.rotations << " rotations, set-up " << bench::fixed(row.setup_s, 2) << " s, median "
-                      << ms(row.median_s) << " ms per rotation (" << bench::fixed(1 / row.median_s, 1)
-                      << " rotations/s; p90 " << ms(row.p90_s) << " ms), whole scan " << bench::fixed(row.scan_rate, 1)
-                      << " rotations/s";
-            if (row.one_shot_s > 0)
-              std::cout << "; one-shot translational_energy_map " << bench::fixed(1e3 * row.one_shot_s, 0) << " ms";
-            std::cout << "; load " << bench::fixed(row.load_before, 2) << " -> " << bench::fixed(row.load_after, 2)
-                      << "\n";
-            rows.push_back(row);
-          }
       }
     }
     std::filesystem::create_directories(out);
     std::ofstream csv(std::filesystem::path(out) / "search.csv");
-    csv << "workload,n,interpolation,fft,minima_on,product_s,inverse_fft_s,reduce_s,read_s,host_map_s,minima_s,"
+    csv << "workload,n,interpolation,fft,batch,minima_on,product_s,inverse_fft_s,reduce_s,read_s,host_map_s,minima_s,"
            "rotations,"
            "setup_s,median_s,p90_s,rotations_per_s_median,rotations_per_s_scan,one_shot_s,longest_list,"
            "whole_maps_read,load_before,load_after\n";
@@ -244,11 +269,13 @@ int main(int argc, char** argv) {
     chart.log_y = true;
     for (const char* name : {"trilinear", "tricubic"}) {
       for (const MapFft kind : map_ffts_built())
-        for (const char* where : {"device", "host"}) {
+        for (const char* where : {"device", "host", "device, batched"}) {
+          const bool batched = std::string(where) == "device, batched";
           Series s;
           s.label = std::string(name) + ", " + map_fft_name(kind) + ", minima on the " + where + ", scan (pipelined)";
           for (const Row& r : rows)
-            if (r.interpolation == name && r.fft == map_fft_name(kind) && r.minima == where) {
+            if (r.interpolation == name && r.fft == map_fft_name(kind) && (r.batch > 1) == batched &&
+                r.minima == (batched ? "device" : where)) {
               s.x.push_back(double(r.n));
               s.y.push_back(1 / r.median_s);
             }
@@ -264,8 +291,8 @@ int main(int argc, char** argv) {
       if (!one.x.empty()) chart.series.push_back(one);
     }
     for (const Row& r : rows) {
-      csv << r.workload << "," << r.n << "," << r.interpolation << "," << r.fft << "," << r.minima << ","
-          << r.stages.product << "," << r.stages.fft << "," << r.stages.reduce << "," << r.stages.read << ","
+      csv << r.workload << "," << r.n << "," << r.interpolation << "," << r.fft << "," << r.batch << "," << r.minima
+          << "," << r.stages.product << "," << r.stages.fft << "," << r.stages.reduce << "," << r.stages.read << ","
           << r.stages.host << "," << r.stages.minima << "," << r.rotations << "," << r.setup_s << "," << r.median_s
           << "," << r.p90_s << "," << 1 / r.median_s << "," << r.scan_rate << "," << r.one_shot_s << ","
           << r.counts.longest << "," << r.counts.fallbacks << "," << r.load_before << "," << r.load_after << "\n";
@@ -273,6 +300,7 @@ int main(int argc, char** argv) {
                               {"n", r.n},
                               {"interpolation", r.interpolation},
                               {"fft", r.fft},
+                              {"batch", r.batch},
                               {"minima_on", r.minima},
                               {"product_s", r.stages.product},
                               {"inverse_fft_s", r.stages.fft},

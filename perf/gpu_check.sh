@@ -398,21 +398,28 @@ srows = g(b, "rows") or []
 if not srows:
     w("bench_search/search.json " + (NF + "." if b is None else "has no rows."))
 else:
-    picks = dict(re.findall(r"^(\d+)\^3 \w+: choose_map_fft picks (\w+)", text("bench_search.log"), re.M))
+    picks = {n: (f, int(b or 1)) for n, f, b in
+             re.findall(r"^(\d+)\^3 \w+: choose_map_fft picks (\w+)(?: x(\d+))?", text("bench_search.log"), re.M)}
     w("Device {}. Per rotation, ms: product, inverse FFT, minima kernel (device), read-back (the map, or the "
-      "list of minima), host map, minima on the host (map_minima, or the list's thinning).".format(g(b, "device") or NF))
+      "list of minima), host map, minima on the host (map_minima, or the list's thinning); not timed for "
+      "batches.".format(g(b, "device") or NF))
     w("")
     w("| size | interpolation | FFT | minima on | rotations/s (median) | whole scan | per rotation, ms |")
     w("|---|---|---|---|---|---|---|")
     for r in srows:
         n = r.get("n")
         fft = str(r.get("fft"))
-        if picks.get(str(n)) == fft:
+        batch = int(r.get("batch", 1) or 1)
+        if picks.get(str(n)) == (fft, batch):
             fft += " (picked)"
-        w("| {}^3 | {} | {} | {} | {} | {} | {} / {} / {} / {} / {} / {} |".format(
+        if batch > 1:
+            fft += ", batches of {}".format(batch)
+        stages = "not timed (batched)" if batch > 1 else "{} / {} / {} / {} / {} / {}".format(
+            ms(r.get("product_s")), ms(r.get("inverse_fft_s")), ms(r.get("reduce_s", 0)), ms(r.get("read_s")),
+            ms(r.get("host_map_s")), ms(r.get("minima_s")))
+        w("| {}^3 | {} | {} | {} | {} | {} | {} |".format(
             n, r.get("interpolation", NF), fft, r.get("minima_on", "host"), num(r.get("rotations_per_s_median"), 4),
-            num(r.get("rotations_per_s_scan"), 4), ms(r.get("product_s")), ms(r.get("inverse_fft_s")),
-            ms(r.get("reduce_s", 0)), ms(r.get("read_s")), ms(r.get("host_map_s")), ms(r.get("minima_s"))))
+            num(r.get("rotations_per_s_scan"), 4), stages))
 w("")
 
 # ---- bench_fft

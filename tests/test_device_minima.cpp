@@ -6,6 +6,7 @@
 // and on the maps of the shipped default scene, through TranslationMapper's two slots and
 // scan_rotations.
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <doctest/doctest.h>
@@ -337,4 +338,81 @@ TEST_CASE("device minima: the shipped default scene's maps, pipelined, equal map
   }
   CHECK(small.minima_counts().fallbacks == 2);
   CHECK(small.minima_counts().on_host == 2);
+}
+
+TEST_CASE(
+    "device minima: batches of rotations on the shipped default scene give the maps and minima of one at a time") {
+  const Scene scene = test::shipped_scene("default.json");
+  const FftLibrary fft;
+  PairOptions options;
+  options.note = [](const std::string&) {};
+  const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, options);
+  const PairSpectra& spectra = pair.spectra;
+  const double separation = 2 * spectra.spacing;
+  const So3Grid grid = so3_grid_for_count(24);
+  // Seven rotations in batches of three: two full batches and a batch of one.
+  std::vector<Eigen::Quaterniond> rotations;
+  for (std::size_t i : {0, 3, 7, 11, 15, 19, 23}) rotations.push_back(grid.rotations[i]);
+  std::vector<std::size_t> indices(rotations.size());
+  for (std::size_t i = 0; i < indices.size(); ++i) indices[i] = i;
+  for (const MapFft kind : map_ffts_built()) {
+    if (!map_fft_on_device(kind)) {
+      CHECK_THROWS_WITH_AS(TranslationMapper(fft, test::test_context(), spectra, Interpolation::trilinear, 0, kind,
+                                             test::test_program_cache(), 2),
+                           doctest::Contains("batch of 2"), Error);
+      continue;
+    }
+    TranslationMapper one(fft, test::test_context(), spectra, Interpolation::trilinear, 0, kind,
+                          test::test_program_cache());
+    TranslationMapper three(fft, test::test_context(), spectra, Interpolation::trilinear, 0, kind,
+                            test::test_program_cache(), 3);
+    CHECK(three.batch() == 3);
+    const std::string name = map_fft_name(kind);
+    // The maps: member m of a batch against the same rotation mapped alone. A batched
+    // transform may round differently, so within float rounding of the map's scale.
+    std::vector<Eigen::Matrix3d> R;
+    for (std::size_t i = 0; i < 3; ++i) R.push_back(rotations[i].toRotationMatrix());
+    three.submit(1, R.data(), 3, MapOutput::energy);
+    std::vector<float> alone, member;
+    for (std::size_t m : {2, 0, 1}) {  // members in any order
+      one.submit(0, R[m], MapOutput::energy);
+      one.collect(0, alone);
+      three.collect(1, member, m);
+      REQUIRE(member.size() == alone.size());
+      double scale = 0, worst = 0;
+      std::size_t same_nan = 0;
+      for (std::size_t i = 0; i < alone.size(); ++i) {
+        if (std::isnan(alone[i]) || std::isnan(member[i])) {
+          same_nan += std::isnan(alone[i]) && std::isnan(member[i]);
+          continue;
+        }
+        scale = std::max(scale, double(std::abs(alone[i])));
+        worst = std::max(worst, double(std::abs(member[i] - alone[i])));
+      }
+      CHECK(same_nan == std::size_t(std::count_if(alone.begin(), alone.end(), [](float e) { return std::isnan(e); })));
+      CHECK(scale > 0);
+      CHECK(worst <= 1e-5 * scale);
+      MESSAGE(name << " batch member " << m << ": largest difference " << worst << " of " << scale);
+    }
+    CHECK_THROWS_AS(three.collect(1, member, 0), Error);  // collected already
+    three.submit(0, R.data(), 1, MapOutput::energy);
+    CHECK_THROWS_AS(three.collect(0, member, 1), Error);  // not submitted
+    CHECK_THROWS_AS(three.submit(0, R.data(), 0), Error);
+    CHECK_THROWS_AS(three.submit(0, R.data(), 4), Error);
+
+    // The search's scan: the same candidates, rotation by rotation.
+    const RotationScan a = scan_rotations(one, rotations, indices, ScanOptions{4, separation});
+    const RotationScan b = scan_rotations(three, rotations, indices, ScanOptions{4, separation});
+    CHECK(b.rotations == a.rotations);
+    REQUIRE(b.candidates.size() == a.candidates.size());
+    for (std::size_t k = 0; k < a.candidates.size(); ++k) {
+      CHECK(b.candidates[k].rotation == a.candidates[k].rotation);
+      CHECK(b.candidates[k].cell == a.candidates[k].cell);
+      CHECK(b.candidates[k].energy == doctest::Approx(a.candidates[k].energy).epsilon(1e-4));
+    }
+    for (std::size_t i = 0; i < rotations.size(); ++i)
+      CHECK(b.best_energy[i] == doctest::Approx(a.best_energy[i]).epsilon(1e-4));
+    CHECK(three.minima_counts().on_device >= rotations.size());
+    CHECK(three.minima_counts().fallbacks == 0);
+  }
 }

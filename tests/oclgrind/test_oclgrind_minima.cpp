@@ -159,4 +159,33 @@ TEST_CASE("oclgrind: the search's maps with minima on the device: clean, and map
   CHECK(found >= 6);  // the maps hold minima
 }
 
+TEST_CASE(
+    "oclgrind: a batch of rotations (the product and minima kernels' batched launches): clean, and the same minima") {
+  const PairSpectra& pocl = pocl_pair_spectra();
+  OclgrindSession session(checks_for({"spectrum_product", "fft_back", "map_local_minima"}));
+  const FftLibrary fft;
+  std::vector<Eigen::Matrix3d> rotations;
+  for (const double angle : {0.3, 2.1})
+    rotations.push_back(Eigen::AngleAxisd(angle, Eigen::Vector3d(1, 1, 0.5).normalized()).toRotationMatrix());
+  const double separation = 2 * pocl.spacing;
+  TranslationMapper batched(fft, session.context(), pocl, Interpolation::trilinear, 0, MapFft::clfft,
+                            test_program_cache(), 2);
+  TranslationMapper single(fft, test_context(), pocl, Interpolation::trilinear, 0, MapFft::clfft, test_program_cache());
+  batched.submit(0, rotations.data(), 2, MapOutput::minima);
+  for (std::size_t m = 0; m < 2; ++m) {
+    MapMinimaResult got, want;
+    batched.collect_minima(0, 4, separation, got, m);
+    single.submit(0, rotations[m], MapOutput::minima);
+    single.collect_minima(0, 4, separation, want);
+    REQUIRE(got.minima.size() == want.minima.size());
+    CHECK(!got.minima.empty());
+    for (std::size_t k = 0; k < got.minima.size(); ++k) {
+      CHECK(got.minima[k].index == want.minima[k].index);
+      CHECK(got.minima[k].energy == doctest::Approx(want.minima[k].energy).epsilon(1e-4));
+    }
+  }
+  CHECK(batched.minima_counts().on_device == 2);
+  expect_clean(session, "a batch of two rotations");
+}
+
 }  // namespace snapfit::test
