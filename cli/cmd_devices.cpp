@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "engine/device.h"
-#include "engine/device_check.h"
+#include "engine/runtime/device.h"
+#include "engine/runtime/device_check.h"
 #include "snapfit/error.h"
 
 namespace snapfit::cli {

@@ -10,7 +10,7 @@
 #include "cli/commands.h"
 #include "cli/parse_options.h"
 #include "core/progress.h"
-#include "engine/descriptors.h"
+#include "engine/fields/descriptors.h"
 #include "io/png_export.h"
 #include "io/vti_export.h"
 #include "mesh/mesh_slice.h"

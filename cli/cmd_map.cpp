@@ -8,7 +8,7 @@
 #include "cli/commands.h"
 #include "cli/parse_options.h"
 #include "core/progress.h"
-#include "engine/full_map.h"
+#include "engine/maps/full_map.h"
 #include "io/png_export.h"
 #include "io/vti_export.h"
 #include "pipeline/assembly_pair.h"

@@ -8,8 +8,8 @@
 #include "cli/commands.h"
 #include "cli/parse_options.h"
 #include "core/progress.h"
-#include "engine/collision_predicate.h"
-#include "engine/query_engine.h"
+#include "engine/query/collision_predicate.h"
+#include "engine/query/query_engine.h"
 #include "pipeline/assembly_pair.h"
 #include "snapfit/error.h"
 

@@ -1,7 +1,7 @@
 // `snapfit search SCENE`: where part 2 fits part 1 over all rotations. One full
 // translational energy map per rotation of a uniform SO(3) grid (core/so3_grid.h,
-// engine/rotation_search.h), the best poses of all maps merged, each refined by a
-// local 6-DOF descent with the query engine (engine/pose_descent.h) and, with the
+// engine/maps/rotation_search.h), the best poses of all maps merged, each refined by a
+// local 6-DOF descent with the query engine (engine/query/pose_descent.h) and, with the
 // scene's rigid contact, of the potential the haptic loop renders
 // (scheduler/rendered_wrench.h). Under mpirun the
 // ranks share the rotations cyclically, each on its own OpenCL device
@@ -21,14 +21,14 @@
 #include "cli/search_ranks.h"
 #include "core/progress.h"
 #include "core/so3_grid.h"
-#include "engine/map_fft_choice.h"
-#include "engine/pose_descent.h"
-#include "engine/query_engine.h"
-#include "engine/rotation_search.h"
+#include "engine/maps/map_fft_choice.h"
+#include "engine/query/pose_descent.h"
+#include "engine/query/query_engine.h"
+#include "engine/maps/rotation_search.h"
 #include "io/atomic_write.h"
 #include "pipeline/assembly_pair.h"
 #include "report/chart_spec.h"
-#include "scheduler/auto_tune.h"
+#include "scheduler/mode_tuning.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/rendered_wrench.h"
 #include "scheduler/rigid_contact.h"
@@ -51,7 +51,7 @@ struct SearchOptions {
   std::size_t modes = 0;
   std::size_t refine_modes = 65536;
   std::size_t refine_queries = 200;
-  std::string map_fft = "auto";  // auto: measured per (device, size), engine/map_fft_choice.h
+  std::string map_fft = "auto";  // auto: measured per (device, size), engine/maps/map_fft_choice.h
   std::size_t map_batch = 0;     // rotations per batch; 0: the measured pick with auto, else 1
 };
 

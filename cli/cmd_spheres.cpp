@@ -7,9 +7,9 @@
 
 #include "cli/commands.h"
 #include "core/progress.h"
-#include "engine/ball_union_error.h"
-#include "engine/device.h"
-#include "engine/sphere_decomposition.h"
+#include "engine/fields/ball_union_error.h"
+#include "engine/runtime/device.h"
+#include "engine/fields/sphere_decomposition.h"
 #include "io/vtp_export.h"
 #include "pipeline/assembly_pair.h"
 #include "snapfit/error.h"

@@ -1,5 +1,5 @@
 // `snapfit tune SCENE [--budget MS]`: measures per-query time against m' on the chosen
-// device for the scene's query variant (scheduler/auto_tune.h), prints the table, saves
+// device for the scene's query variant (scheduler/mode_tuning.h), prints the table, saves
 // the tuning file that `snapfit run` reuses, and writes a page with a chart of the sweep.
 #include <iostream>
 #include <memory>
@@ -8,8 +8,8 @@
 #include "cli/commands.h"
 #include "cli/parse_options.h"
 #include "core/progress.h"
-#include "engine/device.h"
-#include "engine/query_engine.h"
+#include "engine/runtime/device.h"
+#include "engine/query/query_engine.h"
 #include "pipeline/assembly_pair.h"
 #include "report/chart_spec.h"
 #include "report/haptic_report.h"

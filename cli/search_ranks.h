@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/spectra.h"
+#include "engine/spectra/spectra.h"
 
 namespace snapfit::cli {
 

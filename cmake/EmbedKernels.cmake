@@ -4,7 +4,7 @@
 include(${CMAKE_CURRENT_LIST_DIR}/GeneratedList.cmake)
 
 function(snapfit_embed_kernels OUTPUT)
-  snapfit_generated_list_opening(body "cmake/EmbedKernels.cmake from kernels/*.cl" "engine/kernel_sources.h"
+  snapfit_generated_list_opening(body "cmake/EmbedKernels.cmake from kernels/*.cl" "engine/runtime/kernel_sources.h"
                                  KernelSource embedded_kernel_sources)
   foreach(file ${ARGN})
     get_filename_component(name ${file} NAME_WE)

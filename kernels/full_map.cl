@@ -38,7 +38,7 @@ __kernel void spectrum_product(__global const float2* s1, __global const float2*
 // x = 0..dims.x/2 (layout x fastest, dims.x/2 + 1 per row), the input of a
 // complex-to-real inverse FFT: half the transform and a real map of half the bytes.
 // -D CONJUGATE_PAIRS: both parts' samples real, or both imaginary, so P_{-k} = conj P_k
-// (engine/spectra.h sample_parity) and H = P: one product per node instead of two.
+// (engine/spectra/spectra.h sample_parity) and H = P: one product per node instead of two.
 __kernel void spectrum_product_half(__global const float2* s1, __global const float2* s2, const int4 dims,
                                     const float4 length, __global const float16* poses, const float dw,
                                     const float max_w2, __global float2* half_product) {

@@ -1,5 +1,5 @@
 // Shared geometry for the descriptor kernels: the BVH node layout (mirrors
-// engine/triangle_bvh.h), grid points, point-triangle distance, triangle solid angle.
+// engine/fields/triangle_bvh.h), grid points, point-triangle distance, triangle solid angle.
 // Prepended to unsigned_distance.cl, winding_number.cl and skeletal_density.cl.
 
 typedef struct {

@@ -1,8 +1,8 @@
-// The local minima of a full translational map, found on the device (engine/device_minima.h)
+// The local minima of a full translational map, found on the device (engine/maps/device_minima.h)
 // so that a search reads back a short list per rotation instead of the whole map: the
-// points engine/map_minima.cpp finds on the host map, by the same rules.
+// points engine/maps/map_minima.cpp finds on the host map, by the same rules.
 //
-// f: the complex inverse FFT of one map (engine/full_map.cpp), E = -Re f, starting at
+// f: the complex inverse FFT of one map (engine/maps/full_map.cpp), E = -Re f, starting at
 // element `offset` (a map of a batch in one buffer). Grid point
 // (x, y, z) in regular order (translation index x - N/2 per axis) is FFT node
 // (x + N - N/2) mod N per axis. Points outside lo..hi (per axis, inclusive: the aliasing

@@ -15,7 +15,7 @@
 // Partial sums per group (24 floats, SUMS_PER_GROUP): the 8 outputs Re f, Im f, F (3),
 // T in part 2's frame (3) over every retained mode, then the same 8 over the two octave
 // bands just below the cut, modes (m'/4, m'/2] and (m'/2, m'] (from which the host
-// estimates the truncation error, engine/error_estimate.h).
+// estimates the truncation error, engine/query/error_estimate.h).
 //
 // The pose (float16): s0-s8 R row-major, s9-sb tau_a / L_a rounded to float ("hi"),
 // sc-se the rest tau_a / L_a - hi ("lo"). A single query passes it as the argument
@@ -23,7 +23,7 @@
 //
 // Each record is one float4: (Re W_k, Im W_k, (kx, ky) as two shorts, (kz, folded) as
 // two shorts), so the loop streams 16 bytes per record from one array, in the mode order
-// (engine/mode_order.h: any m' is a prefix). A folded record stands for the conjugate
+// (engine/spectra/mode_order.h: any m' is a prefix). A folded record stands for the conjugate
 // pair w, -w of a real correlation: its weight is 2 W_k and it adds to the real parts
 // only (Re f, F, T; the pair's Im f is 0). An m' that cuts a pair passes the pair's first
 // mode alone as `extra_mode` (weight 0 otherwise), added once per pose.
@@ -288,7 +288,7 @@ inline void add_line(Sums* sums, const float4 seg, const float2 p, const short2 
 
 // Translation only (seed 000 section 3.3; R = I): f(t) = sum_k W_k e^{2 pi i w_k.tau} with
 // W_k = S1(w_k) S2(-w_k) dw, stored in a dense box of x-lines (kx fastest; rows padded
-// by 8 nodes). engine/translation_lines.h picks, for the current m', the lines that
+// by 8 nodes). engine/query/translation_lines.h picks, for the current m', the lines that
 // hold retained modes and on each the interval [xa, xb] of retained kx (|w| grows with
 // |kx| along a line, so that is one interval): `lines` holds (index of the line's kx = 0
 // node, (ky, kz) as two shorts, xa, xb, then the nested intervals of the modes up to m'/2
@@ -412,7 +412,7 @@ inline void add_rotated_line(Sums* sums, const RotatedSegment r, const float2 p,
 }
 
 // The x-lines of a product spectrum made for part 2 turned by R0 (kernels/rotated_product.cl,
-// engine/rotated_product.h), at a pose R = exp([dtheta]x) R0 (docs/design.md "Exact
+// engine/query/rotated_product.h), at a pose R = exp([dtheta]x) R0 (docs/design.md "Exact
 // rotation"): each box node holds float8 (W0, D_x, D_y, D_z), and the term is
 //   W_k = W0_k + dtheta . D_k,   f = sum_k W_k e^{i phi},   phi = 2 pi w_k.tau,
 // the energy to first order in the rotation since the product was made. The lines and

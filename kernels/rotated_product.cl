@@ -1,10 +1,10 @@
 // The product spectrum of the pair for part 2 turned by R0, exact in rotation
-// (engine/rotated_product.h; docs/design.md "Exact rotation"): for each listed mode k,
+// (engine/query/rotated_product.h; docs/design.md "Exact rotation"): for each listed mode k,
 // with w = k / L and part 2's rotated frequency u = -R0^T w,
 //   W0_k = S1(w) dw S2(u)                       (the energy's term)
 //   D_k  = S1(w) dw (w x R0 grad S2(u))          (its rotation derivative, d/dtheta)
 // where S2 and its gradient are evaluated exactly (to the kernel's tolerance) from part
-// 2's deconvolved spectrum by the exponential-of-semicircle kernel (engine/es_kernel.h):
+// 2's deconvolved spectrum by the exponential-of-semicircle kernel (engine/spectra/es_kernel.h):
 //   S2(u) = sum_n phi(L u - n) S2'_n,  dS2/du_a = L_a sum_n phi'(L_a u_a - n_a) ... S2'_n.
 // Output per mode: float8 (W0, D_x, D_y, D_z) at its node of the product box; with
 // conjugate pairs (both parts' samples imaginary: W0(-w) = conj W0(w), D(-w) = conj D(w))

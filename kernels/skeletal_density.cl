@@ -26,7 +26,7 @@
 // written per point: a rigorous bound on |s_computed - s| (up to float rounding).
 //
 // Point packets (-D LANES=1, 4, 8 or 16). A work item evaluates LANES grid points at
-// once, in SIMD: the points of one small brick of the grid (engine/descriptors.cpp
+// once, in SIMD: the points of one small brick of the grid (engine/fields/descriptors.cpp
 // orders them), which mostly accept and open the same clusters. Every cluster and
 // triangle piece is tested per lane; a lane adds the clusters it accepts and goes on
 // only into those it rejects (a mask travels with each stack entry), so each point sums

@@ -9,7 +9,7 @@
 // otherwise its children are visited, and leaves are summed exactly.
 // Output: w and its error bound (sum of the accepted remainders / 4pi).
 // With -D POINT_LIST the points are grid indices point_ids[first_point + i] (the seeds
-// of engine/winding_propagation.h) instead of the range first_point + i; with
+// of engine/fields/winding_propagation.h) instead of the range first_point + i; with
 // -D EXPLICIT_POINTS (and no POINT_LIST) the chunk's points are read from point_x/y/z.
 
 __kernel void winding_number(const long first_point, const long point_count, const float3 origin, const float spacing,

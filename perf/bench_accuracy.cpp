@@ -24,9 +24,9 @@
 #include <sstream>
 
 #include "core/quantile.h"
-#include "engine/device.h"
-#include "engine/query_engine.h"
-#include "engine/reference_query.h"
+#include "engine/runtime/device.h"
+#include "engine/query/query_engine.h"
+#include "engine/query/reference_query.h"
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
 #include "report/accuracy_json.h"

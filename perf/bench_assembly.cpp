@@ -46,8 +46,8 @@
 #include <time.h>
 
 #include "core/quantile.h"
-#include "engine/device.h"
-#include "engine/query_engine.h"
+#include "engine/runtime/device.h"
+#include "engine/query/query_engine.h"
 #include "mesh/mesh_distance.h"
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"

@@ -1,4 +1,4 @@
-// Seed 001's collision predicate (engine/collision_predicate.h) against FCL's verdicts on
+// Seed 001's collision predicate (engine/query/collision_predicate.h) against FCL's verdicts on
 // the shipped scenes: agreement and per-query time at m' = 512 .. 4,096.
 //
 //   bench_collision [--quick] [--device SPEC] [--out DIR] [--poses N] [--scene FILE]...
@@ -17,8 +17,8 @@
 // the deepest vertex of one part inside the other (mesh/mesh_distance.h, exact in double;
 // 0 when only edges cross).
 // Predicates per m': "bound": overlap > B(m'), the Cauchy-Schwarz truncation bound
-// (engine/collision_predicate.h, derived from the two spectra); "estimate": overlap above
-// the query's own error estimate (engine/error_estimate.h: the two octave bands below the
+// (engine/query/collision_predicate.h, derived from the two spectra); "estimate": overlap above
+// the query's own error estimate (engine/query/error_estimate.h: the two octave bands below the
 // cut, its scale measured against the untruncated sum); "zero": overlap > 0, the seed's
 // g > 0 read literally on the truncated sum. True/false positive/negative counts
 // against FCL, rates, the largest |distance to contact| among the disagreements, and the
@@ -39,11 +39,11 @@
 #include <vector>
 
 #include "core/progress.h"
-#include "engine/collision_predicate.h"
-#include "engine/compute_context.h"
-#include "engine/device.h"
-#include "engine/fft3d.h"
-#include "engine/query_engine.h"
+#include "engine/query/collision_predicate.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/runtime/device.h"
+#include "engine/spectra/fft3d.h"
+#include "engine/query/query_engine.h"
 #include "mesh/mesh_distance.h"
 #include "perf/bench_common.h"
 #include "perf/fcl_peer.h"

@@ -18,7 +18,7 @@
 #include <unistd.h>
 #include <vector>
 
-#include "engine/device.h"
+#include "engine/runtime/device.h"
 #include "report/chart_spec.h"
 #include "report/web_assets.h"
 #include "snapfit/error.h"

@@ -1,4 +1,4 @@
-// Benchmark of descriptor precomputation (engine/descriptors.h compute_descriptors):
+// Benchmark of descriptor precomputation (engine/fields/descriptors.h compute_descriptors):
 // distance, winding number and skeletal density of one part on a uniform grid, on the
 // selected OpenCL device.
 //
@@ -51,9 +51,9 @@
 
 #include "core/grid.h"
 #include "core/progress.h"
-#include "engine/compute_context.h"
-#include "engine/descriptors.h"
-#include "engine/device.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/fields/descriptors.h"
+#include "engine/runtime/device.h"
 #include "mesh/mesh.h"
 #include "mesh/procedural/procedural_parts.h"
 #include "perf/bench_common.h"

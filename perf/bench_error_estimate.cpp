@@ -1,4 +1,4 @@
-// How the per-query error estimate (engine/error_estimate.h) relates to the true error:
+// How the per-query error estimate (engine/query/error_estimate.h) relates to the true error:
 // at poses along a scene's trajectory, for the loop's strategy (tricubic interpolation, or
 // the translation lines) at several m', the true error of E, |F| and |T| against the
 // exact reference (every mode, exact rotation: scheduler/accuracy.h) divided by the root
@@ -16,9 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/quantile.h"
-#include "engine/device.h"
-#include "engine/error_estimate.h"
-#include "engine/query_engine.h"
+#include "engine/runtime/device.h"
+#include "engine/query/error_estimate.h"
+#include "engine/query/query_engine.h"
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/accuracy.h"

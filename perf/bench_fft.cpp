@@ -1,11 +1,11 @@
-// clFFT (what snapfit uses, engine/fft3d.h; unmaintained since 2017) against FFTW and
+// clFFT (what snapfit uses, engine/spectra/fft3d.h; unmaintained since 2017) against FFTW and
 // VkFFT on the same 3D transforms, side by side in one run, and the full-map throughput
 // (rotations per second) with each library's inverse FFT.
 //
 //   bench_fft [--quick] [--device SPEC] [--out DIR] [--repeats N]
 //
 // Libraries (all single precision, complex-to-complex, interleaved, x fastest):
-//   clfft   engine/fft3d.h Fft3d on the OpenCL device (out of place, inverse unnormalized)
+//   clfft   engine/spectra/fft3d.h Fft3d on the OpenCL device (out of place, inverse unnormalized)
 //   vkfft   VkFFT (Debian libvkfft-dev, header-only, VKFFT_BACKEND=3: OpenCL) on the same
 //           device and queue; out of place (isInputFormatted + inverseReturnToInputBuffer:
 //           forward input -> buffer, inverse buffer -> input); inverse unnormalized
@@ -15,7 +15,7 @@
 //
 // 1. transforms  sizes 64^3, 128^3 and the FFT grid snapfit's default scene uses
 //                (scenes/default.json: the parts' descriptor grids, oversampling 2, each axis
-//                rounded up by next_fft_size, as engine/spectra.cpp does); per library and
+//                rounded up by next_fft_size, as engine/spectra/spectra.cpp does); per library and
 //                direction: plan time (clFFT: Fft3d constructor = create + bake; VkFFT:
 //                initializeVkFFT, which generates and compiles its kernels; FFTW: planning
 //                both directions with FFTW_MEASURE), then N timed transforms (default 30,
@@ -37,7 +37,7 @@
 //                all three; FFTW also needs the product read back to the host (timed in its
 //                rotation); the three take turns rotation by rotation (interleaved), so
 //                that load from other processes weighs on all alike. Also the real code
-//                path, engine/full_map.h translational_energy_map (all modes): cold (first
+//                path, engine/maps/full_map.h translational_energy_map (all modes): cold (first
 //                call) and warm; it uploads both spectra, bakes a clFFT plan, runs product + inverse FFT, reads
 //                back and re-orders the map on the host, every call. Agreement: the maps of
 //                each library for one rotation against FFTW double of the same product.
@@ -86,13 +86,13 @@
 #include <thread>
 #include <vector>
 
-#include "engine/compute_context.h"
-#include "engine/device.h"
-#include "engine/fft3d.h"
-#include "engine/full_map.h"
-#include "engine/kernel_sources.h"
-#include "engine/program_cache.h"
-#include "engine/spectra.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/runtime/device.h"
+#include "engine/spectra/fft3d.h"
+#include "engine/maps/full_map.h"
+#include "engine/runtime/kernel_sources.h"
+#include "engine/runtime/program_cache.h"
+#include "engine/spectra/spectra.h"
 #include "perf/bench_common.h"
 #include "perf/bench_spectra.h"
 #include "pipeline/assembly_pair.h"
@@ -490,7 +490,7 @@ std::vector<MapRow> bench_maps(const snapfit::FftLibrary& lib, const snapfit::Co
   }
   std::vector<MapRow> rows;
 
-  // The real code path (engine/full_map.cpp), trilinear as in seed 000.
+  // The real code path (engine/maps/full_map.cpp), trilinear as in seed 000.
   {
     MapRow r;
     r.library = "full_map";
@@ -621,7 +621,7 @@ std::vector<MapRow> bench_maps(const snapfit::FftLibrary& lib, const snapfit::Co
   return rows;
 }
 
-// The FFT grid snapfit builds for a scene (engine/spectra.cpp: oversampling times the
+// The FFT grid snapfit builds for a scene (engine/spectra/spectra.cpp: oversampling times the
 // larger part grid per axis, rounded up by next_fft_size), from the parts' grids.
 Dims scene_fft_dims(const std::string& path, double oversampling) {
   const snapfit::Scene scene = snapfit::load_scene(path);
@@ -911,7 +911,7 @@ int run(const Args& args) {
        "fftwf_plan_dft_3d forward + backward with FFTW_MEASURE"},
       {"maps",
        "median over seeded random rotations of product kernel + inverse FFT (FFTW also reads the product back); "
-       "full_map = engine/full_map.h translational_energy_map, all modes, trilinear, warm median"}};
+       "full_map = engine/maps/full_map.h translational_energy_map, all modes, trilinear, warm median"}};
   const std::filesystem::path dir(args.out);
   write_outputs(dir, args, transforms, maps, meta, verdict.str());
   std::cout << "\nload average at end: " << load_end << " (start: " << load_start << "), total " << fixed(total_s, 0)

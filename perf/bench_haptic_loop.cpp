@@ -24,8 +24,8 @@
 #include <sys/resource.h>
 
 #include "core/quantile.h"
-#include "engine/device.h"
-#include "engine/query_engine.h"
+#include "engine/runtime/device.h"
+#include "engine/query/query_engine.h"
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
 #include "report/chart_spec.h"

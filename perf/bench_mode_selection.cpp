@@ -1,5 +1,5 @@
 // Which m' modes to keep: the truncation error of E, F and T when the retained modes of
-// the exact-rotation product (engine/rotated_product.h) are the lowest |w| (the engine's
+// the exact-rotation product (engine/query/rotated_product.h) are the lowest |w| (the engine's
 // mode order, a low-pass ball) or the largest per-mode weights. At each pose along the
 // scene's trajectory the product is made for the pose's own rotation over every mode and
 // read back; then, in double on the host, each mode's term (kernels/pose_query.cl
@@ -24,11 +24,11 @@
 #include <iostream>
 #include <numeric>
 
-#include "engine/device.h"
-#include "engine/mode_order.h"
-#include "engine/query_engine.h"
-#include "engine/rotated_product.h"
-#include "engine/translation_lines.h"
+#include "engine/runtime/device.h"
+#include "engine/spectra/mode_order.h"
+#include "engine/query/query_engine.h"
+#include "engine/query/rotated_product.h"
+#include "engine/query/translation_lines.h"
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/accuracy.h"

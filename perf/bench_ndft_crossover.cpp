@@ -1,5 +1,5 @@
 // Where the type-1 NUFFT of a ball set overtakes the direct NDFT on this device
-// (engine/ball_spectrum.h), the measurement behind the pipeline's "auto" method
+// (engine/spectra/ball_spectrum.h), the measurement behind the pipeline's "auto" method
 // (pipeline/sphere_spectra.h ball_spectrum_method).
 //
 //   bench_ndft_crossover [--quick] [--device SPEC] [--out DIR]
@@ -26,11 +26,11 @@
 #include <string>
 #include <vector>
 
-#include "engine/ball_spectrum.h"
-#include "engine/compute_context.h"
-#include "engine/device.h"
-#include "engine/fft3d.h"
-#include "engine/sphere_decomposition.h"
+#include "engine/spectra/ball_spectrum.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/runtime/device.h"
+#include "engine/spectra/fft3d.h"
+#include "engine/fields/sphere_decomposition.h"
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/sphere_spectra.h"

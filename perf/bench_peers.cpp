@@ -65,11 +65,11 @@
 #include <vector>
 
 #include "core/progress.h"
-#include "engine/compute_context.h"
-#include "engine/device.h"
-#include "engine/fft3d.h"
-#include "engine/query_engine.h"
-#include "engine/spectra.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/runtime/device.h"
+#include "engine/spectra/fft3d.h"
+#include "engine/query/query_engine.h"
+#include "engine/spectra/spectra.h"
 #include "mesh/triangle_refine.h"
 #include "perf/bench_common.h"
 #include "perf/fcl_peer.h"

@@ -1,5 +1,5 @@
 // Benchmark of per-pose queries (include/snapfit/query.h), batched queries, full
-// translational maps (engine/full_map.h) and a roofline of the query kernel against
+// translational maps (engine/maps/full_map.h) and a roofline of the query kernel against
 // this device's measured memory bandwidth and arithmetic peak.
 //
 //   bench_queries [--quick] [--device SPEC] [--scene FILE] [--out DIR] [--repeats N]
@@ -66,11 +66,11 @@
 #include <vector>
 
 #include "core/progress.h"
-#include "engine/compute_context.h"
-#include "engine/device.h"
-#include "engine/fft3d.h"
-#include "engine/full_map.h"
-#include "engine/query_engine.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/runtime/device.h"
+#include "engine/spectra/fft3d.h"
+#include "engine/maps/full_map.h"
+#include "engine/query/query_engine.h"
 #include "perf/bench_common.h"
 #include "pipeline/assembly_pair.h"
 #include "snapfit/error.h"
@@ -245,7 +245,7 @@ std::vector<VariantSpec> variant_specs() {
 //          (local memory)                                                  = 40 B
 //          TAPS^3 cube taps x sizeof(Sample): float8 (32 B) with torque, float2 (8 B)
 //          without; half that with the half-float cube
-//   translation only (x-line intervals, engine/translation_lines.h): per node of the
+//   translation only (x-line intervals, engine/query/translation_lines.h): per node of the
 //          selected intervals, weight 8 B + x table 8 B (local) = 16 B; flops per node:
 //          complex multiply 6, 2 adds, 2 fma (kx terms) 4 = 12 (the masked lanes of each
 //          line's last 8-wide chunk and the per-line sums are not counted)

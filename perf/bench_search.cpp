@@ -1,7 +1,7 @@
-// Throughput of `snapfit search`'s map loop (engine/rotation_search.h scan_rotations):
+// Throughput of `snapfit search`'s map loop (engine/maps/rotation_search.h scan_rotations):
 // full translational maps per second over an SO(3) grid, with both spectra uploaded
 // once, the inverse FFT plan baked once and two maps in flight, against the one-shot
-// path (engine/full_map.h translational_energy_map: upload, bake, map, every call).
+// path (engine/maps/full_map.h translational_energy_map: upload, bake, map, every call).
 //
 //   bench_search [--quick] [--device SPEC] [--out DIR] [--rotations N] [--scene FILE]
 //
@@ -9,9 +9,9 @@
 // box, E >= 0 wherever they overlap, so their maps hold no minima with E < 0), or with
 // --scene the scene's pair at its own FFT size (maps with the minima of real parts), trilinear
 // and tricubic resampling of the rotated spectrum (--quick: trilinear only), each inverse
-// FFT this build has (engine/map_fft.h) side by side, and the one choose_map_fft picks;
+// FFT this build has (engine/maps/map_fft.h) side by side, and the one choose_map_fft picks;
 // with clFFT and VkFFT (the device FFTs) both ways of finding each map's minima: on the
-// device (the search's way, engine/device_minima.h: the minima kernel, then a short list
+// device (the search's way, engine/maps/device_minima.h: the minima kernel, then a short list
 // read back and thinned on the host) and on the host (the whole complex map read back, put
 // in grid order, then map_minima), so the two compare in one run. FFTW's maps are on the
 // host: host only.
@@ -23,7 +23,7 @@
 // with collect and map_minima, as scan_rotations ran before the device found minima);
 // the interval between consecutive finished maps is one rotation's cost; rotations/s =
 // 1 / median interval, and the whole scan's count over its wall time. The device FFTs
-// also map with their minima on the device in batches (engine/full_map.h; batch "x8" or
+// also map with their minima on the device in batches (engine/maps/full_map.h; batch "x8" or
 // what fits the device): there one rotation's cost is a batch's interval over its
 // rotations, and the stages are not timed (they are the batch-1 row's). One-shot: 3 calls
 // (--quick 1), median.
@@ -36,11 +36,11 @@
 
 #include "core/quantile.h"
 #include "core/so3_grid.h"
-#include "engine/device.h"
-#include "engine/full_map.h"
-#include "engine/map_fft_choice.h"
-#include "engine/map_minima.h"
-#include "engine/rotation_search.h"
+#include "engine/runtime/device.h"
+#include "engine/maps/full_map.h"
+#include "engine/maps/map_fft_choice.h"
+#include "engine/maps/map_minima.h"
+#include "engine/maps/rotation_search.h"
 #include "perf/bench_common.h"
 #include "perf/bench_spectra.h"
 #include "pipeline/assembly_pair.h"

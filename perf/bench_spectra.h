@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/spectra.h"
+#include "engine/spectra/spectra.h"
 #include "snapfit/error.h"
 
 namespace snapfit::bench {

@@ -1,7 +1,7 @@
 // Seed 001's route to the spectra against the grid's, measured:
 // 1. ball counts against the grid size m, shaped like seed 001 Table A.2: the Stanford
 //    bunny scaled to a box of longest edge 1 (so epsilon = sqrt(3) / (2 m^(1/3)) as there),
-//    protrusion mu = 0.25, 0.5, 1; n1 = |A1| and n3 = |A3| (engine/sphere_decomposition.h);
+//    protrusion mu = 0.25, 0.5, 1; n1 = |A1| and n3 = |A3| (engine/fields/sphere_decomposition.h);
 // 2. ball counts and volume errors of the shipped parts (scenes/default.json) against the
 //    tolerance;
 // 3. time to part 2's spectrum and its error at the 4,096 lowest modes against the exact
@@ -24,12 +24,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "engine/ball_spectrum.h"
-#include "engine/ball_union_error.h"
-#include "engine/device.h"
-#include "engine/mode_order.h"
-#include "engine/spectra.h"
-#include "engine/sphere_decomposition.h"
+#include "engine/spectra/ball_spectrum.h"
+#include "engine/fields/ball_union_error.h"
+#include "engine/runtime/device.h"
+#include "engine/spectra/mode_order.h"
+#include "engine/spectra/spectra.h"
+#include "engine/fields/sphere_decomposition.h"
 #include "io/mesh_load.h"
 #include "mesh/mesh_mass_properties.h"
 #include "mesh/procedural/procedural_parts.h"

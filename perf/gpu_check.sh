@@ -100,7 +100,7 @@ describe() {
     "$(jget device_index "$1")" "$(jget name "$1")" "$(jget type "$1")" "$(jget platform "$1")" "$(jget driver_version "$1")"
 }
 # resolve_device SPEC FILE: the line of `snapfit devices --json` output FILE that SPEC picks
-# (engine/device.cpp select_device_index: "", N, P:D, a type, or a name substring)
+# (engine/runtime/device.cpp select_device_index: "", N, P:D, a type, or a name substring)
 resolve_device() {
   local spec=${1,,} file=$2 line p d hay
   spec=$(printf '%s' "$spec" | sed 's/^[[:space:]]*//; s/[[:space:]]*$//')

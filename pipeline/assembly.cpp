@@ -2,8 +2,9 @@
 #include "snapfit/assembly.h"
 
 #include "core/progress.h"
-#include "engine/device.h"
-#include "engine/query_engine.h"
+#include "engine/query/query_engine.h"
+#include "engine/runtime/device.h"
+#include "pipeline/assembly_access.h"
 #include "pipeline/assembly_pair.h"
 
 namespace snapfit {
@@ -33,8 +34,8 @@ const Scene& Assembly::scene() const { return state_->pair.scene; }
 std::string Assembly::device_name() const { return state_->ctx.device.info.name; }
 double Assembly::spacing() const { return state_->pair.grids.spacing; }
 std::array<std::size_t, 3> Assembly::fft_dims() const { return state_->pair.spectra.dims; }
-const AssemblyPair& Assembly::pair() const { return state_->pair; }
-const ComputeContext& Assembly::context() const { return state_->ctx; }
+const AssemblyPair& AssemblyAccess::pair(const Assembly& assembly) { return assembly.state_->pair; }
+const ComputeContext& AssemblyAccess::context(const Assembly& assembly) { return assembly.state_->ctx; }
 
 QueryVariant Assembly::query_variant(Interpolation interpolation) const {
   return query_variant_for(state_->pair.scene, interpolation);

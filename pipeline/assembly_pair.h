@@ -19,8 +19,8 @@
 #include <functional>
 #include <string>
 
-#include "engine/fft3d.h"
-#include "engine/spectra.h"
+#include "engine/spectra/fft3d.h"
+#include "engine/spectra/spectra.h"
 #include "pipeline/compute_plan.h"
 #include "pipeline/part_fields.h"
 #include "pipeline/prepare_parts.h"
@@ -70,7 +70,7 @@ AssemblyPair build_assembly_pair(const Scene& scene, const ComputeContext& ctx, 
                                  const PairOptions& options = {});
 
 // The scene with the indicator descriptor (seed 000 eq. 1): its query energy is the overlap
-// volume of the two parts, what the collision predicate (engine/collision_predicate.h) thresholds.
+// volume of the two parts, what the collision predicate (engine/query/collision_predicate.h) thresholds.
 Scene indicator_scene(const Scene& scene);
 
 // The query variant a scene needs: its outputs and motion, with the given interpolation.

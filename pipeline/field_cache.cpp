@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "core/hash.h"
-#include "engine/kernel_sources.h"
+#include "engine/runtime/kernel_sources.h"
 #include "io/cache_file.h"
 #include "mesh/mesh_hash.h"
 #include "snapfit/error.h"
@@ -13,7 +13,7 @@
 namespace snapfit {
 namespace {
 
-// 3: fields computed in grid units (engine/descriptors.cpp).
+// 3: fields computed in grid units (engine/fields/descriptors.cpp).
 constexpr std::uint32_t kFieldCacheVersion = 3;
 // Mask bit (above the field bits) set when w came from sign propagation.
 constexpr std::uint32_t kSignPropagationBit = 1u << 16;

@@ -1,5 +1,5 @@
 #pragma once
-// On-disk cache of descriptor fields (engine/descriptors.h), in the versioned,
+// On-disk cache of descriptor fields (engine/fields/descriptors.h), in the versioned,
 // checksummed, atomically written container of io/cache_file.h. The key holds a hash
 // of the mesh content, the grid, every descriptor parameter and option that changes
 // the values, and a hash of the kernel sources, so any change recomputes.
@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "engine/descriptors.h"
+#include "engine/fields/descriptors.h"
 
 namespace snapfit {
 

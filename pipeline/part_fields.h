@@ -4,7 +4,7 @@
 #include <functional>
 #include <string>
 
-#include "engine/descriptors.h"
+#include "engine/fields/descriptors.h"
 
 namespace snapfit {
 

@@ -12,7 +12,7 @@
 namespace snapfit {
 namespace {
 
-// 2: each part's sample parity (engine/spectra.h). 3: part 2's deconvolved spectrum and
+// 2: each part's sample parity (engine/spectra/spectra.h). 3: part 2's deconvolved spectrum and
 // its kernel width in place of the torque moments.
 constexpr std::uint32_t kSpectraCacheVersion = 3;
 constexpr const char* kKind = "pair-spectra";

@@ -1,5 +1,5 @@
 #pragma once
-// On-disk cache of pair spectra (engine/spectra.h), in the versioned, checksummed,
+// On-disk cache of pair spectra (engine/spectra/spectra.h), in the versioned, checksummed,
 // atomically written container of io/cache_file.h, under cache_root()/spectra. The key
 // hashes both affinity fields and their grids, the oversampling, the exact-rotation kernel
 // and where each part's spectrum comes from (pipeline/sphere_spectra.h spectrum_source_key).
@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "engine/spectra.h"
+#include "engine/spectra/spectra.h"
 
 namespace snapfit {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "engine/ball_union_error.h"
+#include "engine/fields/ball_union_error.h"
 #include "mesh/mesh_mass_properties.h"
 #include "snapfit/error.h"
 

@@ -1,19 +1,19 @@
 #pragma once
 // Pair spectra where one or both parts take seed 001's route (a scene part's
 // "descriptor": {"source": "spheres"}): the part's spherical decomposition
-// (engine/sphere_decomposition.h) and the analytic transforms of its balls summed onto the
-// pair's lattice (engine/ball_spectrum.h), in place of the FFT of its sampled indicator.
+// (engine/fields/sphere_decomposition.h) and the analytic transforms of its balls summed onto the
+// pair's lattice (engine/spectra/ball_spectrum.h), in place of the FFT of its sampled indicator.
 //
 // The part's density is c * sum_j 1_{B_j}, whose support is the union of the balls
 // (seed 001 eq. 6); c = |S| / sum_j |B_j| makes its integral, the zero mode, the solid's
 // volume as for the sampled indicator. Part 2's deconvolved spectrum (the exact rotation,
-// engine/es_kernel.h) is made from the same density sampled on its grid.
+// engine/spectra/es_kernel.h) is made from the same density sampled on its grid.
 #include <functional>
 #include <string>
 #include <vector>
 
-#include "engine/ball_spectrum.h"
-#include "engine/spectra.h"
+#include "engine/spectra/ball_spectrum.h"
+#include "engine/spectra/spectra.h"
 #include "pipeline/assembly_pair.h"
 
 namespace snapfit {

@@ -6,7 +6,7 @@
 
 #include "report/chart_spec.h"
 #include "scheduler/assembly_session.h"
-#include "scheduler/auto_tune.h"
+#include "scheduler/mode_tuning.h"
 
 namespace snapfit {
 

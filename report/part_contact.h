@@ -1,7 +1,7 @@
 #pragma once
 // What report.html shows as contact: the triangles of one part whose centroid lies inside
 // the other part at a frame's pose. "Inside" is the other part's generalized winding
-// number field (engine/descriptors.h), trilinearly interpolated on its grid, above 1/2,
+// number field (engine/fields/descriptors.h), trilinearly interpolated on its grid, above 1/2,
 // so the test is as sharp as that grid: within about one grid spacing of the other
 // part's surface it may go either way, and touching surfaces (zero clearance) read as
 // inside or outside by a hair.

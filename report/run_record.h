@@ -3,12 +3,12 @@
 #include <optional>
 #include <string>
 
-#include "engine/device.h"
-#include "engine/device_check.h"
+#include "engine/runtime/device.h"
+#include "engine/runtime/device_check.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/accuracy.h"
 #include "scheduler/assembly_session.h"
-#include "scheduler/auto_tune.h"
+#include "scheduler/mode_tuning.h"
 
 namespace snapfit {
 

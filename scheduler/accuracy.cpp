@@ -8,7 +8,7 @@
 #include <thread>
 
 #include "core/quantile.h"
-#include "engine/query_engine.h"
+#include "engine/query/query_engine.h"
 #include "scheduler/engine_tuning.h"
 #include "scheduler/trajectory.h"
 #include "scheduler/virtual_coupling.h"

@@ -2,7 +2,7 @@
 // What a frame budget buys for a scene (`snapfit accuracy`, perf/bench_accuracy): each
 // query strategy tuned for the budget on a device (scheduler/engine_tuning.h), its
 // per-frame time, and its error against a reference that is exact in rotation: every
-// mode of the exact-rotation product (engine/rotated_product_query.h), made for each
+// mode of the exact-rotation product (engine/query/rotated_product_query.h), made for each
 // pose's own rotation, at poses along the scene's trajectory. The reference equals a
 // double-precision sum over the DTFT of part 2's samples (tests/test_exact_rotation.cpp)
 // and, at lattice poses, the direct sum over the meshes (tests/test_direct_reference.cpp).
@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/compute_context.h"
-#include "engine/spectra.h"
-#include "scheduler/auto_tune.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/spectra/spectra.h"
+#include "scheduler/mode_tuning.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
 

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "mesh/mesh.h"
-#include "scheduler/auto_tune.h"
+#include "scheduler/mode_tuning.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/rendered_wrench.h"
 #include "scheduler/rigid_contact.h"

@@ -3,7 +3,7 @@
 // the one with the lowest tuned latency; the others are left for background work.
 #include <vector>
 
-#include "scheduler/auto_tune.h"
+#include "scheduler/mode_tuning.h"
 
 namespace snapfit {
 

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "core/hash.h"
-#include "engine/kernel_sources.h"
+#include "engine/runtime/kernel_sources.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/trajectory.h"
 #include "snapfit/assembly.h"
@@ -12,19 +12,6 @@
 #include "snapfit/haptic_loop.h"
 
 namespace snapfit {
-
-std::string variant_name(const QueryVariant& v) {
-  std::string name = v.translation_only ? "translation" : "6dof";
-  name += " energy";
-  if (v.force) name += " force";
-  if (v.torque) name += " torque";
-  if (v.translation_only) return name;
-  if (v.rotation == RotationMethod::exact_product)
-    name += v.product_update == ProductUpdate::background ? " exact-product background" : " exact-product each-query";
-  else
-    name += v.interpolation == Interpolation::tricubic ? " tricubic" : " trilinear";
-  return name;
-}
 
 TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, const PairSpectra& spectra,
                          double budget_ms, double margin, double pace_hz) {
@@ -35,8 +22,9 @@ TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, 
   key.variant = variant_name(variant);
   std::ostringstream features;
   // The query kernels' source: timings taken with other kernels say nothing about these.
-  const std::string kernels = kernel_source("spectrum_sample") + kernel_source("pose_query") +
-                              (variant.rotation == RotationMethod::exact_product ? kernel_source("rotated_product") : "");
+  const std::string kernels =
+      kernel_source("spectrum_sample") + kernel_source("pose_query") +
+      (variant.rotation == RotationMethod::exact_product ? kernel_source("rotated_product") : "");
   features << "fft " << spectra.dims[0] << "x" << spectra.dims[1] << "x" << spectra.dims[2] << " exact_rotation "
            << spectra.part2.deconvolved_width << " spacing " << spectra.spacing << " kernels "
            << hex64(fnv1a64(kernels));
@@ -94,16 +82,6 @@ EngineTuning tune_engine(QueryEngine& engine, const TuningKey& key, const std::v
     if (note) note(std::string("tuning not saved: ") + e.what());
   }
   return out;
-}
-
-TuningResult auto_tune(const Assembly& assembly, QueryEngine& engine, const AutoTuneOptions& options) {
-  const Scene& scene = assembly.scene();
-  const TuningKey key = tuning_key_for(assembly.context().device.info, engine.variant(), assembly.pair().spectra,
-                                       scene.frame_budget_ms, options.margin, scene.loop_rate_hz);
-  TuneOptions sweep;
-  sweep.repetitions = options.repetitions;
-  sweep.progress = options.progress;
-  return tune_engine(engine, key, tuning_poses(scene), sweep, options.retune, nullptr).result;
 }
 
 }  // namespace snapfit

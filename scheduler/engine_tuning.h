@@ -1,21 +1,19 @@
 #pragma once
-// Auto-tuning of a QueryEngine on its device (scheduler/auto_tune.h), with the
+// Auto-tuning of a QueryEngine on its device (scheduler/mode_tuning.h), with the
 // result kept in the tuning file (scheduler/tuning_file.h) and reused while the key
 // (device, driver, kernel variant, scene features, budget, margin) is unchanged.
 #include <functional>
 #include <string>
 #include <vector>
 
-#include "engine/device.h"
-#include "engine/spectra.h"
-#include "scheduler/auto_tune.h"
+#include "engine/runtime/device.h"
+#include "engine/spectra/spectra.h"
+#include "scheduler/mode_tuning.h"
 #include "scheduler/tuning_file.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
 
 namespace snapfit {
-
-std::string variant_name(const QueryVariant& variant);
 
 // pace_hz: the rate queries are timed at (the scene's loop rate; 0: back-to-back).
 TuningKey tuning_key_for(const DeviceInfo& device, const QueryVariant& variant, const PairSpectra& spectra,

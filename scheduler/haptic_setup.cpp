@@ -6,8 +6,9 @@
 
 #include "core/quantile.h"
 #include "mesh/mesh_mass_properties.h"
+#include "pipeline/assembly_access.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/auto_tune.h"
+#include "scheduler/mode_tuning.h"
 #include "scheduler/parallel_contact.h"
 #include "snapfit/assembly.h"
 #include "snapfit/error.h"
@@ -125,7 +126,7 @@ LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double sp
 }
 
 LoopConfig loop_config(const Assembly& assembly, QueryEngine& engine, const TuningResult& tuning) {
-  const AssemblyPair& pair = assembly.pair();
+  const AssemblyPair& pair = AssemblyAccess::pair(assembly);
   double force_scale = 0;
   return loop_config_for(pair.scene, pair.part(2).mesh, pair.grids.spacing, engine, tuning, force_scale,
                          rigid_contact_for(pair.scene, pair.part(1).mesh, pair.part(2).mesh, pair.grids.spacing));

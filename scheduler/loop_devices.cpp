@@ -1,7 +1,7 @@
 #include "scheduler/loop_devices.h"
 
-#include "engine/device_check.h"
-#include "engine/query_engine.h"
+#include "engine/runtime/device_check.h"
+#include "engine/query/query_engine.h"
 #include "scheduler/device_choice.h"
 #include "snapfit/error.h"
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/compute_context.h"
-#include "engine/spectra.h"
-#include "scheduler/auto_tune.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/spectra/spectra.h"
+#include "scheduler/mode_tuning.h"
 #include "scheduler/engine_tuning.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"

@@ -2,12 +2,13 @@
 
 #include <sstream>
 
+#include "pipeline/assembly_access.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/engine_tuning.h"
 #include "scheduler/strategy_file.h"
 #include "snapfit/assembly.h"
-#include "snapfit/tuning.h"
 #include "snapfit/error.h"
+#include "snapfit/tuning.h"
 
 namespace snapfit {
 
@@ -16,8 +17,7 @@ std::string strategy_key(const DeviceInfo& device, const Scene& scene, const Pai
   std::ostringstream key;
   key << "poses=" << options.poses;
   for (const QueryVariant& v : accuracy_candidates(accuracy_base_variant(scene)))
-    key << "\n--\n"
-        << tuning_key_for(device, v, spectra, options.budget_ms, options.margin, scene.loop_rate_hz).text();
+    key << "\n--\n" << tuning_key_for(device, v, spectra, options.budget_ms, options.margin, scene.loop_rate_hz).text();
   return key.str();
 }
 
@@ -49,8 +49,11 @@ QueryVariant most_accurate_strategy(const Assembly& assembly, const AutoTuneOpti
   accuracy.retune = options.retune;
   accuracy.repetitions = options.repetitions;
   if (options.progress)
-    accuracy.progress = [&](const std::string&, std::uint64_t done, std::uint64_t total) { options.progress(done, total); };
-  return choose_query_strategy(assembly.context(), assembly.scene(), assembly.pair().spectra, accuracy)
+    accuracy.progress = [&](const std::string&, std::uint64_t done, std::uint64_t total) {
+      options.progress(done, total);
+    };
+  return choose_query_strategy(AssemblyAccess::context(assembly), assembly.scene(),
+                               AssemblyAccess::pair(assembly).spectra, accuracy)
       .chosen()
       .variant;
 }

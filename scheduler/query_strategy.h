@@ -8,8 +8,8 @@
 #include <functional>
 #include <string>
 
-#include "engine/compute_context.h"
-#include "engine/spectra.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/spectra/spectra.h"
 #include "scheduler/accuracy.h"
 #include "snapfit/scene.h"
 

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "scheduler/auto_tune.h"
+#include "scheduler/mode_tuning.h"
 
 namespace snapfit {
 

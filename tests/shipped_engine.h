@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "engine/query_engine.h"
+#include "engine/query/query_engine.h"
 #include "pipeline/assembly_pair.h"
 #include "tests/test_engine_support.h"
 

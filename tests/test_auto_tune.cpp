@@ -1,11 +1,11 @@
-// Auto-tuning of m' (scheduler/auto_tune.h) from injected timings with a known cost,
+// Auto-tuning of m' (scheduler/mode_tuning.h) from injected timings with a known cost,
 // and the tuning file (scheduler/tuning_file.h): round trip, key changes, corruption.
 #include <algorithm>
 #include <cmath>
 #include <doctest/doctest.h>
 #include <filesystem>
 
-#include "scheduler/auto_tune.h"
+#include "scheduler/mode_tuning.h"
 #include "scheduler/device_choice.h"
 #include "scheduler/tuning_file.h"
 #include "snapfit/error.h"

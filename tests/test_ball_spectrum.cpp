@@ -1,13 +1,13 @@
-// Ball spectra (engine/ball_spectrum.h): the analytic transform against a radial
+// Ball spectra (engine/spectra/ball_spectrum.h): the analytic transform against a radial
 // quadrature, the OpenCL direct NDFT and the type-1 NUFFT against the double-precision
 // sum, and rotated ball sets (exact spectra) as the reference for the engine's
-// spectrum-rotation interpolation (engine/reference_query.h, the queries' schemes).
+// spectrum-rotation interpolation (engine/query/reference_query.h, the queries' schemes).
 #include <cmath>
 #include <doctest/doctest.h>
 #include <random>
 
-#include "engine/ball_spectrum.h"
-#include "engine/reference_query.h"
+#include "engine/spectra/ball_spectrum.h"
+#include "engine/query/reference_query.h"
 #include "tests/test_engine_support.h"
 
 using namespace snapfit;

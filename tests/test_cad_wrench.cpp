@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/query_engine.h"
+#include "engine/query/query_engine.h"
 #include "io/cad_load.h"
 #include "mesh/mesh_report.h"
 #include "pipeline/assembly_pair.h"

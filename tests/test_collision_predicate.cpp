@@ -1,4 +1,4 @@
-// Seed 001's collision predicate (engine/collision_predicate.h) on the shipped peg and hole
+// Seed 001's collision predicate (engine/query/collision_predicate.h) on the shipped peg and hole
 // block (scenes/collision_only.json): the truncation bound holds against the sum over every
 // mode, and the verdict matches the exact mesh geometry (mesh/mesh_distance.h, in double)
 // at clearly separated and clearly overlapping poses.
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/collision_predicate.h"
-#include "engine/query_engine.h"
+#include "engine/query/collision_predicate.h"
+#include "engine/query/query_engine.h"
 #include "mesh/mesh_distance.h"
 #include "pipeline/assembly_pair.h"
 #include "snapfit/scene.h"

@@ -1,4 +1,4 @@
-// Shape descriptors (engine/descriptors.h; docs/design.md "Shape descriptors"; seed 000
+// Shape descriptors (engine/fields/descriptors.h; docs/design.md "Shape descriptors"; seed 000
 // sec. 2.3, 3.1) against closed forms and the independent double-precision references
 // of tests/descriptor_reference.h: winding number, signed distance, skeletal density
 // and its error bound, limits, symmetry, sign, launch-configuration invariance,
@@ -19,9 +19,9 @@
 #include <tuple>
 #include <vector>
 
-#include "engine/compute_context.h"
-#include "engine/descriptors.h"
-#include "engine/device.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/fields/descriptors.h"
+#include "engine/runtime/device.h"
 #include "io/mesh_load.h"
 #include "mesh/procedural/procedural_parts.h"
 #include "snapfit/error.h"

@@ -1,11 +1,11 @@
-// Device enumeration and selection (engine/device.h), and the device self-check kernel.
+// Device enumeration and selection (engine/runtime/device.h), and the device self-check kernel.
 #include <algorithm>
 #include <cstdlib>
 #include <doctest/doctest.h>
 
-#include "engine/compute_context.h"
-#include "engine/device.h"
-#include "engine/device_check.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/runtime/device.h"
+#include "engine/runtime/device_check.h"
 #include "snapfit/error.h"
 
 using namespace snapfit;

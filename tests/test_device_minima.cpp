@@ -1,4 +1,4 @@
-// The minima of full maps found on the device (engine/device_minima.h, kernels/map_minima.cl)
+// The minima of full maps found on the device (engine/maps/device_minima.h, kernels/map_minima.cl)
 // against the host's map_minima on the whole map, the reference: the same minima in the
 // same order with the same energies, and the same lowest energy, bit for bit. On
 // synthetic maps (plateaus, NaN holes and masked slabs, minima on the grid's faces,
@@ -14,11 +14,11 @@
 #include <random>
 
 #include "core/so3_grid.h"
-#include "engine/device_minima.h"
-#include "engine/full_map.h"
-#include "engine/map_minima.h"
-#include "engine/rotation_search.h"
-#include "engine/spectra.h"
+#include "engine/maps/device_minima.h"
+#include "engine/maps/full_map.h"
+#include "engine/maps/map_minima.h"
+#include "engine/maps/rotation_search.h"
+#include "engine/spectra/spectra.h"
 #include "pipeline/assembly_pair.h"
 #include "tests/shipped_engine.h"
 #include "tests/test_engine_support.h"
@@ -43,7 +43,7 @@ void check_same(const MapMinimaResult& got, const MapMinimaResult& want, const s
 }
 
 // A map given in grid order, laid out as clFFT's inverse FFT holds it: E = -Re f at FFT
-// node (x + N - N/2) mod N per axis (engine/full_map.cpp), Im f some other value.
+// node (x + N - N/2) mod N per axis (engine/maps/full_map.cpp), Im f some other value.
 std::vector<Complex> fft_layout(const GridSpec& g, const std::vector<float>& energy) {
   std::vector<Complex> f(g.count());
   for (int z = 0; z < g.dims.z(); ++z)

@@ -1,12 +1,12 @@
-// The direct reference (engine/direct_reference.h) on the shipped peg and hole, made
+// The direct reference (engine/query/direct_reference.h) on the shipped peg and hole, made
 // small: part 2's descriptors evaluated from its mesh at arbitrary points equal its grid
 // fields at the grid's points, and at poses that map part 1's lattice onto part 2's (R = I
 // and a half turn, lattice translations) the direct sum equals the untruncated spectral
-// sum of the sampled fields (engine/reference_query.h, double precision).
+// sum of the sampled fields (engine/query/reference_query.h, double precision).
 #include <doctest/doctest.h>
 
-#include "engine/direct_reference.h"
-#include "engine/reference_query.h"
+#include "engine/query/direct_reference.h"
+#include "engine/query/reference_query.h"
 #include "tests/stability_support.h"
 
 namespace snapfit {

@@ -1,9 +1,9 @@
 #pragma once
 // Shared by the tests that run kernels: one OpenCL context on the default device, and
 // one program-cache folder for the whole run (kernels compile once), quiet.
-#include "engine/compute_context.h"
-#include "engine/device.h"
-#include "engine/program_cache.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/runtime/device.h"
+#include "engine/runtime/program_cache.h"
 #include "tests/test_support.h"
 
 namespace snapfit::test {

@@ -1,4 +1,4 @@
-// The per-query error estimate (engine/error_estimate.h): every engine's kernel returns,
+// The per-query error estimate (engine/query/error_estimate.h): every engine's kernel returns,
 // with its total, the sums over the two octave bands below the cut, modes (m'/4, m'/2]
 // and (m'/2, m']; the estimate is kErrorEstimateScale times their root sum of squares.
 // Checked against the same bands made independently, as differences of the engine's own
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/error_estimate.h"
-#include "engine/query_engine.h"
+#include "engine/query/error_estimate.h"
+#include "engine/query/query_engine.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/trajectory.h"
 #include "tests/stability_support.h"

@@ -1,4 +1,4 @@
-// The exact-rotation strategy (engine/rotated_product_query.h, docs/design.md "Exact
+// The exact-rotation strategy (engine/query/rotated_product_query.h, docs/design.md "Exact
 // rotation") and the consistency of what both 6-DOF strategies render:
 // - at every mode and off-lattice rotations the product engine equals a double-precision
 //   sum over part 2's exact rotated spectrum, the DTFT of its samples summed directly;
@@ -16,8 +16,8 @@
 #include <thread>
 #include <vector>
 
-#include "engine/query_engine.h"
-#include "engine/spectra.h"
+#include "engine/query/query_engine.h"
+#include "engine/spectra/spectra.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/trajectory.h"
 #include "snapfit/query.h"

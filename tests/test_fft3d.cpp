@@ -1,4 +1,4 @@
-// clFFT 3D transforms (engine/fft3d.h) against a direct DFT in double precision: the
+// clFFT 3D transforms (engine/spectra/fft3d.h) against a direct DFT in double precision: the
 // independent reference ANCHORS.md asks for (clFFT has had wrong results on PoCL).
 #include <cmath>
 #include <complex>
@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "engine/device.h"
-#include "engine/fft3d.h"
+#include "engine/runtime/device.h"
+#include "engine/spectra/fft3d.h"
 #include "snapfit/error.h"
 
 using namespace snapfit;

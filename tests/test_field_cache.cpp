@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/compute_context.h"
-#include "engine/device.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/runtime/device.h"
 #include "io/cache_file.h"
 #include "mesh/procedural/procedural_parts.h"
 #include "pipeline/field_cache.h"

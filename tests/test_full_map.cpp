@@ -1,11 +1,11 @@
-// Full translational maps (engine/full_map.h) against per-pose queries at the same
+// Full translational maps (engine/maps/full_map.h) against per-pose queries at the same
 // grid translations, rotation and interpolation, on analytic Gaussian fields.
 #include <cmath>
 #include <doctest/doctest.h>
 
-#include "engine/device.h"
-#include "engine/full_map.h"
-#include "engine/query_engine.h"
+#include "engine/runtime/device.h"
+#include "engine/maps/full_map.h"
+#include "engine/query/query_engine.h"
 #include "tests/test_cube_grid.h"
 
 using namespace snapfit;

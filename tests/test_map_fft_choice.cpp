@@ -1,11 +1,11 @@
-// The inverse FFT of full maps chosen by measurement (engine/map_fft_choice.h): every
+// The inverse FFT of full maps chosen by measurement (engine/maps/map_fft_choice.h): every
 // backend built is timed, the fastest is picked, and the pick is read back from the
 // cache on the next call; names parse both ways.
 #include <algorithm>
 #include <doctest/doctest.h>
 
-#include "engine/device.h"
-#include "engine/map_fft_choice.h"
+#include "engine/runtime/device.h"
+#include "engine/maps/map_fft_choice.h"
 #include "snapfit/error.h"
 #include "tests/test_cube_grid.h"
 #include "tests/test_support.h"

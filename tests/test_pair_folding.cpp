@@ -1,5 +1,5 @@
 // Conjugate-pair folding in the 6-DOF query kernel (QueryVariant::fold_conjugate_pairs,
-// engine/mode_order.h): with both parts' samples imaginary (the affinity i * rho) the
+// engine/spectra/mode_order.h): with both parts' samples imaginary (the affinity i * rho) the
 // terms at w and -w are complex conjugates, so the engine evaluates each retained pair
 // once with twice the weight. Checked against the same engine summing every mode, for
 // m' that keep whole pairs and m' that cut one, and the sample parity that decides it.
@@ -9,9 +9,9 @@
 #include <doctest/doctest.h>
 #include <vector>
 
-#include "engine/mode_order.h"
-#include "engine/query_engine.h"
-#include "engine/spectra.h"
+#include "engine/spectra/mode_order.h"
+#include "engine/query/query_engine.h"
+#include "engine/spectra/spectra.h"
 #include "snapfit/query.h"
 #include "tests/stability_support.h"
 

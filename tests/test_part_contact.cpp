@@ -5,7 +5,7 @@
 #include <doctest/doctest.h>
 #include <string>
 
-#include "engine/descriptors.h"
+#include "engine/fields/descriptors.h"
 #include "pipeline/assembly_pair.h"
 #include "report/part_contact.h"
 #include "report/run_page.h"

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "engine/query_engine.h"
+#include "engine/query/query_engine.h"
 #include "pipeline/assembly_pair.h"
 #include "report/loop_display.h"
 #include "report/run_page.h"

@@ -1,4 +1,4 @@
-// Per-pose queries (include/snapfit/query.h, engine/spectra.h; docs/design.md "Correlation in
+// Per-pose queries (include/snapfit/query.h, engine/spectra/spectra.h; docs/design.md "Correlation in
 // the Fourier domain") against closed forms: both parts are anisotropic Gaussians,
 // rho_n(p) = i a_n exp(-1/2 (p - m_n)^T B_n (p - m_n)), part 2's off-centre in its own
 // frame so the torque about its origin is not zero. With part 2 at (R, t) its Gaussian
@@ -29,11 +29,11 @@
 #include <vector>
 
 #include "core/grid.h"
-#include "engine/compute_context.h"
-#include "engine/device.h"
-#include "engine/fft3d.h"
-#include "engine/query_engine.h"
-#include "engine/spectra.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/runtime/device.h"
+#include "engine/spectra/fft3d.h"
+#include "engine/query/query_engine.h"
+#include "engine/spectra/spectra.h"
 #include "snapfit/error.h"
 #include "snapfit/pose.h"
 #include "snapfit/query.h"
@@ -610,7 +610,7 @@ TEST_CASE("pose query: translation-only and force-only variants agree with the 6
 }
 
 TEST_CASE("pose query: translation-only sums exactly the m' lowest-|w| modes at any m'") {
-  // translation_lines sums, per x-line, the interval of kx that engine/translation_lines.h
+  // translation_lines sums, per x-line, the interval of kx that engine/query/translation_lines.h
   // selects from the |w| order; at R = I the 6-DOF kernel reads the nodes themselves from the |w|-sorted list, so
   // the two agree to float rounding at every m' only if both sum the same mode set.
   const GaussianPair& s = pair();
@@ -757,7 +757,7 @@ TEST_CASE("pose query: query_batch equals a loop of query") {
 
 TEST_CASE("pose query: results do not depend on the launch shape, down to one work-item per group") {
   // Work-groups of 1 to 256 items and 1 to 16 groups per pose (the engine's environment
-  // overrides, engine/query_launch.h) against the device's own shape: the same sums in
+  // overrides, engine/query/query_launch.h) against the device's own shape: the same sums in
   // another order. A group of fewer than 8 items once wrote only its first outputs (the
   // exact-rotation lines share that reduction: tests/oclgrind covers them).
   const std::vector<Pose> poses = random_poses(6, 5);

@@ -1,11 +1,11 @@
-// Program build and on-disk binary cache (engine/program_cache.h): hits, misses,
+// Program build and on-disk binary cache (engine/runtime/program_cache.h): hits, misses,
 // corruption, driver refusal, key changes and build failures.
 #include <doctest/doctest.h>
 #include <filesystem>
 
-#include "engine/device_check.h"
-#include "engine/kernel_sources.h"
-#include "engine/program_cache.h"
+#include "engine/runtime/device_check.h"
+#include "engine/runtime/kernel_sources.h"
+#include "engine/runtime/program_cache.h"
 #include "io/cache_file.h"
 #include "snapfit/error.h"
 #include "tests/test_support.h"

@@ -1,4 +1,4 @@
-// The query engine's real-time path (engine/query_engine.h): after set_modes, a query
+// The query engine's real-time path (engine/query/query_engine.h): after set_modes, a query
 // makes no heap allocation. Counted with a replaced global operator new around 1,000
 // queries on the shipped peg-and-hole parts, 6-DOF (tricubic, with torque),
 // translation-only and the exact product (background), single poses and batches no
@@ -9,7 +9,7 @@
 #include <new>
 #include <vector>
 
-#include "engine/query_engine.h"
+#include "engine/query/query_engine.h"
 #include "tests/stability_support.h"
 
 namespace {

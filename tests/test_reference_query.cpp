@@ -1,13 +1,13 @@
-// The host double-precision reference (engine/reference_query.h): exact (up to the float
+// The host double-precision reference (engine/query/reference_query.h): exact (up to the float
 // spectra's round-off) against a brute-force physical-domain sum where rotated samples
 // land on the grid (lattice rotations), and the device kernel's float result against
 // it at the same m'.
 #include <doctest/doctest.h>
 #include <random>
 
-#include "engine/fft3d.h"
-#include "engine/query_engine.h"
-#include "engine/reference_query.h"
+#include "engine/spectra/fft3d.h"
+#include "engine/query/query_engine.h"
+#include "engine/query/reference_query.h"
 #include "tests/test_engine_support.h"
 
 using namespace snapfit;

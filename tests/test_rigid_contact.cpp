@@ -10,10 +10,10 @@
 #include <iostream>
 #include <random>
 
-#include "engine/query_engine.h"
+#include "engine/query/query_engine.h"
 #include "mesh/mesh_distance.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/auto_tune.h"
+#include "scheduler/mode_tuning.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/parallel_contact.h"
 #include "scheduler/rendered_wrench.h"

@@ -7,12 +7,12 @@
 #include <random>
 
 #include "core/so3_grid.h"
-#include "engine/device.h"
-#include "engine/full_map.h"
-#include "engine/map_minima.h"
-#include "engine/pose_descent.h"
-#include "engine/query_engine.h"
-#include "engine/rotation_search.h"
+#include "engine/runtime/device.h"
+#include "engine/maps/full_map.h"
+#include "engine/maps/map_minima.h"
+#include "engine/query/pose_descent.h"
+#include "engine/query/query_engine.h"
+#include "engine/maps/rotation_search.h"
 #include "snapfit/error.h"
 #include "tests/test_cube_grid.h"
 

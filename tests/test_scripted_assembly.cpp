@@ -8,7 +8,7 @@
 #include <doctest/doctest.h>
 #include <iostream>
 
-#include "engine/query_engine.h"
+#include "engine/query/query_engine.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/assembly_session.h"
 #include "tests/shipped_engine.h"

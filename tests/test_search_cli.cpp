@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "engine/map_fft.h"
+#include "engine/maps/map_fft.h"
 #include "pipeline/prepare_parts.h"
 #include "snapfit/scene.h"
 #include "test_support.h"

@@ -1,13 +1,13 @@
-// Spherical decomposition (engine/sphere_decomposition.h, seed 001 Algorithm 1) and its
-// error estimate (engine/ball_union_error.h), against closed forms: a box and a cylinder
+// Spherical decomposition (engine/fields/sphere_decomposition.h, seed 001 Algorithm 1) and its
+// error estimate (engine/fields/ball_union_error.h), against closed forms: a box and a cylinder
 // (distances and volumes known), a cube with its inscribed and circumscribed balls
 // (symmetric differences known), and the shipped peg-in-hole block.
 #include <algorithm>
 #include <cmath>
 #include <doctest/doctest.h>
 
-#include "engine/ball_union_error.h"
-#include "engine/sphere_decomposition.h"
+#include "engine/fields/ball_union_error.h"
+#include "engine/fields/sphere_decomposition.h"
 #include "mesh/procedural/procedural_parts.h"
 #include "snapfit/scene.h"
 #include "tests/test_engine_support.h"

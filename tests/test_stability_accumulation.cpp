@@ -12,8 +12,8 @@
 #include <iostream>
 #include <numeric>
 
-#include "engine/mode_order.h"
-#include "engine/query_engine.h"
+#include "engine/spectra/mode_order.h"
+#include "engine/query/query_engine.h"
 #include "tests/stability_support.h"
 
 using namespace snapfit;

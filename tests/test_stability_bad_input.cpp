@@ -16,8 +16,8 @@
 #include <tuple>
 #include <unistd.h>
 
-#include "engine/kernel_sources.h"
-#include "engine/query_engine.h"
+#include "engine/runtime/kernel_sources.h"
+#include "engine/query/query_engine.h"
 #include "io/cache_file.h"
 #include "io/mesh_load.h"
 #include "scheduler/virtual_coupling.h"

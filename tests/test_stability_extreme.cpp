@@ -12,7 +12,7 @@
 #include <map>
 #include <utility>
 
-#include "engine/query_engine.h"
+#include "engine/query/query_engine.h"
 #include "scheduler/virtual_coupling.h"
 #include "tests/stability_support.h"
 
@@ -193,7 +193,7 @@ TEST_CASE("stability extreme: the same scene in micrometres and in kilometres sc
   // 0), and that is asserted.
   //
   // s = 1e-3 and 1e6 (exactly um and km) perturb the geometry by round-off. The
-  // descriptors work in grid units (engine/descriptors.cpp), so that is all they see:
+  // descriptors work in grid units (engine/fields/descriptors.cpp), so that is all they see:
   // before they did, grid points on the block's faces flipped between the winding
   // number's one-sided values and E differed by up to 6% at contact poses. Round-off
   // still breaks ties in the hierarchy's splits differently, so the quadrature clusters

@@ -1,7 +1,7 @@
 // Pathological meshes through the descriptor kernels: degenerate and sliver
 // triangles, duplicated and flipped faces, a mesh that is not watertight, and a
 // 1e6-triangle mesh. Every field must be finite; the documented behaviour (the winding
-// number and skeletal density are sums over triangles, engine/descriptors.h) is checked
+// number and skeletal density are sums over triangles, engine/fields/descriptors.h) is checked
 // against the clean mesh: zero-area triangles add nothing, slivers that tile the same
 // surface change nothing, duplicated faces count twice, reversed faces count negative,
 // and an open mesh gives a winding number between 0 and 1 near its hole.
@@ -11,7 +11,7 @@
 #include <iostream>
 #include <sys/resource.h>
 
-#include "engine/descriptors.h"
+#include "engine/fields/descriptors.h"
 #include "tests/test_engine_support.h"
 #include "tests/test_meshes.h"
 
@@ -122,7 +122,7 @@ TEST_CASE(
   for (const auto* f : {&deg, &sl, &dup, &flip, &one, &op}) CHECK(all_finite(*f));
 
   // Zero-area triangles contribute nothing; slivers tile the same surface. The clean
-  // peg's w comes exact from sign propagation (engine/winding_propagation.h); the
+  // peg's w comes exact from sign propagation (engine/fields/winding_propagation.h); the
   // degenerate mesh is not a closed cycle, so its w comes from the full kernel, whose
   // float rounding in the exact near-field solid angles is not in its bound (up to
   // 7.5e-5 measured on hole_block, tests/test_winding_propagation.cpp): slack 1e-4.

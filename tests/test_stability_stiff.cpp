@@ -11,7 +11,7 @@
 #include <iostream>
 #include <memory>
 
-#include "engine/query_engine.h"
+#include "engine/query/query_engine.h"
 #include "scheduler/haptic_setup.h"
 #include "snapfit/haptic_loop.h"
 #include "tests/stability_support.h"

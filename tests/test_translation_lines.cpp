@@ -1,4 +1,4 @@
-// The translation-only query's line selection (engine/translation_lines.h): for every
+// The translation-only query's line selection (engine/query/translation_lines.h): for every
 // m', the selected x-line intervals and extra terms must weigh each of the first m'
 // modes of the mode order exactly once, in the real outputs and in Im f, and every
 // other mode not at all. Checked node by node against the mode order, on small grids
@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/mode_order.h"
-#include "engine/translation_lines.h"
+#include "engine/spectra/mode_order.h"
+#include "engine/query/translation_lines.h"
 #include "snapfit/error.h"
 
 namespace snapfit {

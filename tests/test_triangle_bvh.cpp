@@ -1,4 +1,4 @@
-// Triangle hierarchy (engine/triangle_bvh.h): every triangle once, depth-first layout,
+// Triangle hierarchy (engine/fields/triangle_bvh.h): every triangle once, depth-first layout,
 // leaf ranges, node bounds and moments recomputed in double from each node's own
 // triangles, depth, errors, and the first-order far-field expansion against exact
 // solid angles within the remainder bound kernels/winding_number.cl documents.
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/triangle_bvh.h"
+#include "engine/fields/triangle_bvh.h"
 #include "mesh/procedural/procedural_parts.h"
 #include "snapfit/error.h"
 #include "tests/test_meshes.h"

@@ -1,4 +1,4 @@
-// Winding number by sign propagation (engine/winding_propagation.h): the closed-mesh
+// Winding number by sign propagation (engine/fields/winding_propagation.h): the closed-mesh
 // test, the "surface cannot cross" components, rounding of the seeds, and the whole
 // path against the full winding kernel at every point and the double-precision
 // reference (tests/descriptor_reference.h), including overlapping shells (w = 2) and
@@ -9,8 +9,8 @@
 #include <tbb/parallel_for.h>
 #include <vector>
 
-#include "engine/descriptors.h"
-#include "engine/winding_propagation.h"
+#include "engine/fields/descriptors.h"
+#include "engine/fields/winding_propagation.h"
 #include "mesh/procedural/procedural_parts.h"
 #include "tests/descriptor_reference.h"
 #include "tests/test_engine_support.h"

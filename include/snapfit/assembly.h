@@ -1,6 +1,6 @@
 #pragma once
 // An assembly: the two parts of a scene on one OpenCL device, with everything the
-// per-frame queries need precomputed (seed 000 sections 3.1-3.2): both parts built and
+// per-frame queries need precomputed (Behandish & Ilies 2016 sections 3.1-3.2): both parts built and
 // validated, their descriptor fields on a common grid, and their Fourier spectra, each
 // from the on-disk caches when a matching entry exists. From it come query engines
 // (include/snapfit/query.h), the tuned m' (tuning.h) and the haptic loop's
@@ -20,9 +20,6 @@
 #include "snapfit/scene.h"
 
 namespace snapfit {
-
-struct AssemblyPair;    // the pipeline's stages (snapfit's own tools use it)
-struct ComputeContext;  // the OpenCL device
 
 struct AssemblyOptions {
   // The OpenCL device: an index, "platform:device", cpu|gpu|accelerator, or a name
@@ -56,10 +53,8 @@ class Assembly {
   std::unique_ptr<QueryEngine> make_query_engine(const QueryVariant& variant) const;
   std::unique_ptr<QueryEngine> make_query_engine() const { return make_query_engine(query_variant()); }
 
-  const AssemblyPair& pair() const;
-  const ComputeContext& context() const;
-
  private:
+  friend struct AssemblyAccess;  // the library's own stages reach the device and the spectra through it
   struct State;
   std::unique_ptr<State> state_;
 };

@@ -47,7 +47,7 @@ namespace snapfit {
 
 class Assembly;
 
-// The 6-DOF virtual coupling between the device and part 2 (seed 002 eq. 1-2):
+// The 6-DOF virtual coupling between the device and part 2 (Faas 2010 eq. 1-2):
 // F = k_T d - b_T v, tau = k_R theta - b_R omega, d and theta from the part to the
 // device. Units: poses in scene units, forces in N, torques in N m, masses in kg; the
 // part is a proxy with isotropic inertia about its frame origin (part 2's reference
@@ -78,7 +78,7 @@ struct LoopClock {
 //   sleep: sleeps until ~0.2 ms before the deadline, then spins: frees the core between
 //          frames, for machines whose timers wake a thread on time.
 enum class LoopWait { spin, sleep };
-const char* loop_wait_name(LoopWait wait);  // "spin" or "sleep"
+const char* loop_wait_name(LoopWait wait);          // "spin" or "sleep"
 LoopWait parse_loop_wait(const std::string& name);  // throws snapfit::Error for another name
 
 // std::chrono::steady_clock, waiting as `wait` says.
@@ -97,7 +97,7 @@ struct WrenchEvaluator {
   std::function<QueryResult(const BodyState&)> evaluate_state;
 };
 
-// Rigid contact between the parts at a pose (scheduler/rigid_contact.h): the wrench on
+// Rigid contact between the parts at a pose (docs/haptics.md "Rigid contact"): the wrench on
 // part 2, the potential it derives from, and its stiffness, which the loop integrates
 // implicitly so that a contact far stiffer than the coupling stays stable at 1 kHz.
 struct ContactWrench {
@@ -135,23 +135,23 @@ struct LoopConfig {
   bool keep_log = true;  // one FrameRecord per frame
   const std::atomic<bool>* stop = nullptr;
   // Rigid contact at the part's pose, added to the geometric wrench each frame, its
-  // stiffness integrated implicitly; null: none (seed 000's energy alone).
+  // stiffness integrated implicitly; null: none (Behandish & Ilies 2016's energy alone).
   std::function<ContactWrench(const Pose&)> contact;
   double contact_ms = 0;  // its measured time per frame (p99), left out of the query's share of the budget
   // The most the coupling's force on the device may change per second (N/s; 0: no bound):
   // a frame that would change it faster damps the part instead (passive: the energy is
-  // dissipated, not sent to the hand). See scheduler/force_rate_limit.h.
+  // dissipated, not sent to the hand). See docs/haptics.md.
   double max_force_rate_n_per_s = 0;
 };
 
 struct FrameRecord {
-  double time_s = 0;    // the frame's tick time
-  double frame_ms = 0;  // tick to wrench sent
-  Pose device;          // the device's pose read this frame
-  Pose part;            // the part's pose the engine was queried at (before this frame's step)
-  double energy = 0;    // engine energy at `part`
-  Wrench geometric;     // scaled to N, N m (the engine's; rigid contact is `contact`)
-  Wrench contact;       // rigid contact (LoopConfig::contact), N, N m
+  double time_s = 0;         // the frame's tick time
+  double frame_ms = 0;       // tick to wrench sent
+  Pose device;               // the device's pose read this frame
+  Pose part;                 // the part's pose the engine was queried at (before this frame's step)
+  double energy = 0;         // engine energy at `part`
+  Wrench geometric;          // scaled to N, N m (the engine's; rigid contact is `contact`)
+  Wrench contact;            // rigid contact (LoopConfig::contact), N, N m
   double contact_depth = 0;  // its deepest point's interpenetration, scene units
   // The engine's error estimate for `energy` and `geometric` (same units as they).
   ErrorEstimate geometric_error;
@@ -174,24 +174,24 @@ struct LoopReport {
   double rate_hz = 0;           // the configured rate
   double measured_rate_hz = 0;  // frames run / wall time of the loop
   double elapsed_s = 0;
-  std::size_t ticks = 0;               // ticks that came due
-  std::size_t frames = 0;              // frames run (ticks - skipped)
-  std::size_t misses = 0;              // frames that ended after their deadline
-  std::size_t skipped_ticks = 0;       // ticks not run because a frame overran them
-  std::size_t flagged_frames = 0;      // frames whose query returned flags (zero geometric wrench)
-  std::size_t bad_device_reads = 0;    // non-finite device states, replaced by the last good one
-  std::size_t part_resets = 0;         // non-finite part states, reset to the device state
-  std::size_t passivity_frames = 0;    // frames in which the passivity controller damped the part
-  double passivity_dissipated_j = 0;   // energy its damping removed, J
+  std::size_t ticks = 0;                // ticks that came due
+  std::size_t frames = 0;               // frames run (ticks - skipped)
+  std::size_t misses = 0;               // frames that ended after their deadline
+  std::size_t skipped_ticks = 0;        // ticks not run because a frame overran them
+  std::size_t flagged_frames = 0;       // frames whose query returned flags (zero geometric wrench)
+  std::size_t bad_device_reads = 0;     // non-finite device states, replaced by the last good one
+  std::size_t part_resets = 0;          // non-finite part states, reset to the device state
+  std::size_t passivity_frames = 0;     // frames in which the passivity controller damped the part
+  double passivity_dissipated_j = 0;    // energy its damping removed, J
   std::size_t rate_limited_frames = 0;  // frames the force-rate bound damped the part
-  double rate_limit_dissipated_j = 0;    // energy that damping removed, J
+  double rate_limit_dissipated_j = 0;   // energy that damping removed, J
   std::size_t rate_slewed_frames = 0;   // frames whose sent force was slewed (paid from that energy)
   double rate_slew_work_j = 0;          // net work the slewed force's offset did on the hand, J
-  std::size_t late_wakeup_misses = 0;  // misses whose own work fit: the thread woke late
-  std::size_t stall_misses = 0;        // misses whose work was far beyond the model (ModePolicy::stall_factor)
-  std::vector<double> frame_ms;        // every frame: tick to wrench sent
-  std::vector<double> wake_late_ms;    // every frame: how late the thread woke after its tick
-  std::vector<FrameRecord> log;        // when keep_log
+  std::size_t late_wakeup_misses = 0;   // misses whose own work fit: the thread woke late
+  std::size_t stall_misses = 0;         // misses whose work was far beyond the model (ModePolicy::stall_factor)
+  std::vector<double> frame_ms;         // every frame: tick to wrench sent
+  std::vector<double> wake_late_ms;     // every frame: how late the thread woke after its tick
+  std::vector<FrameRecord> log;         // when keep_log
   std::vector<ModeChange> mode_changes;
   BodyState final_part;
   std::size_t final_modes = 0;

@@ -1,5 +1,5 @@
 #pragma once
-// Per-pose queries (seed 000 eq. 10-12; docs/design.md "Correlation in the Fourier
+// Per-pose queries (Behandish & Ilies 2016 eq. 10-12; docs/design.md "Correlation in the Fourier
 // domain"): for part 2 at pose (R, t) relative to part 1, with w' = -R^T w_k,
 //     f(R, t)     = sum_k rho1^(w_k) rho2^(w') exp(2 pi i w_k.tau) dw,  tau = t + R c2 - c1
 //     df/dt       = sum_k (2 pi i w_k) [same term]
@@ -15,6 +15,7 @@
 #include <complex>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "snapfit/pose.h"
@@ -22,14 +23,14 @@
 namespace snapfit {
 
 enum class Interpolation {
-  trilinear,  // 8 taps per mode (seed 000)
+  trilinear,  // 8 taps per mode (Behandish & Ilies 2016)
   tricubic,   // Catmull-Rom, 64 taps per mode
 };
 
 // How a 6-DOF query follows part 2's rotation.
 enum class RotationMethod {
   // Part 2's stored spectrum interpolated at the rotated frequencies, every retained mode
-  // every frame (seed 000); torque from the gradient of the same interpolant.
+  // every frame (Behandish & Ilies 2016); torque from the gradient of the same interpolant.
   interpolated,
   // The pair's product spectrum computed exactly (to ~1e-6) for a rotation R0, with its
   // rotation derivative, then summed along x-lines like a translation-only query, to
@@ -70,6 +71,10 @@ struct QueryVariant {
   std::size_t product_modes = 0;
 };
 
+// The variant in words: "6dof energy force torque tricubic", "translation energy force",
+// "6dof energy force torque exact-product background", ... (tuning files and reports).
+std::string variant_name(const QueryVariant& variant);
+
 enum QueryFlags : std::uint32_t {
   query_ok = 0,
   query_outside_grid = 1u << 0,  // part 2 beyond the padded box: the result would alias; zero returned
@@ -79,7 +84,7 @@ enum QueryFlags : std::uint32_t {
 // An estimate of the absolute error of a query's energy, |force| and |torque| error
 // against the untruncated sum with exact rotation: kErrorEstimateScale times the root
 // sum of squares of the two octave bands below the cut, modes (m'/4, m'/2] and
-// (m'/2, m'] (engine/error_estimate.h; docs/design.md "Error estimate").
+// (m'/2, m'] (docs/design.md "Error estimate").
 struct ErrorEstimate {
   double energy = 0, force = 0, torque = 0;
 };
@@ -93,7 +98,7 @@ struct QueryResult {
   std::uint32_t flags = query_ok;
   std::size_t modes = 0;  // m' used
   double seconds = 0;     // wall time of this query (batch: of the whole batch / count)
-  // A constraint hybrid's (scheduler/vps_hybrid.h) engaged constraint of largest weight:
+  // A constraint hybrid's (Method::vps_hybrid) engaged constraint of largest weight:
   // 0 none, 1 concentric, 2 planar, and its blend weight x in [0, 1]; 0 for other methods.
   std::uint8_t constraint = 0;
   double constraint_weight = 0;

@@ -1,5 +1,5 @@
 #pragma once
-// snapfit: haptic guidance for assembling rigid parts (seed 000's skeletal densities and
+// snapfit: haptic guidance for assembling rigid parts (Behandish & Ilies 2016's skeletal densities and
 // truncated Fourier sums) on any OpenCL device. The whole public API:
 //   scene.h          scenes: parts, poses, descriptor, grid and haptics parameters, load_scene
 //   assembly.h       a scene's parts on a device with fields and spectra precomputed (cached)
@@ -8,6 +8,15 @@
 //   haptic_device.h  what a haptic device implements (read pose, send wrench, limits)
 //   haptic_loop.h    the fixed-rate loop with virtual coupling, on its own thread
 //   pose.h, error.h  rigid poses; the one exception type
+//
+// The papers the comments cite:
+//   Behandish & Ilies 2016  M. Behandish, H. T. Ilies, "Haptic assembly using skeletal
+//                           densities and Fourier transforms", 2016
+//   Behandish & Ilies 2015  M. Behandish, H. T. Ilies, "Analytic methods for geometric
+//                           modeling via spherical decomposition", CDL-TR-15-07, 2015
+//   Faas 2010               D. Faas, "A hybrid method for haptic feedback to support manual
+//                           virtual product assembly", PhD thesis, Iowa State University, 2010
+// docs/*.md are installed with the headers' package under share/doc/snapfit.
 #include "snapfit/assembly.h"
 #include "snapfit/error.h"
 #include "snapfit/haptic_device.h"

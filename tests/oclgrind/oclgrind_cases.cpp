@@ -2,7 +2,7 @@
 
 #include <Eigen/Geometry>
 
-#include "engine/query_engine.h"
+#include "engine/query/query_engine.h"
 #include "mesh/procedural/procedural_parts.h"
 #include "pipeline/part_fields.h"
 #include "tests/test_engine_support.h"

@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "engine/descriptors.h"
-#include "engine/spectra.h"
+#include "engine/fields/descriptors.h"
+#include "engine/spectra/spectra.h"
 #include "mesh/mesh.h"
 #include "snapfit/pose.h"
 #include "snapfit/query.h"
@@ -58,7 +58,7 @@ struct QueryCase {
 std::vector<QueryCase> query_cases();
 
 // Launch shapes beside each device's own (the engine's environment overrides,
-// engine/query_launch.h), set while a query engine is made.
+// engine/query/query_launch.h), set while a query engine is made.
 struct LaunchShape {
   std::string name;
   std::vector<std::pair<std::string, std::string>> env;

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/compute_context.h"
-#include "engine/device.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/runtime/device.h"
 #include "tests/test_support.h"
 
 namespace snapfit::test {

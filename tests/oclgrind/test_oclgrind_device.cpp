@@ -7,7 +7,7 @@
 #include <doctest/doctest.h>
 #include <string>
 
-#include "engine/device_check.h"
+#include "engine/runtime/device_check.h"
 #include "tests/oclgrind/oclgrind_support.h"
 #include "tests/test_support.h"
 

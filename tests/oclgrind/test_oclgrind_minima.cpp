@@ -1,4 +1,4 @@
-// The map minima kernel (kernels/map_minima.cl, engine/device_minima.h) on Oclgrind with
+// The map minima kernel (kernels/map_minima.cl, engine/maps/device_minima.h) on Oclgrind with
 // its checks on, in the engine's launch and GPU-shaped ones: no report, and the minima
 // map_minima finds in the same map on the host (docs/portability.md). Then the search's
 // whole device path (product, clFFT's inverse, minima kernel, list read-back) on Oclgrind
@@ -11,9 +11,9 @@
 #include <limits>
 #include <random>
 
-#include "engine/device_minima.h"
-#include "engine/full_map.h"
-#include "engine/map_minima.h"
+#include "engine/maps/device_minima.h"
+#include "engine/maps/full_map.h"
+#include "engine/maps/map_minima.h"
 #include "tests/oclgrind/oclgrind_cases.h"
 #include "tests/oclgrind/oclgrind_support.h"
 #include "tests/test_engine_support.h"

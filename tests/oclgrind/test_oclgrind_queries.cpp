@@ -9,8 +9,8 @@
 #include <doctest/doctest.h>
 #include <limits>
 
-#include "engine/ball_spectrum.h"
-#include "engine/full_map.h"
+#include "engine/spectra/ball_spectrum.h"
+#include "engine/maps/full_map.h"
 #include "tests/oclgrind/oclgrind_cases.h"
 #include "tests/oclgrind/oclgrind_support.h"
 #include "tests/test_engine_support.h"

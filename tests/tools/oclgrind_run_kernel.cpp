@@ -9,9 +9,9 @@
 #include <sstream>
 #include <vector>
 
-#include "engine/compute_context.h"
-#include "engine/device.h"
-#include "engine/program_cache.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/runtime/device.h"
+#include "engine/runtime/program_cache.h"
 #include "snapfit/error.h"
 
 int main(int argc, char** argv) {

@@ -1,0 +1,16 @@
+#pragma once
+// The OpenCL objects every stage shares for one device: context and in-order queue.
+#include "engine/runtime/device.h"
+
+namespace snapfit {
+
+struct ComputeContext {
+  Device device;
+  cl::Context context;
+  cl::CommandQueue queue;  // in-order, profiling enabled (timings come from events)
+};
+
+// Throws snapfit::Error naming the device when the context or queue cannot be made.
+ComputeContext make_compute_context(const Device& device);
+
+}  // namespace snapfit
