@@ -1,5 +1,6 @@
 #pragma once
-// Small helpers shared by the perf/ benchmarks: argument reading, load average, date.
+// Small helpers shared by the perf/ benchmarks: load average, date, CPU contention,
+// table formatting and the parts of their reports that they share.
 #include <CL/opencl.hpp>
 #include <algorithm>
 #include <chrono>
@@ -18,10 +19,13 @@
 #include <unistd.h>
 #include <vector>
 
+#include "core/quantile.h"
 #include "engine/device.h"
 #include "report/chart_spec.h"
+#include "report/device_json.h"
 #include "report/web_assets.h"
 #include "snapfit/error.h"
+#include "snapfit/query.h"
 
 namespace snapfit::bench {
 
@@ -211,16 +215,34 @@ inline std::string pad(const std::string& s, std::size_t w) {
 inline std::string padr(const std::string& s, std::size_t w) {
   return s.size() >= w ? s : s + std::string(w - s.size(), ' ');
 }
-// A finite number as JSON, anything else as null (JSON has no NaN or Inf).
-// The nearest-rank q-quantile of v (NaN for none).
-inline double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
-  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
+// The nearest-rank q-quantile of v (core/quantile.h), NaN for none (a '-' in the tables,
+// null in the JSON).
+inline double percentile(const std::vector<double>& v, double q) {
+  return v.empty() ? std::numeric_limits<double>::quiet_NaN() : quantile(v, q);
 }
 
+// A finite number as JSON, anything else as null (JSON has no NaN or Inf).
 inline nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// The device's record in a report: `snapfit devices --json`'s fields (report/device_json.h)
+// and two more the benchmarks report: driver (as driver_version) and platform_version.
+inline nlohmann::json device_record(const DeviceInfo& info) {
+  nlohmann::json j = device_json(info);
+  j["driver"] = info.driver_version;
+  j["platform_version"] = info.platform_version;
+  return j;
+}
+
+// The variant of the exact reference: every one of `modes` modes of the exact-rotation
+// product, made for each pose's own rotation (scheduler/accuracy.h); translation-only
+// variants have no rotation and stay as they are.
+inline QueryVariant exact_reference_variant(QueryVariant v, std::size_t modes) {
+  if (v.translation_only) return v;
+  v.rotation = RotationMethod::exact_product;
+  v.product_update = ProductUpdate::each_query;
+  v.product_modes = modes;
+  return v;
+}
 
 // DIR/charts.html: the benchmark's charts on one self-contained page (report/chart_spec.h),
 // with the command, the date and the load average above them. Returns what was written, or
