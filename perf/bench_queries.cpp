@@ -32,7 +32,7 @@
 //                cost_model below), times m'; the device's memory bandwidth (copy and
 //                read-reduce kernels over a 256 MiB buffer, best of 5) and arithmetic
 //                peak (independent fma chains on float4 / float8, best of 5), measured
-//                with small kernels built here from source; achieved GB/s and GFLOP/s
+//                with the kernels of kernels/device_limits.cl; achieved GB/s and GFLOP/s
 //                per variant at m' = 32768, from the single-query p50 and from the
 //                largest batch.
 //   5. targets   6-DOF E+F+T at m' >= 32768 with p99 <= 1 ms, per scheme; translation
@@ -72,6 +72,7 @@
 #include "engine/full_map.h"
 #include "engine/query_engine.h"
 #include "perf/bench_common.h"
+#include "perf/device_limits.h"
 #include "pipeline/assembly_pair.h"
 #include "snapfit/error.h"
 #include "snapfit/query.h"
@@ -90,6 +91,8 @@ using snapfit::Pose;
 using snapfit::QueryEngine;
 using snapfit::QueryVariant;
 using Clock = std::chrono::steady_clock;
+using snapfit::bench::DeviceLimits;
+using snapfit::bench::measure_limits;
 
 // ---------------------------------------------------------------- command line
 
@@ -408,211 +411,6 @@ Footprint footprint(const snapfit::PairSpectra& s, const std::vector<float>& rad
     f.cube_bytes = nodes * (v.torque ? 32 : 8) * (v.half_cube ? 0.5 : 1.0);
   }
   return f;
-}
-
-// ---------------------------------------------------------------- device limits
-
-const char* kLimitsSource = R"CLC(
-__kernel void copy_f4(__global const float4* src, __global float4* dst) {
-  const size_t i = get_global_id(0);
-  dst[i] = src[i];
-}
-// Each work-item sums every stride-th float4 (coalesced on GPUs).
-__kernel void read_strided(__global const float4* src, const uint n, __global float* out) {
-  const uint g = get_global_id(0), stride = get_global_size(0);
-  float4 s = (float4)(0.0f);
-  for (uint i = g; i < n; i += stride) s += src[i];
-  out[g] = s.x + s.y + s.z + s.w;
-}
-// Each work-item sums one contiguous block (streams well on CPUs).
-__kernel void read_blocked(__global const float4* src, const uint chunk, __global float* out) {
-  const uint g = get_global_id(0);
-  __global const float4* p = src + (size_t)g * chunk;
-  float4 s0 = (float4)(0.0f), s1 = (float4)(0.0f);
-  for (uint i = 0; i < chunk; i += 2) { s0 += p[i]; s1 += p[i + 1]; }
-  const float4 s = s0 + s1;
-  out[g] = s.x + s.y + s.z + s.w;
-}
-// Same, each block read `reps` times: a buffer that fits in the last-level cache.
-__kernel void read_blocked_repeat(__global const float4* src, const uint chunk, const uint reps, __global float* out) {
-  const uint g = get_global_id(0);
-  __global const float4* p = src + (size_t)g * chunk;
-  float4 s0 = (float4)(0.0f), s1 = (float4)(0.0f);
-  for (uint r = 0; r < reps; ++r)
-    for (uint i = 0; i < chunk; i += 2) { s0 += p[i]; s1 += p[i + 1]; }
-  const float4 s = s0 + s1;
-  out[g] = s.x + s.y + s.z + s.w;
-}
-// 8 independent fma chains per work-item, ITERS steps each.
-#define CHAINS(T)                                                                       \
-  const float g = (float)get_global_id(0) * 1e-7f;                                      \
-  T a0 = (T)(g), a1 = a0 + (T)(0.01f), a2 = a0 + (T)(0.02f), a3 = a0 + (T)(0.03f),      \
-    a4 = a0 + (T)(0.04f), a5 = a0 + (T)(0.05f), a6 = a0 + (T)(0.06f), a7 = a0 + (T)(0.07f); \
-  const T vb = (T)(b), vc = (T)(c);                                                     \
-  for (int i = 0; i < ITERS; ++i) {                                                     \
-    a0 = fma(a0, vb, vc); a1 = fma(a1, vb, vc); a2 = fma(a2, vb, vc); a3 = fma(a3, vb, vc); \
-    a4 = fma(a4, vb, vc); a5 = fma(a5, vb, vc); a6 = fma(a6, vb, vc); a7 = fma(a7, vb, vc); \
-  }                                                                                     \
-  const T s = ((a0 + a1) + (a2 + a3)) + ((a4 + a5) + (a6 + a7));
-__kernel void fma_f4(const float b, const float c, __global float* out) {
-  CHAINS(float4)
-  out[get_global_id(0)] = s.x + s.y + s.z + s.w;
-}
-__kernel void fma_f8(const float b, const float c, __global float* out) {
-  CHAINS(float8)
-  out[get_global_id(0)] = s.s0 + s.s1 + s.s2 + s.s3 + s.s4 + s.s5 + s.s6 + s.s7;
-}
-__kernel void fma_f16(const float b, const float c, __global float* out) {
-  CHAINS(float16)
-  out[get_global_id(0)] = s.s0 + s.s1 + s.s2 + s.s3 + s.s4 + s.s5 + s.s6 + s.s7 + s.s8 + s.s9 + s.sa + s.sb + s.sc + s.sd +
-                          s.se + s.sf;
-}
-)CLC";
-
-constexpr int kFmaIters = 1024;
-
-struct LimitResult {
-  std::string name;
-  double best = 0;  // GB/s or GFLOP/s
-  std::vector<double> runs;
-  std::string detail;
-};
-
-struct DeviceLimits {
-  std::vector<LimitResult> bandwidth, compute;
-  double bandwidth_gbs = 0, read_gbs = 0, peak_gflops = 0;
-  double cached_gbs = 0, cached_mib = 0;  // reads of a buffer that fits in the last-level cache
-  double buffer_mib = 0;
-};
-
-// Seconds of one kernel run (event profiling when the queue has it, else wall clock).
-double time_kernel(const snapfit::ComputeContext& ctx, cl::Kernel& k, std::size_t global) {
-  cl::Event ev;
-  const auto t0 = Clock::now();
-  ctx.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global), cl::NullRange, nullptr, &ev);
-  ev.wait();
-  const double wall = seconds_since(t0);
-  try {
-    const cl_ulong a = ev.getProfilingInfo<CL_PROFILING_COMMAND_START>();
-    const cl_ulong b = ev.getProfilingInfo<CL_PROFILING_COMMAND_END>();
-    if (b > a) return double(b - a) * 1e-9;
-  } catch (const cl::Error&) {
-  }
-  return wall;
-}
-
-DeviceLimits measure_limits(const snapfit::ComputeContext& ctx, bool quick) {
-  DeviceLimits L;
-  cl::Program program(ctx.context, std::string(kLimitsSource));
-  const std::string options = "-cl-std=CL1.2 -D ITERS=" + std::to_string(kFmaIters);
-  try {
-    program.build({ctx.device.device}, options.c_str());
-  } catch (const cl::Error&) {
-    const std::string log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(ctx.device.device);
-    throw snapfit::Error("bench_queries: the limit kernels do not build on " + ctx.device.info.name + ":\n" + log);
-  }
-  const int runs = 5;
-  // Memory: a 256 MiB buffer (less if the device cannot allocate it).
-  std::size_t bytes = std::size_t(256) << 20;
-  if (ctx.device.info.max_alloc_bytes > 0)
-    bytes = std::min<std::size_t>(bytes, ctx.device.info.max_alloc_bytes / 4096 * 4096);
-  const std::size_t n4 = bytes / 16;
-  L.buffer_mib = double(bytes) / (1 << 20);
-  {
-    std::vector<float> host(n4 * 4);
-    for (std::size_t i = 0; i < host.size(); ++i) host[i] = float(i % 1024) * 1e-3f;
-    cl::Buffer src(ctx.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, host.data());
-    cl::Buffer dst(ctx.context, CL_MEM_READ_WRITE, bytes);
-    const std::size_t strided_items = 65536, blocked_items = 1024;
-    cl::Buffer partial(ctx.context, CL_MEM_READ_WRITE, sizeof(float) * strided_items);
-    cl::Kernel copy(program, "copy_f4"), strided(program, "read_strided"), blocked(program, "read_blocked");
-    copy.setArg(0, src);
-    copy.setArg(1, dst);
-    strided.setArg(0, src);
-    strided.setArg(1, cl_uint(n4));
-    strided.setArg(2, partial);
-    blocked.setArg(0, src);
-    blocked.setArg(1, cl_uint(n4 / blocked_items));
-    blocked.setArg(2, partial);
-    struct Case {
-      const char* name;
-      cl::Kernel* k;
-      std::size_t global;
-      double bytes;
-      const char* detail;
-    };
-    const Case cases[] = {
-        {"copy", &copy, n4, 2.0 * double(bytes), "dst[i] = src[i] (float4): read + write counted, write-allocate not"},
-        {"read_strided", &strided, strided_items, double(bytes), "65536 work-items, grid-stride float4 sums"},
-        {"read_blocked", &blocked, blocked_items, double(bytes), "1024 work-items, contiguous float4 blocks"},
-    };
-    for (const Case& c : cases) {
-      LimitResult r;
-      r.name = c.name;
-      r.detail = c.detail;
-      time_kernel(ctx, *c.k, c.global);  // warm-up (first touch, page mapping)
-      for (int i = 0; i < runs; ++i) {
-        const double s = time_kernel(ctx, *c.k, c.global);
-        r.runs.push_back(c.bytes / s * 1e-9);
-        r.best = std::max(r.best, r.runs.back());
-      }
-      if (r.name == "copy")
-        L.bandwidth_gbs = std::max(L.bandwidth_gbs, r.best);
-      else
-        L.read_gbs = std::max(L.read_gbs, r.best);
-      L.bandwidth.push_back(r);
-    }
-    L.bandwidth_gbs = std::max(L.bandwidth_gbs, L.read_gbs);
-    // Cache-resident reads: 6 MiB (about the query kernel's largest working set at
-    // m' = 32768), read 64 times per run.
-    const std::size_t small4 = (std::size_t(6) << 20) / 16, reps = quick ? 16 : 64;
-    cl::Kernel cached(program, "read_blocked_repeat");
-    cached.setArg(0, src);
-    cached.setArg(1, cl_uint(small4 / blocked_items));
-    cached.setArg(2, cl_uint(reps));
-    cached.setArg(3, partial);
-    LimitResult r;
-    r.name = "read_cached";
-    r.detail = "6 MiB of the buffer, contiguous blocks, read " + std::to_string(reps) + " times";
-    time_kernel(ctx, cached, blocked_items);
-    for (int i = 0; i < runs; ++i) {
-      r.runs.push_back(double(small4 * 16 * reps) / time_kernel(ctx, cached, blocked_items) * 1e-9);
-      r.best = std::max(r.best, r.runs.back());
-    }
-    L.cached_gbs = r.best;
-    L.cached_mib = 6;
-    L.bandwidth.push_back(r);
-  }
-  // Arithmetic: grow the work until one run takes >= 0.1 s (0.03 s with --quick).
-  for (const auto& [name, width] :
-       std::vector<std::pair<std::string, int>>{{"fma_f4", 4}, {"fma_f8", 8}, {"fma_f16", 16}}) {
-    cl::Kernel k(program, name.c_str());
-    k.setArg(0, 0.9999f);
-    k.setArg(1, 1e-4f);
-    std::size_t global = 4096;
-    const double target = quick ? 0.03 : 0.1;
-    cl::Buffer out;
-    double s = 0;
-    while (true) {
-      out = cl::Buffer(ctx.context, CL_MEM_WRITE_ONLY, sizeof(float) * global);
-      k.setArg(2, out);
-      s = time_kernel(ctx, k, global);
-      if (s >= target || global >= (std::size_t(1) << 26)) break;
-      global *= std::clamp<std::size_t>(std::size_t(target / std::max(s, 1e-6)) + 1, 2, 64);
-    }
-    const double flops = double(global) * kFmaIters * 8 * width * 2;
-    LimitResult r;
-    r.name = name;
-    r.detail = std::to_string(global) + " work-items x " + std::to_string(kFmaIters) +
-               " iterations x 8 chains x float" + std::to_string(width) + " fma (2 flops per lane)";
-    for (int i = 0; i < runs; ++i) {
-      r.runs.push_back(flops / time_kernel(ctx, k, global) * 1e-9);
-      r.best = std::max(r.best, r.runs.back());
-    }
-    L.peak_gflops = std::max(L.peak_gflops, r.best);
-    L.compute.push_back(r);
-  }
-  return L;
 }
 
 // ---------------------------------------------------------------- measurements
