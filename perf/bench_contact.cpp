@@ -18,6 +18,7 @@
 
 #include "core/quantile.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/parallel_contact.h"
@@ -26,22 +27,7 @@
 using namespace snapfit;
 namespace fs = std::filesystem;
 
-namespace {
-
-void usage(std::ostream& o) {
-  o << "bench_contact [--scenes LIST] [--threads LIST] [--rounds N] [--quick] [--out DIR]\n"
-       "The rigid contact's time per evaluation near the fit, on 1 and more threads, per shipped scene.\n";
-}
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int main(int argc, char** argv) {
   return bench::guarded_main("bench_contact", [&] {
@@ -50,18 +36,15 @@ int main(int argc, char** argv) {
     std::vector<std::string> scenes = {"scenes/default.json", "scenes/three_pegs.json"};
     std::vector<unsigned> thread_counts = {1, 2, 4};
     long rounds = 200;
-    bench::parse_options(argc, argv, quick, device, out_dir, usage, [&](const std::string& s, auto value, auto is) {
-      if (is("--scenes")) return scenes = split(value("--scenes")), true;
-      if (is("--threads")) {
-        thread_counts.clear();
-        for (const std::string& t : split(value("--threads")))
-          thread_counts.push_back(static_cast<unsigned>(bench::integer_option("--threads", t, 1, 64)));
-        return true;
-      }
-      if (is("--rounds")) return rounds = bench::integer_option("--rounds", value("--rounds"), 1, 100000), true;
-      (void)s;
-      return false;
-    });
+    CLI::App app{"The rigid contact's time per evaluation near the fit, on 1 and more threads, per shipped scene.",
+                 "bench_contact"};
+    bench::add_common_options(app, quick, device, out_dir, "20 rounds on scenes/default.json");
+    app.add_option("--scenes", scenes, "comma-separated scenes")->delimiter(',');
+    app.add_option("--threads", thread_counts, "comma-separated thread counts")
+        ->delimiter(',')
+        ->check(CLI::Range(1, 64));
+    app.add_option("--rounds", rounds, "timed rounds per scene and thread count")->check(CLI::Range(1, 100000));
+    bench::parse(app, argc, argv);
     if (quick) rounds = 20, scenes = {"scenes/default.json"};
     const std::string load_start = bench::read_loadavg();
     nlohmann::json results = nlohmann::json::array();
@@ -90,7 +73,8 @@ int main(int argc, char** argv) {
           for (const Pose& pose : poses) {
             const auto start = std::chrono::steady_clock::now();
             kept = evaluators[e](pose).energy_j;
-            const double t = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            const double t =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
             ms[e].push_back(t);
             total += t;
           }

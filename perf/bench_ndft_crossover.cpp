@@ -32,6 +32,7 @@
 #include "engine/fft3d.h"
 #include "engine/sphere_decomposition.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/sphere_spectra.h"
 #include "snapfit/scene.h"
@@ -42,11 +43,6 @@ namespace fs = std::filesystem;
 using namespace snapfit;
 using bench::fixed;
 using bench::pad;
-
-void usage(std::ostream& os) {
-  os << "bench_ndft_crossover [--quick] [--device SPEC] [--out DIR]\n"
-        "  Direct NDFT against type-1 NUFFT of ball spectra over ball counts and lattice sizes.\n";
-}
 
 template <class F>
 double median_seconds(int runs, F f) {
@@ -78,7 +74,10 @@ struct Point {
 int run(int argc, char** argv) {
   bool quick = false;
   std::string device, out = "results/bench_ndft_crossover";
-  bench::parse_options(argc, argv, quick, device, out, usage, [](const std::string&, auto, auto) { return false; });
+  CLI::App app{"Direct NDFT against type-1 NUFFT of ball spectra over ball counts and lattice sizes.",
+               "bench_ndft_crossover"};
+  bench::add_common_options(app, quick, device, out);
+  bench::parse(app, argc, argv);
   const std::string load_start = bench::read_loadavg();
   std::cout << "bench_ndft_crossover: " << bench::command_line(argc, argv) << "\n  date " << bench::now_iso()
             << ", load average at start: " << load_start << "\n";
