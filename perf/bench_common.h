@@ -36,58 +36,6 @@ inline std::string command_line(int argc, char** argv) {
   return out;
 }
 
-// True when argument `s` is option `name`, as "--name" or "--name=value".
-inline bool is_option(const std::string& s, const std::string& name) {
-  return s == name || s.rfind(name + "=", 0) == 0;
-}
-
-// The value of option `name` at argv[i]: after '=' or the next argument (advancing i).
-inline std::string option_value(int argc, char** argv, int& i, const std::string& name) {
-  const std::string s = argv[i];
-  const std::string prefix = name + "=";
-  if (s.rfind(prefix, 0) == 0) return s.substr(prefix.size());
-  if (i + 1 >= argc) throw snapfit::Error(name + ": needs a value");
-  return argv[++i];
-}
-
-// The options every benchmark takes, at argv[i]: --quick, -h/--help (prints `usage` and
-// exits), --device SPEC and --out DIR (not empty). True when argv[i] was one of them
-// (i then points at its last argument).
-inline bool common_option(int argc, char** argv, int& i, bool& quick, std::string& device, std::string& out,
-                          void (*usage)(std::ostream&)) {
-  const std::string s = argv[i];
-  if (s == "--quick") {
-    quick = true;
-  } else if (s == "-h" || s == "--help") {
-    usage(std::cout);
-    std::exit(0);
-  } else if (is_option(s, "--device")) {
-    device = option_value(argc, argv, i, "--device");
-  } else if (is_option(s, "--out")) {
-    out = option_value(argc, argv, i, "--out");
-    if (out.empty()) throw snapfit::Error("--out: must not be empty");
-  } else {
-    return false;
-  }
-  return true;
-}
-
-// Reads every argument: the common options above, then `own(s, value, is)` for the
-// benchmark's own options, where s is the argument, value(name) reads an option's value
-// and is(name) tells whether s is option `name`. `own` returns false for an argument it
-// does not know, which is an error naming it.
-template <class Own>
-void parse_options(int argc, char** argv, bool& quick, std::string& device, std::string& out,
-                   void (*usage)(std::ostream&), Own own) {
-  for (int i = 1; i < argc; ++i) {
-    if (common_option(argc, argv, i, quick, device, out, usage)) continue;
-    const std::string s = argv[i];
-    auto value = [&](const std::string& name) { return option_value(argc, argv, i, name); };
-    auto is = [&](const std::string& name) { return is_option(s, name); };
-    if (!own(s, value, is)) throw snapfit::Error("unknown argument '" + s + "' (see --help)");
-  }
-}
-
 // A benchmark's main: runs `body` and turns an escaping error into a message on stderr
 // ("NAME: error: ..." or "NAME: OpenCL error: ... (code)") and exit status 1.
 inline int guarded_main(const char* name, const std::function<int()>& body) {
@@ -183,20 +131,6 @@ inline double other_cores(const CpuSample& a, const CpuSample& b) {
   const double wall = std::chrono::duration<double>(b.at - a.at).count();
   if (wall <= 0) return 0;
   return std::max(0.0, ((b.machine_busy_s - a.machine_busy_s) - (b.own_s - a.own_s)) / wall);
-}
-
-// An integer option's value in [lo, hi]; snapfit::Error naming the option otherwise.
-inline long integer_option(const std::string& name, const std::string& text, long lo, long hi) {
-  std::size_t used = 0;
-  long n = 0;
-  try {
-    n = std::stol(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || text.empty() || n < lo || n > hi)
-    throw snapfit::Error(name + ": expected an integer >= " + std::to_string(lo) + " (got '" + text + "')");
-  return n;
 }
 
 // Table formatting shared by the benchmarks' console reports.
