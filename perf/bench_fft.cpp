@@ -2,7 +2,7 @@
 // VkFFT on the same 3D transforms, side by side in one run, and the full-map throughput
 // (rotations per second) with each library's inverse FFT.
 //
-//   bench_fft [--quick] [--device SPEC] [--out DIR] [--repeats N]
+//   bench_fft --help lists its options.
 //
 // Libraries (all single precision, complex-to-complex, interleaved, x fastest):
 //   clfft   engine/fft3d.h Fft3d on the OpenCL device (out of place, inverse unnormalized)
@@ -96,6 +96,7 @@
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
 #include "perf/bench_spectra.h"
+#include "perf/quiet_guard.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/part_fields.h"
 #include "snapfit/error.h"
@@ -290,41 +291,26 @@ struct VkfftPlan {
 
 // ---------------------------------------------------------------- 1. transforms
 
-// Re-measures a row while other processes kept more than `threshold` cores busy during it
-// (a shared 2-core machine): waits `wait_s` and measures again, up to `max_retries` times
-// per row and `budget_s` of waiting per run, keeping the quietest attempt. Off in --quick.
-struct QuietGuard {
-  bool enabled = true;
-  double threshold = 0.25, wait_s = 15, budget_s = 240, waited_s = 0;
-  int max_retries = 2, retries = 0;
-};
-QuietGuard g_quiet;
+// Rows are re-measured while other processes keep cores busy (perf/quiet_guard.h); off
+// in --quick.
+snapfit::bench::QuietGuard g_quiet{true, 0.25, 2, 15, 240};
 
-// Runs `body` (which fills row.times_s / total_s ...) with load and contention recorded.
+// Runs `body` (which fills row.times_s / total_s ...) under the guard, with the load
+// around it; the row keeps the quietest attempt, its number and its contention.
 template <class Row, class F>
 void quiet_measure(Row& row, const std::string& what, F&& body) {
-  Row best;
-  double best_o = std::numeric_limits<double>::infinity();
-  for (int a = 0;; ++a) {
+  int attempt = 0, attempts = 0;
+  double others = 0;
+  const auto measure = [&] {
     Row r = row;
+    r.attempts = ++attempt;
     r.load_before = snapfit::bench::load1();
-    const auto cpu0 = snapfit::bench::cpu_sample();
     body(r);
     r.load_after = snapfit::bench::load1();
-    r.other_cores = snapfit::bench::other_cores(cpu0, snapfit::bench::cpu_sample());
-    r.attempts = a + 1;
-    if (r.other_cores < best_o) best = r, best_o = r.other_cores;
-    if (!g_quiet.enabled || r.other_cores <= g_quiet.threshold || a >= g_quiet.max_retries ||
-        g_quiet.waited_s + g_quiet.wait_s > g_quiet.budget_s)
-      break;
-    std::cerr << "  (other processes used " << std::fixed << std::setprecision(2) << r.other_cores << " cores during "
-              << what << "; waiting " << std::setprecision(0) << g_quiet.wait_s << " s and measuring it again)\n";
-    std::this_thread::sleep_for(std::chrono::duration<double>(g_quiet.wait_s));
-    g_quiet.waited_s += g_quiet.wait_s;
-    ++g_quiet.retries;
-  }
-  best.attempts = std::max(best.attempts, 1);
-  row = best;
+    return r;
+  };
+  row = g_quiet.run(what, measure, others, attempts);
+  row.other_cores = others;
 }
 
 struct TransformRow {

@@ -2,7 +2,7 @@
 // translational maps (engine/full_map.h) and a roofline of the query kernel against
 // this device's measured memory bandwidth and arithmetic peak.
 //
-//   bench_queries [--quick] [--device SPEC] [--scene FILE] [--out DIR] [--repeats N]
+//   bench_queries --help lists its options.
 //
 // What is measured, on the selected OpenCL device, for the scene (default
 // scenes/default.json; its descriptor fields come from the field cache or are computed
@@ -74,6 +74,7 @@
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
 #include "perf/device_limits.h"
+#include "perf/quiet_guard.h"
 #include "pipeline/assembly_pair.h"
 #include "snapfit/error.h"
 #include "snapfit/query.h"
@@ -142,36 +143,7 @@ using snapfit::bench::cpu_sample;
 using snapfit::bench::CpuSample;
 using snapfit::bench::other_cores;
 
-// Re-measures a point while other processes took more than `threshold` cores during
-// it (this is a shared 2-core machine): waits `wait_s` and tries again, up to
-// `max_retries` times and `budget_s` of waiting per run, keeping the quietest attempt.
-struct QuietGuard {
-  double threshold = 0.25;
-  int max_retries = 3;
-  double wait_s = 20, budget_s = 600;
-  double waited_s = 0;
-  int retries = 0;
-  template <class F>
-  auto run(const std::string& what, F&& measure, double& others, int& attempts) -> decltype(measure()) {
-    decltype(measure()) best{};
-    double best_o = std::numeric_limits<double>::infinity();
-    for (int a = 0;; ++a) {
-      const CpuSample c0 = cpu_sample();
-      auto r = measure();
-      const double o = other_cores(c0, cpu_sample());
-      if (o < best_o) best = std::move(r), best_o = o;
-      attempts = a + 1;
-      if (o <= threshold || a >= max_retries || waited_s + wait_s > budget_s) break;
-      std::cerr << "  (other processes used " << std::fixed << std::setprecision(2) << o << " cores during " << what
-                << "; waiting " << std::setprecision(0) << wait_s << " s and measuring it again)\n";
-      std::this_thread::sleep_for(std::chrono::duration<double>(wait_s));
-      waited_s += wait_s;
-      ++retries;
-    }
-    others = best_o;
-    return best;
-  }
-};
+using snapfit::bench::QuietGuard;  // perf/quiet_guard.h
 
 using snapfit::bench::now_iso;
 
