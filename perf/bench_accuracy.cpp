@@ -11,8 +11,7 @@
 // picked for the scene's frame budget on this device. Last, `snapfit accuracy`'s summary
 // (measure_accuracy): each strategy tuned for the budget, its frame p50/p99 and errors.
 //
-//   ./build/perf/bench_accuracy [--scene scenes/default.json] [--quick] [--out DIR]
-// --quick: oversampling 2 only, 3 poses, m' <= 16384, fewer repeats.
+//   bench_accuracy --help lists its options.
 #include <algorithm>
 #include <chrono>
 #include <cmath>

@@ -22,17 +22,7 @@
 // frames and at the last), the largest change of the sent force between frames, the RMS
 // of its second difference (high-frequency content), and frame-work p99 and misses.
 //
-//   ./build/perf/bench_assembly [--quick] [--trials 20] [--seed 1] [--modes 16384]
-//       [--clearances 0,0.02,0.05,0.1,0.25,0.5,1] [--voxels 0.1,0.25,0.5]
-//       [--methods snapfit,translation,vps,vps_hybrid] [--no-three-pegs] [--penetration-stride 10]
-//       [--geometry-strength G] [--lambda-in P] [--contact-stiffness K] [--no-contact] [--device SPEC]
-//       [--out results/bench_assembly]
-// --geometry-strength and --lambda-in override the scenes' haptics.geometry_strength and
-// descriptor.lambda_in (the penalty factor with lambda_out 1) for snapfit's methods;
-// --contact-stiffness overrides haptics.contact_stiffness_n_per_mm3 (N/mm^3; must be > 0);
-// --no-contact renders seed 000's energy alone, without the rigid contact
-// (scheduler/rigid_contact.h).
-// --quick: clearance 0.5 only (the shipped scene), no three-peg pair, 2 trials, VPS at 0.25 mm, m' 4096.
+//   bench_assembly --help lists its options.
 // Writes trials.csv (one row per trial), summary.csv and summary.md (per cell),
 // wrench_vs_depth.csv (one trial per method), summary.json and charts.html.
 #include <filesystem>
@@ -257,7 +247,8 @@ Options parse_options(int argc, char** argv) {
       "snapfit (6-DOF, translation-only) and Voxmap PointShell (see perf/bench_assembly.cpp)",
       "bench_assembly"};
   bench::add_common_options(app, o.quick, o.device_spec, o.out_dir,
-                            "2 trials, m' = 4096, clearance 0.5, voxel 0.25, no three pegs (options given override)");
+                            "clearance 0.5 only (the shipped scene), no three-peg pair, 2 trials, VPS at 0.25 mm, m' "
+                            "4096 (options given override)");
   const auto* trials =
       app.add_option("--trials", o.trials, "trials per cell and method")->check(CLI::Range(1L, 100000L));
   app.add_option("--seed", o.seed, "the users' seed")->check(CLI::Range(0L, 1L << 30));
@@ -272,15 +263,18 @@ Options parse_options(int argc, char** argv) {
                            ->check(cli::positive_number());
   app.add_option("--methods", o.methods, "comma-separated methods: snapfit, translation, vps, vps_hybrid")
       ->delimiter(',');
-  const auto* strength = app.add_option("--geometry-strength", geometry_strength, "overrides haptics.geometry_strength")
+  const auto* strength = app.add_option("--geometry-strength", geometry_strength,
+                                        "overrides the scenes' haptics.geometry_strength (snapfit's methods)")
                              ->check(CLI::NonNegativeNumber);
-  const auto* lambda =
-      app.add_option("--lambda-in", lambda_in, "overrides descriptor.lambda_in")->check(CLI::NonNegativeNumber);
+  const auto* lambda = app.add_option("--lambda-in", lambda_in,
+                                      "overrides the scenes' descriptor.lambda_in (the penalty factor, lambda_out 1)")
+                           ->check(CLI::NonNegativeNumber);
   const auto* stiffness =
-      app.add_option("--contact-stiffness", contact_stiffness, "overrides haptics.contact_stiffness_n_per_mm3")
+      app.add_option("--contact-stiffness", contact_stiffness, "overrides haptics.contact_stiffness_n_per_mm3 (N/mm^3)")
           ->check(CLI::NonNegativeNumber);
   app.add_flag("--no-three-pegs", no_three_pegs, "the peg in the hole only");
-  app.add_flag("--no-contact", no_contact, "seed 000's energy alone, without the rigid contact");
+  app.add_flag("--no-contact", no_contact,
+               "seed 000's energy alone, without the rigid contact (scheduler/rigid_contact.h)");
   bench::parse(app, argc, argv);
   o.three_pegs = !no_three_pegs && !o.quick;
   o.contact = !no_contact;

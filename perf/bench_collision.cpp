@@ -1,7 +1,7 @@
 // Seed 001's collision predicate (engine/collision_predicate.h) against FCL's verdicts on
 // the shipped scenes: agreement and per-query time at m' = 512 .. 4,096.
 //
-//   bench_collision [--quick] [--device SPEC] [--out DIR] [--poses N] [--scene FILE]...
+//   bench_collision --help lists its options.
 //
 // Scenes: every scenes/*.json (--quick: collision_only.json and default.json with the grid
 // spacing doubled, so its figures are not the scenes' own), each switched to the indicator

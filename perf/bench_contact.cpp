@@ -4,9 +4,7 @@
 // +-y, +-z, as contact_cost_ms times them for the loop. The thread counts are timed in
 // turn within each round, so their ratio is measured side by side on the same load.
 //
-//   ./build/perf/bench_contact [--scenes scenes/default.json,scenes/three_pegs.json]
-//                              [--threads 1,2,4] [--rounds 200] [--quick] [--out DIR]
-// --quick: 20 rounds on the default scene (CI proves it runs; no timing is checked).
+//   bench_contact --help lists its options.
 #include <chrono>
 #include <filesystem>
 #include <fstream>

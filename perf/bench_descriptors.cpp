@@ -2,7 +2,7 @@
 // distance, winding number and skeletal density of one part on a uniform grid, on the
 // selected OpenCL device.
 //
-//   bench_descriptors [--quick] [--device SPEC] [--out DIR] [--only CASES] [--plots-only]
+//   bench_descriptors --help lists its options.
 //
 // Cases (all on the procedural three_peg_base of scenes/three_pegs.json - a CAD-like
 // part with flat faces, cylinders and toroidal fillets - whose triangle count is set by

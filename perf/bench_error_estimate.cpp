@@ -7,8 +7,7 @@
 // the error at 95 % of poses); the coverage and the median estimate / error at the
 // shipped scale say how the estimate does.
 //
-//   ./build/perf/bench_error_estimate [--scene scenes/default.json] [--poses N] [--quick] [--out DIR]
-// --quick: 4 poses, m' = 8,192 only.
+//   bench_error_estimate --help lists its options.
 #include <cmath>
 #include <filesystem>
 #include <fstream>

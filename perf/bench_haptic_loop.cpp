@@ -5,17 +5,7 @@
 // p50/p99/max and histogram, misses and miss rate (target <= 0.1 %), every m' change,
 // and the tuned m' next to seed 000's 4096 on a Tesla K20c (published, not measured).
 //
-//   ./build/perf/bench_haptic_loop [--scene scenes/default.json] [--seconds 60]
-//                                  [--retune] [--margin 0.25] [--device SPEC] [--quick]
-//                                  [--wait spin|sleep]
-//                                  [--out results/bench_haptic_loop]
-// --device: the OpenCL device (as `snapfit --device`); default: PoCL's single-threaded
-// driver when there is one, which `snapfit run` picks for the loop, else the default.
-// --margin: the tuner keeps the p99 at most (1 - margin) of the frame budget (its own
-// tuning file per margin).
-// --wait: how the loop waits for its tick (snapfit/haptic_loop.h LoopWait; default spin,
-// as `snapfit run`).
-// --quick: 3 s of loop (CI proves it runs; no timing is checked).
+//   bench_haptic_loop --help lists its options.
 #include <filesystem>
 #include <fstream>
 #include <iostream>

@@ -14,8 +14,7 @@
 // sum over every mode, checked against the engine's own all-mode query at each pose.
 // Error over the poses as scheduler/accuracy.h: sqrt(sum |x - ref|^2 / sum |ref|^2).
 //
-//   ./build/perf/bench_mode_selection [--scene scenes/default.json] [--poses 12] [--quick] [--out DIR]
-// --quick: 2 poses, m' up to 16,384.
+//   bench_mode_selection --help lists its options.
 #include <algorithm>
 #include <cmath>
 #include <complex>

@@ -2,7 +2,7 @@
 // (engine/ball_spectrum.h), the measurement behind the pipeline's "auto" method
 // (pipeline/sphere_spectra.h ball_spectrum_method).
 //
-//   bench_ndft_crossover [--quick] [--device SPEC] [--out DIR]
+//   bench_ndft_crossover --help lists its options.
 //
 // Balls: seed 001 Algorithm 1 on the hole block of scenes/default.json at tolerance 0.5
 // (--quick: 1), the first k of them for k = 16, 32, ... (beyond the decomposition's count,

@@ -3,7 +3,7 @@
 // once, the inverse FFT plan baked once and two maps in flight, against the one-shot
 // path (engine/full_map.h translational_energy_map: upload, bake, map, every call).
 //
-//   bench_search [--quick] [--device SPEC] [--out DIR] [--rotations N] [--scene FILE]
+//   bench_search --help lists its options.
 //
 // Sizes 64^3 and 128^3, spectra of two synthetic parts (perf/bench_spectra.h: a ball and a
 // box, E >= 0 wherever they overlap, so their maps hold no minima with E < 0), or with

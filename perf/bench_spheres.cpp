@@ -10,7 +10,7 @@
 //    + direct NDFT or type-1 NUFFT onto the lattice of the grid path at spacing 0.6) at
 //    several tolerances, as a Pareto chart.
 //
-//   ./build/perf/bench_spheres [--quick] [--bunny FILE] [--out results/bench_spheres]
+//   bench_spheres --help lists its options.
 // --quick: m up to 2^15, two tolerances and spacings, the lattice of spacing 1.2 (CI proves
 // it runs; its figures are not the full run's). The bunny comes
 // from the npm package `bunny` (.ci/setup writes build/third_party/bunny/bunny.obj);
