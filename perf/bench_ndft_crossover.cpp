@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "core/quantile.h"
 #include "engine/ball_spectrum.h"
 #include "engine/compute_context.h"
 #include "engine/device.h"
@@ -44,6 +45,7 @@ using namespace snapfit;
 using bench::fixed;
 using bench::pad;
 
+// The median (nearest rank) of `runs` timed calls of f.
 template <class F>
 double median_seconds(int runs, F f) {
   std::vector<double> s;
@@ -52,8 +54,7 @@ double median_seconds(int runs, F f) {
     f();
     s.push_back(bench::seconds_since(t0));
   }
-  std::sort(s.begin(), s.end());
-  return s[s.size() / 2];
+  return quantile(s, 0.5);
 }
 
 std::vector<Ball> first_balls(const std::vector<Ball>& balls, std::size_t k) {
