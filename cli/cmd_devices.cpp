@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "engine/runtime/device.h"
 #include "engine/runtime/device_check.h"
+#include "report/device_json.h"
 #include "snapfit/error.h"
 
 namespace snapfit::cli {
@@ -59,22 +60,8 @@ void run_devices(const DevicesOptions& opt) {
       }
     }
     if (opt.json) {
-      nlohmann::json j = {{"index", i.index},
-                          {"platform_index", i.platform_index},
-                          {"device_index", i.device_index},
-                          {"platform", i.platform_name},
-                          {"name", i.name},
-                          {"vendor", i.vendor},
-                          {"type", i.type},
-                          {"device_version", i.device_version},
-                          {"driver_version", i.driver_version},
-                          {"compute_units", i.compute_units},
-                          {"global_memory_bytes", i.global_memory_bytes},
-                          {"max_alloc_bytes", i.max_alloc_bytes},
-                          {"local_memory_bytes", i.local_memory_bytes},
-                          {"max_work_group_size", i.max_work_group_size},
-                          {"fp64", i.fp64},
-                          {"selected", static_cast<std::size_t>(i.index) == chosen}};
+      nlohmann::json j = device_json(i);
+      j["selected"] = static_cast<std::size_t>(i.index) == chosen;
       if (opt.check) j["check"] = checks;
       std::cout << j.dump() << "\n";
       continue;

@@ -22,17 +22,7 @@
 // frames and at the last), the largest change of the sent force between frames, the RMS
 // of its second difference (high-frequency content), and frame-work p99 and misses.
 //
-//   ./build/perf/bench_assembly [--quick] [--trials 20] [--seed 1] [--modes 16384]
-//       [--clearances 0,0.02,0.05,0.1,0.25,0.5,1] [--voxels 0.1,0.25,0.5]
-//       [--methods snapfit,translation,vps,vps_hybrid] [--no-three-pegs] [--penetration-stride 10]
-//       [--geometry-strength G] [--lambda-in P] [--contact-stiffness K] [--no-contact] [--device SPEC]
-//       [--out results/bench_assembly]
-// --geometry-strength and --lambda-in override the scenes' haptics.geometry_strength and
-// descriptor.lambda_in (the penalty factor with lambda_out 1) for snapfit's methods;
-// --contact-stiffness overrides haptics.contact_stiffness_n_per_mm3 (N/mm^3; must be > 0);
-// --no-contact renders seed 000's energy alone, without the rigid contact
-// (scheduler/rigid_contact.h).
-// --quick: clearance 0.5 only (the shipped scene), no three-peg pair, 2 trials, VPS at 0.25 mm, m' 4096.
+//   bench_assembly --help lists its options.
 // Writes trials.csv (one row per trial), summary.csv and summary.md (per cell),
 // wrench_vs_depth.csv (one trial per method), summary.json and charts.html.
 #include <filesystem>
@@ -49,12 +39,13 @@
 #include "engine/runtime/device.h"
 #include "engine/query/query_engine.h"
 #include "mesh/mesh_distance.h"
+#include "mesh/procedural/procedural_parts.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/rigid_contact.h"
-#include "mesh/procedural/procedural_parts.h"
 #include "scheduler/vps_hybrid.h"
 #include "scheduler/vps_method.h"
 
@@ -62,35 +53,6 @@ using namespace snapfit;
 namespace fs = std::filesystem;
 
 namespace {
-
-void usage(std::ostream& os) {
-  os << "bench_assembly [--quick] [--trials N] [--seed S] [--modes M] [--clearances LIST] [--voxels LIST]\n"
-        "               [--methods snapfit,translation,vps] [--no-three-pegs] [--penetration-stride K]\n"
-        "               [--geometry-strength G] [--lambda-in P] [--contact-stiffness K] [--no-contact]\n"
-        "               [--device SPEC] [--out DIR]\n"
-        "Scripted imprecise-user insertions: success, errors and true interpenetration against clearance,\n"
-        "for snapfit (6-DOF, translation-only) and Voxmap PointShell (see perf/bench_assembly.cpp).\n";
-}
-
-std::vector<double> number_list(const std::string& name, const std::string& text) {
-  std::vector<double> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    std::size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || item.empty() || !(v >= 0) || !std::isfinite(v))
-      throw Error(name + ": expected comma-separated numbers >= 0 (got '" + text + "')");
-    out.push_back(v);
-  }
-  if (out.empty()) throw Error(name + ": empty list");
-  return out;
-}
 
 // One insertion by the imprecise user (see the top of the file).
 struct UserTrial {
@@ -266,256 +228,272 @@ Scene translation_scene(Scene s) {
   return s;
 }
 
-}  // namespace
+// The command line.
+struct Options {
+  bool quick = false, three_pegs = true, contact = true;
+  std::string device_spec, out_dir = "results/bench_assembly";
+  long trials = 20, seed = 1, modes = 16384, stride = 10;
+  std::vector<double> clearances = {0, 0.02, 0.05, 0.1, 0.25, 0.5, 1}, voxels = {0.1, 0.25, 0.5};
+  std::vector<std::string> methods = {"snapfit", "translation", "vps"};
+  std::optional<double> geometry_strength, lambda_in, contact_stiffness;  // overrides of the scenes' values
+};
 
-int main(int argc, char** argv) {
-  return bench::guarded_main("bench_assembly", [&] {
-    bool quick = false, three_pegs = true, contact = true;
-    std::string device_spec, out_dir = "results/bench_assembly";
-    long trials = 20, seed = 1, modes = 16384, stride = 10;
-    std::vector<double> clearances = {0, 0.02, 0.05, 0.1, 0.25, 0.5, 1}, voxels = {0.1, 0.25, 0.5};
-    std::string methods_text = "snapfit,translation,vps";
-    std::optional<long> trials_set, modes_set;
-    std::optional<std::vector<double>> clearances_set, voxels_set;
-    std::optional<double> geometry_strength, lambda_in, contact_stiffness;  // overrides of the scenes' values
-    bench::parse_options(
-        argc, argv, quick, device_spec, out_dir, usage, [&](const std::string& s, auto value, auto is) {
-          if (is("--trials")) return trials_set = bench::integer_option("--trials", value("--trials"), 1, 100000), true;
-          if (is("--seed")) return seed = bench::integer_option("--seed", value("--seed"), 0, 1L << 30), true;
-          if (is("--modes")) return modes_set = bench::integer_option("--modes", value("--modes"), 1, 1L << 24), true;
-          if (is("--penetration-stride"))
-            return stride = bench::integer_option("--penetration-stride", value("--penetration-stride"), 1, 100000),
-                   true;
-          if (is("--clearances")) return clearances_set = number_list("--clearances", value("--clearances")), true;
-          if (is("--voxels")) return voxels_set = number_list("--voxels", value("--voxels")), true;
-          if (is("--methods")) return methods_text = value("--methods"), true;
-          if (is("--geometry-strength"))
-            return geometry_strength = number_list("--geometry-strength", value("--geometry-strength")).at(0), true;
-          if (is("--lambda-in")) return lambda_in = number_list("--lambda-in", value("--lambda-in")).at(0), true;
-          if (is("--contact-stiffness"))
-            return contact_stiffness = number_list("--contact-stiffness", value("--contact-stiffness")).at(0), true;
-          if (s == "--no-three-pegs") return three_pegs = false, true;
-          if (s == "--no-contact") return contact = false, true;
-          return false;
-        });
-    if (quick) {
-      trials = 2, modes = 4096, clearances = {0.5}, voxels = {0.25}, three_pegs = false;
+Options parse_options(int argc, char** argv) {
+  Options o;
+  double geometry_strength = 0, lambda_in = 0, contact_stiffness = 0;
+  bool no_three_pegs = false, no_contact = false;
+  CLI::App app{
+      "Scripted imprecise-user insertions: success, errors and true interpenetration against clearance, for "
+      "snapfit (6-DOF, translation-only) and Voxmap PointShell (see perf/bench_assembly.cpp)",
+      "bench_assembly"};
+  bench::add_common_options(app, o.quick, o.device_spec, o.out_dir,
+                            "clearance 0.5 only (the shipped scene), no three-peg pair, 2 trials, VPS at 0.25 mm, m' "
+                            "4096 (options given override)");
+  const auto* trials =
+      app.add_option("--trials", o.trials, "trials per cell and method")->check(CLI::Range(1L, 100000L));
+  app.add_option("--seed", o.seed, "the users' seed")->check(CLI::Range(0L, 1L << 30));
+  const auto* modes = app.add_option("--modes", o.modes, "m' of snapfit's engine")->check(CLI::Range(1L, 1L << 24));
+  app.add_option("--penetration-stride", o.stride, "every K-th frame's true interpenetration")
+      ->check(CLI::Range(1L, 100000L));
+  const auto* clearances = app.add_option("--clearances", o.clearances, "comma-separated clearances of the peg, mm")
+                               ->delimiter(',')
+                               ->check(CLI::NonNegativeNumber);
+  const auto* voxels = app.add_option("--voxels", o.voxels, "comma-separated VPS voxel sizes")
+                           ->delimiter(',')
+                           ->check(cli::positive_number());
+  app.add_option("--methods", o.methods, "comma-separated methods: snapfit, translation, vps, vps_hybrid")
+      ->delimiter(',');
+  const auto* strength = app.add_option("--geometry-strength", geometry_strength,
+                                        "overrides the scenes' haptics.geometry_strength (snapfit's methods)")
+                             ->check(CLI::NonNegativeNumber);
+  const auto* lambda = app.add_option("--lambda-in", lambda_in,
+                                      "overrides the scenes' descriptor.lambda_in (the penalty factor, lambda_out 1)")
+                           ->check(CLI::NonNegativeNumber);
+  const auto* stiffness =
+      app.add_option("--contact-stiffness", contact_stiffness, "overrides haptics.contact_stiffness_n_per_mm3 (N/mm^3)")
+          ->check(CLI::NonNegativeNumber);
+  app.add_flag("--no-three-pegs", no_three_pegs, "the peg in the hole only");
+  app.add_flag("--no-contact", no_contact,
+               "seed 000's energy alone, without the rigid contact (scheduler/rigid_contact.h)");
+  bench::parse(app, argc, argv);
+  o.three_pegs = !no_three_pegs && !o.quick;
+  o.contact = !no_contact;
+  if (o.quick) {
+    if (!*trials) o.trials = 2;
+    if (!*modes) o.modes = 4096;
+    if (!*clearances) o.clearances = {0.5};
+    if (!*voxels) o.voxels = {0.25};
+  }
+  if (*strength) o.geometry_strength = geometry_strength;
+  if (*lambda) o.lambda_in = lambda_in;
+  if (*stiffness) o.contact_stiffness = contact_stiffness;
+  return o;
+}
+
+// The methods named on the command line; the voxel-based ones once per voxel size.
+std::vector<BenchMethod> methods_from(const std::vector<std::string>& names, const std::vector<double>& voxels) {
+  std::vector<BenchMethod> methods;
+  for (const std::string& m : names) {
+    if (m == "snapfit")
+      methods.push_back({"snapfit-6dof", BenchMethod::six_dof, 0});
+    else if (m == "translation")
+      methods.push_back({"snapfit-translation", BenchMethod::translation, 0});
+    else if (m == "vps")
+      for (double v : voxels) methods.push_back({"vps-" + bench::fixed(v, 2), BenchMethod::vps, v});
+    else if (m == "vps_hybrid")
+      for (double v : voxels) methods.push_back({"vps_hybrid-" + bench::fixed(v, 2), BenchMethod::vps_hybrid, v});
+    else
+      throw Error("--methods: unknown method '" + m + "' (expected snapfit, translation, vps, vps_hybrid)");
+  }
+  return methods;
+}
+
+// The pairs the users assemble: the peg at each clearance, then the three-peg pair.
+std::vector<Cell> make_cells(const Options& o) {
+  std::vector<Cell> cells;
+  for (double c : o.clearances) {
+    Cell cell;
+    cell.pair = "peg-in-hole";
+    cell.clearance = c;
+    cell.scene = load_scene("scenes/peg_hole_clearance_0p5.json");
+    cell.scene.part1.procedural->numbers["clearance"] = c;
+    cell.scene.name = "peg in hole, clearance " + bench::fixed(c, 2) + " mm";
+    cell.scene.part2.pose = Pose{};
+    cell.entry = 20;  // the hole's depth: the peg's bottom meets the block's top 20 mm above home
+    cell.engaged = 20;
+    cells.push_back(cell);
+  }
+  if (o.three_pegs) {
+    Cell cell;
+    cell.pair = "three-pegs";
+    cell.scene = load_scene("scenes/three_pegs.json");
+    cell.scene.part2.pose = Pose{};
+    cell.entry = 14;   // above the tallest peg (12 mm) and its fillet
+    cell.engaged = 8;  // the shortest peg's height
+    cells.push_back(cell);
+  }
+  return cells;
+}
+
+// A method's model of one scene: snapfit's pair, engine and rigid contact, or VPS's
+// voxel model (with the analytic faces for the hybrid).
+struct Model {
+  std::optional<AssemblyPair> pair;
+  std::unique_ptr<QueryEngine> engine;
+  std::optional<VpsModel> vps;
+  std::optional<HybridModel> hybrid;
+  std::shared_ptr<const RigidContactModel> rigid;
+  CouplingParams coupling;
+};
+
+Model build_model(Scene& scene, const BenchMethod& method, const Cell& cell, const Mesh& m1, const Mesh& m2,
+                  double spacing, const std::optional<ComputeContext>& ctx, const std::optional<FftLibrary>& fft,
+                  bool contact) {
+  Model model;
+  if (method.voxel_based()) {
+    scene.vps.voxel_size = method.voxel;
+    model.coupling = coupling_for(scene, m2);
+    model.vps = vps_model_for(scene, m1, m2, spacing, model.coupling);
+    if (method.kind == BenchMethod::vps_hybrid) {
+      const auto faces_of = [](const PartSpec& p) {
+        return p.procedural ? procedural_part_faces(*p.procedural) : std::vector<AnalyticFace>{};
+      };
+      std::vector<AnalyticFace> f1 = faces_of(scene.part1), f2 = faces_of(scene.part2);
+      if (f1.empty() || f2.empty())
+        std::cout << "  (" << cell.pair << ": no analytic faces, " << method.name << " runs as plain VPS)\n";
+      else
+        model.hybrid = hybrid_model(*model.vps, std::move(f1), std::move(f2), model.coupling);
     }
-    if (trials_set) trials = *trials_set;
-    if (modes_set) modes = *modes_set;
-    if (clearances_set) clearances = *clearances_set;
-    if (voxels_set) voxels = *voxels_set;
-    for (double v : voxels)
-      if (!(v > 0)) throw Error("--voxels: voxel sizes must be > 0");
+  } else {
+    PairOptions options;
+    options.note = [](const std::string& m) { std::cerr << "  " << m << "\n"; };
+    model.pair = build_assembly_pair(scene, *ctx, *fft, options);
+    model.engine = make_query_engine(*ctx, model.pair->spectra, query_variant_for(scene, Interpolation::tricubic));
+    scene.haptics.contact = scene.haptics.contact && contact;
+    model.rigid = rigid_contact_for(scene, m1, m2, spacing);
+  }
+  return model;
+}
 
-    std::vector<BenchMethod> methods;
-    {
-      std::stringstream in(methods_text);
-      std::string m;
-      while (std::getline(in, m, ',')) {
-        if (m == "snapfit")
-          methods.push_back({"snapfit-6dof", BenchMethod::six_dof, 0});
-        else if (m == "translation")
-          methods.push_back({"snapfit-translation", BenchMethod::translation, 0});
-        else if (m == "vps")
-          for (double v : voxels) methods.push_back({"vps-" + bench::fixed(v, 2), BenchMethod::vps, v});
-        else if (m == "vps_hybrid")
-          for (double v : voxels)
-            methods.push_back({"vps_hybrid-" + bench::fixed(v, 2), BenchMethod::vps_hybrid, v});
-        else
-          throw Error("--methods: unknown method '" + m + "' (expected snapfit, translation, vps, vps_hybrid)");
-      }
+// One user's insertion with the method's model, on simulated time; each frame's work into `work`.
+SessionResult run_trial(const Scene& scene, double spacing, Model& model, const BenchMethod& method, long modes,
+                        FrameWork& work) {
+  SessionOptions options;
+  options.simulated_time = true;
+  SessionResult run;
+  if (model.hybrid) {
+    HybridState state = hybrid_state_for(*model.hybrid);  // each user starts disengaged
+    run = run_scripted_session(scene, spacing, vps_loop_config(scene, *model.vps, model.coupling),
+                               timed(hybrid_evaluator(*model.hybrid, state), work), options);
+  } else if (method.voxel_based()) {
+    run = run_scripted_session(scene, spacing, vps_loop_config(scene, *model.vps, model.coupling),
+                               timed(vps_evaluator(*model.vps), work), options);
+  } else {
+    const TuningResult fixed =
+        pick_modes({TimingPoint{std::min<std::size_t>(modes, model.engine->max_modes()), 0, 0, 0, 1}},
+                   scene.frame_budget_ms, 0.25);
+    double force_scale = 0;
+    LoopConfig config =
+        loop_config_for(scene, model.pair->part(2).mesh, spacing, *model.engine, fixed, force_scale, model.rigid);
+    if (config.contact) config.contact = timed_contact(config.contact, work);
+    run = run_scripted_session(scene, spacing, config, timed(wrench_evaluator(*model.engine), work), options);
+  }
+  return run;
+}
+
+struct Summary {
+  std::string pair, method;
+  double clearance = 0;
+  std::vector<TrialResult> trials;
+};
+
+// Where the trials go: trials.csv, and for trial 0 of the peg at the middle clearance the
+// wrench against depth (wrench_vs_depth.csv and the charts).
+struct TrialFiles {
+  std::ofstream csv, depth_csv;
+  double depth_clearance = 0;
+  std::map<std::string, std::vector<std::pair<double, double>>> force_depth, torque_depth;  // method -> (depth, value)
+};
+
+void write_trial(TrialFiles& out, const Cell& cell, const BenchMethod& method, const Scene& scene, long t,
+                 const UserTrial& user, const SessionResult& run, const TrialResult& r) {
+  std::ofstream& csv = out.csv;
+  csv << cell.pair << "," << method.name << "," << cell.clearance << "," << t << "," << r.success << "," << r.inserted
+      << "," << r.position_error << "," << r.lateral_error << "," << r.axial_error << "," << r.angle_error << ","
+      << r.max_penetration << "," << r.max_force_step << "," << r.force_hf_rms << "," << r.peak_force << ","
+      << r.frame_p99_ms << "," << r.frame_wall_p99_ms << "," << r.misses << "," << r.frames << "," << user.lateral
+      << "," << (method.kind == BenchMethod::translation ? 0.0 : user.tilt_deg) << "," << user.approach_offset << ","
+      << user.duration_s << "\n";
+  if (t == 0 && cell.pair == "peg-in-hole" && cell.clearance == out.depth_clearance) {
+    for (const FrameRecord& f : run.loop.log) {
+      const double depth = scene.assembled_pose->translation.z() + cell.entry - f.part.translation.z();
+      out.depth_csv << cell.pair << "," << method.name << "," << cell.clearance << "," << t << "," << f.time_s << ","
+                    << depth << "," << f.sent.force.norm() << "," << f.sent.torque.norm() << "\n";
+      out.force_depth[method.name].push_back({depth, f.sent.force.norm()});
+      out.torque_depth[method.name].push_back({depth, f.sent.torque.norm()});
     }
-    const bool need_device =
-        std::any_of(methods.begin(), methods.end(), [](const BenchMethod& m) { return !m.voxel_based(); });
+  }
+}
 
-    // Cells: the peg at each clearance, then the three-peg pair.
-    std::vector<Cell> cells;
-    for (double c : clearances) {
-      Cell cell;
-      cell.pair = "peg-in-hole";
-      cell.clearance = c;
-      cell.scene = load_scene("scenes/peg_hole_clearance_0p5.json");
-      cell.scene.part1.procedural->numbers["clearance"] = c;
-      cell.scene.name = "peg in hole, clearance " + bench::fixed(c, 2) + " mm";
-      cell.scene.part2.pose = Pose{};
-      cell.entry = 20;  // the hole's depth: the peg's bottom meets the block's top 20 mm above home
-      cell.engaged = 20;
-      cells.push_back(cell);
-    }
-    if (three_pegs) {
-      Cell cell;
-      cell.pair = "three-pegs";
-      cell.scene = load_scene("scenes/three_pegs.json");
-      cell.scene.part2.pose = Pose{};
-      cell.entry = 14;   // above the tallest peg (12 mm) and its fillet
-      cell.engaged = 8;  // the shortest peg's height
-      cells.push_back(cell);
-    }
+// Every trial of one method on one cell.
+Summary run_method(const Options& o, TrialFiles& out, const Cell& cell, const BenchMethod& method,
+                   const AssemblyPair& parts, const MeshDistanceIndex& i1, const MeshDistanceIndex& i2,
+                   const std::optional<ComputeContext>& ctx, const std::optional<FftLibrary>& fft) {
+  const Mesh& m1 = parts.part(1).mesh;
+  const Mesh& m2 = parts.part(2).mesh;
+  const double spacing = parts.grids.spacing;
+  Scene scene = method.kind == BenchMethod::translation ? translation_scene(cell.scene) : cell.scene;
+  scene.haptics.settle_s = 1;
+  if (o.geometry_strength) scene.haptics.geometry_strength = *o.geometry_strength;
+  if (o.lambda_in) scene.descriptor.lambda_in = *o.lambda_in;
+  if (o.contact_stiffness) scene.haptics.contact_stiffness_n_per_mm3 = *o.contact_stiffness;
+  const auto build_start = std::chrono::steady_clock::now();
+  Model model = build_model(scene, method, cell, m1, m2, spacing, ctx, fft, o.contact);
+  std::cout << "  " << bench::padr(method.name, 20) << " built in "
+            << bench::fixed(bench::seconds_since(build_start), 1) << " s" << std::flush;
+  Summary summary{cell.pair, method.name, cell.clearance, {}};
+  std::mt19937 rng(static_cast<unsigned>(o.seed));  // the same users for every method of a cell
+  for (long t = 0; t < o.trials; ++t) {
+    const UserTrial user = draw_trial(rng);
+    scene.trajectory = user_trajectory(scene.assembled_pose.value_or(Pose{}), cell.entry, user,
+                                       method.kind != BenchMethod::translation);
+    scene.part2.pose = scene.trajectory.keyframes.front().pose;
+    FrameWork work;
+    work.wall_ms.reserve(8000), work.cpu_ms.reserve(8000);
+    const SessionResult run = run_trial(scene, spacing, model, method, o.modes, work);
+    const TrialResult r = measure(cell, run, work, m1, i1, m2, i2, static_cast<std::size_t>(o.stride));
+    write_trial(out, cell, method, scene, t, user, run, r);
+    summary.trials.push_back(r);
+    std::cout << (r.success ? " +" : r.inserted ? " ~" : " -") << std::flush;
+  }
+  std::cout << "\n";
+  return summary;
+}
 
-    std::optional<ComputeContext> ctx;
-    std::optional<FftLibrary> fft;
-    std::string device_name = "host only";
-    if (need_device) {
-      const Device device = bench::loop_device(device_spec);  // as `snapfit run` picks it
-      device_name = device.info.name;
-      std::cout << "device " << describe_device(device.info) << "\n";
-      ctx.emplace(make_compute_context(device));
-      fft.emplace();
-    }
-    const std::string load_start = bench::read_loadavg();
-    fs::create_directories(out_dir);
-    std::ofstream csv(fs::path(out_dir) / "trials.csv");
-    csv << "pair,method,clearance,trial,success,inserted,position_error,lateral_error,axial_error,angle_error,"
-           "max_penetration,max_force_step,force_hf_rms,peak_force,frame_p99_ms,frame_wall_p99_ms,misses,frames,"
-           "lateral_offset,tilt_deg,"
-           "approach_offset,duration_s\n";
-    std::ofstream depth_csv(fs::path(out_dir) / "wrench_vs_depth.csv");
-    depth_csv << "pair,method,clearance,trial,time_s,depth,force_n,torque_nm\n";
-
-    struct Summary {
-      std::string pair, method;
-      double clearance = 0;
-      std::vector<TrialResult> trials;
-    };
-    std::vector<Summary> summaries;
-    std::map<std::string, std::vector<std::pair<double, double>>> force_depth,
-        torque_depth;  // method -> (depth, value)
-    const double depth_clearance = clearances.size() > 1 ? clearances[clearances.size() / 2] : clearances[0];
-    const auto started = std::chrono::steady_clock::now();
-
-    for (const Cell& cell : cells) {
-      std::cout << "== " << cell.scene.name << "\n";
-      const AssemblyPair parts = prepare_assembly_pair(cell.scene);
-      const Mesh& m1 = parts.part(1).mesh;
-      const Mesh& m2 = parts.part(2).mesh;
-      const MeshDistanceIndex i1(m1), i2(m2);
-      const double spacing = parts.grids.spacing;
-      for (const BenchMethod& method : methods) {
-        Scene scene = method.kind == BenchMethod::translation ? translation_scene(cell.scene) : cell.scene;
-        scene.haptics.settle_s = 1;
-        if (geometry_strength) scene.haptics.geometry_strength = *geometry_strength;
-        if (lambda_in) scene.descriptor.lambda_in = *lambda_in;
-        if (contact_stiffness) scene.haptics.contact_stiffness_n_per_mm3 = *contact_stiffness;
-        std::optional<AssemblyPair> pair;
-        std::unique_ptr<QueryEngine> engine;
-        std::optional<VpsModel> vps;
-        std::optional<HybridModel> hybrid;
-        std::shared_ptr<const RigidContactModel> rigid;
-        CouplingParams coupling;
-        const auto build_start = std::chrono::steady_clock::now();
-        if (method.voxel_based()) {
-          scene.vps.voxel_size = method.voxel;
-          coupling = coupling_for(scene, m2);
-          vps = vps_model_for(scene, m1, m2, spacing, coupling);
-          if (method.kind == BenchMethod::vps_hybrid) {
-            const auto faces_of = [](const PartSpec& p) {
-              return p.procedural ? procedural_part_faces(*p.procedural) : std::vector<AnalyticFace>{};
-            };
-            std::vector<AnalyticFace> f1 = faces_of(scene.part1), f2 = faces_of(scene.part2);
-            if (f1.empty() || f2.empty())
-              std::cout << "  (" << cell.pair << ": no analytic faces, " << method.name << " runs as plain VPS)\n";
-            else
-              hybrid = hybrid_model(*vps, std::move(f1), std::move(f2), coupling);
-          }
-        } else {
-          PairOptions options;
-          options.note = [](const std::string& m) { std::cerr << "  " << m << "\n"; };
-          pair = build_assembly_pair(scene, *ctx, *fft, options);
-          engine = make_query_engine(*ctx, pair->spectra, query_variant_for(scene, Interpolation::tricubic));
-          scene.haptics.contact = scene.haptics.contact && contact;
-          rigid = rigid_contact_for(scene, m1, m2, spacing);
-        }
-        std::cout << "  " << bench::padr(method.name, 20) << " built in "
-                  << bench::fixed(bench::seconds_since(build_start), 1) << " s" << std::flush;
-        Summary summary{cell.pair, method.name, cell.clearance, {}};
-        std::mt19937 rng(static_cast<unsigned>(seed));  // the same users for every method of a cell
-        for (long t = 0; t < trials; ++t) {
-          const UserTrial user = draw_trial(rng);
-          scene.trajectory = user_trajectory(scene.assembled_pose.value_or(Pose{}), cell.entry, user,
-                                             method.kind != BenchMethod::translation);
-          scene.part2.pose = scene.trajectory.keyframes.front().pose;
-          SessionOptions options;
-          options.simulated_time = true;
-          FrameWork work;
-          work.wall_ms.reserve(8000), work.cpu_ms.reserve(8000);
-          SessionResult run;
-          if (hybrid) {
-            HybridState state = hybrid_state_for(*hybrid);  // each user starts disengaged
-            run = run_scripted_session(scene, spacing, vps_loop_config(scene, *vps, coupling),
-                                       timed(hybrid_evaluator(*hybrid, state), work), options);
-          } else if (method.voxel_based()) {
-            run = run_scripted_session(scene, spacing, vps_loop_config(scene, *vps, coupling),
-                                       timed(vps_evaluator(*vps), work), options);
-          } else {
-            const TuningResult fixed =
-                pick_modes({TimingPoint{std::min<std::size_t>(modes, engine->max_modes()), 0, 0, 0, 1}},
-                           scene.frame_budget_ms, 0.25);
-            double force_scale = 0;
-            LoopConfig config = loop_config_for(scene, pair->part(2).mesh, spacing, *engine, fixed, force_scale, rigid);
-            if (config.contact) config.contact = timed_contact(config.contact, work);
-            run = run_scripted_session(scene, spacing, config, timed(wrench_evaluator(*engine), work), options);
-          }
-          const TrialResult r = measure(cell, run, work, m1, i1, m2, i2, static_cast<std::size_t>(stride));
-          csv << cell.pair << "," << method.name << "," << cell.clearance << "," << t << "," << r.success << ","
-              << r.inserted << "," << r.position_error << "," << r.lateral_error << "," << r.axial_error << ","
-              << r.angle_error << "," << r.max_penetration << "," << r.max_force_step << "," << r.force_hf_rms << ","
-              << r.peak_force << "," << r.frame_p99_ms << "," << r.frame_wall_p99_ms << "," << r.misses << ","
-              << r.frames << "," << user.lateral << ","
-              << (method.kind == BenchMethod::translation ? 0.0 : user.tilt_deg) << "," << user.approach_offset << ","
-              << user.duration_s << "\n";
-          if (t == 0 && cell.pair == "peg-in-hole" && cell.clearance == depth_clearance) {
-            for (const FrameRecord& f : run.loop.log) {
-              const double depth = scene.assembled_pose->translation.z() + cell.entry - f.part.translation.z();
-              depth_csv << cell.pair << "," << method.name << "," << cell.clearance << "," << t << "," << f.time_s
-                        << "," << depth << "," << f.sent.force.norm() << "," << f.sent.torque.norm() << "\n";
-              force_depth[method.name].push_back({depth, f.sent.force.norm()});
-              torque_depth[method.name].push_back({depth, f.sent.torque.norm()});
-            }
-          }
-          summary.trials.push_back(r);
-          std::cout << (r.success ? " +" : r.inserted ? " ~" : " -") << std::flush;
-        }
-        std::cout << "\n";
-        summaries.push_back(std::move(summary));
-      }
-    }
-    const double seconds = bench::seconds_since(started);
-    const std::string load_end = bench::read_loadavg();
-
-    // The summary per cell: success rate, medians of the errors, the worst penetration.
-    std::ostringstream md;
-    std::ofstream scsv(fs::path(out_dir) / "summary.csv");
-    scsv << "pair,method,clearance,trials,success_rate,inserted_rate,median_position_error,median_angle_error,"
-            "median_max_penetration,max_penetration,median_max_force_step,median_force_hf_rms,frame_p99_ms,frame_wall_"
-            "p99_ms,"
-            "misses\n";
-    md << "| pair | method | clearance (mm) | trials | success | inserted | position error (mm, median) | angle "
-          "error (deg, median) | max penetration (mm, median / max) | max force step (N, median) | query CPU "
-          "p99 (ms, max) | misses |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    nlohmann::json cells_json = nlohmann::json::array();
-    std::map<std::string, Series> success_series;
-    for (const Summary& s : summaries) {
-      std::vector<double> pos, ang, pen, step, hf, p99, wall99;
-      double ok = 0, in = 0, misses = 0;
-      for (const TrialResult& r : s.trials) {
-        pos.push_back(r.position_error), ang.push_back(r.angle_error), pen.push_back(r.max_penetration);
-        step.push_back(r.max_force_step), hf.push_back(r.force_hf_rms), p99.push_back(r.frame_p99_ms);
-        wall99.push_back(r.frame_wall_p99_ms);
-        ok += r.success, in += r.inserted, misses += r.misses;
-      }
-      const double n = s.trials.size();
-      scsv << s.pair << "," << s.method << "," << s.clearance << "," << n << "," << ok / n << "," << in / n << ","
-           << quantile(pos, 0.5) << "," << quantile(ang, 0.5) << "," << quantile(pen, 0.5) << "," << quantile(pen, 1.0)
-           << "," << quantile(step, 0.5) << "," << quantile(hf, 0.5) << "," << quantile(p99, 1.0) << ","
-           << quantile(wall99, 1.0) << "," << misses << "\n";
-      md << "| " << s.pair << " | " << s.method << " | " << s.clearance << " | " << n << " | "
-         << bench::fixed(100 * ok / n, 0) << " % | " << bench::fixed(100 * in / n, 0) << " % | "
-         << bench::fixed(quantile(pos, 0.5), 3) << " | " << bench::fixed(quantile(ang, 0.5), 2) << " | "
-         << bench::fixed(quantile(pen, 0.5), 3) << " / " << bench::fixed(quantile(pen, 1.0), 3) << " | "
-         << bench::fixed(quantile(step, 0.5), 3) << " | " << bench::fixed(quantile(p99, 1.0), 3) << " | " << misses
-         << " |\n";
-      cells_json.push_back({{"pair", s.pair},
+// One cell and method's line of the summary: summary.csv, summary.md and the JSON; the
+// peg's success rate into `success_series`.
+nlohmann::json summarise(const Summary& s, std::ofstream& scsv, std::ostringstream& md,
+                         std::map<std::string, Series>& success_series) {
+  std::vector<double> pos, ang, pen, step, hf, p99, wall99;
+  double ok = 0, in = 0, misses = 0;
+  for (const TrialResult& r : s.trials) {
+    pos.push_back(r.position_error), ang.push_back(r.angle_error), pen.push_back(r.max_penetration);
+    step.push_back(r.max_force_step), hf.push_back(r.force_hf_rms), p99.push_back(r.frame_p99_ms);
+    wall99.push_back(r.frame_wall_p99_ms);
+    ok += r.success, in += r.inserted, misses += r.misses;
+  }
+  const double n = s.trials.size();
+  scsv << s.pair << "," << s.method << "," << s.clearance << "," << n << "," << ok / n << "," << in / n << ","
+       << quantile(pos, 0.5) << "," << quantile(ang, 0.5) << "," << quantile(pen, 0.5) << "," << quantile(pen, 1.0)
+       << "," << quantile(step, 0.5) << "," << quantile(hf, 0.5) << "," << quantile(p99, 1.0) << ","
+       << quantile(wall99, 1.0) << "," << misses << "\n";
+  md << "| " << s.pair << " | " << s.method << " | " << s.clearance << " | " << n << " | "
+     << bench::fixed(100 * ok / n, 0) << " % | " << bench::fixed(100 * in / n, 0) << " % | "
+     << bench::fixed(quantile(pos, 0.5), 3) << " | " << bench::fixed(quantile(ang, 0.5), 2) << " | "
+     << bench::fixed(quantile(pen, 0.5), 3) << " / " << bench::fixed(quantile(pen, 1.0), 3) << " | "
+     << bench::fixed(quantile(step, 0.5), 3) << " | " << bench::fixed(quantile(p99, 1.0), 3) << " | " << misses
+     << " |\n";
+  const nlohmann::json j = {{"pair", s.pair},
                             {"method", s.method},
                             {"clearance", s.clearance},
                             {"trials", n},
@@ -526,60 +504,119 @@ int main(int argc, char** argv) {
                             {"max_penetration", bench::num(quantile(pen, 1.0))},
                             {"frame_p99_ms", bench::num(quantile(p99, 1.0))},
                             {"frame_wall_p99_ms", bench::num(quantile(wall99, 1.0))},
-                            {"misses", misses}});
-      if (s.pair == "peg-in-hole") {
-        Series& series = success_series[s.method];
-        series.label = s.method;
-        series.x.push_back(std::max(s.clearance, 0.01));  // log axis: clearance 0 drawn at 0.01 mm
-        series.y.push_back(100 * ok / n);
-      }
+                            {"misses", misses}};
+  if (s.pair == "peg-in-hole") {
+    Series& series = success_series[s.method];
+    series.label = s.method;
+    series.x.push_back(std::max(s.clearance, 0.01));  // log axis: clearance 0 drawn at 0.01 mm
+    series.y.push_back(100 * ok / n);
+  }
+  return j;
+}
+
+Chart depth_chart(const std::string& what, const std::string& unit, double depth_clearance,
+                  const std::map<std::string, std::vector<std::pair<double, double>>>& data) {
+  Chart c;
+  c.title = what + " sent to the user against insertion depth, trial 0 at clearance " +
+            bench::fixed(depth_clearance, 2) + " mm (depth 0: the peg's tip at the hole's entry)";
+  c.x_label = "depth (mm)";
+  c.y_label = what + " (" + unit + ")";
+  for (const auto& [name, points] : data) {
+    Series s;
+    s.label = name;
+    s.style = Series::Style::points;
+    for (const auto& [x, y] : points) s.x.push_back(x), s.y.push_back(y);
+    c.series.push_back(s);
+  }
+  return c;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bench::guarded_main("bench_assembly", [&] {
+    const Options o = parse_options(argc, argv);
+    const std::vector<BenchMethod> methods = methods_from(o.methods, o.voxels);
+    const bool need_device =
+        std::any_of(methods.begin(), methods.end(), [](const BenchMethod& m) { return !m.voxel_based(); });
+    const std::vector<Cell> cells = make_cells(o);
+
+    std::optional<ComputeContext> ctx;
+    std::optional<FftLibrary> fft;
+    std::string device_name = "host only";
+    if (need_device) {
+      const Device device = bench::loop_device(o.device_spec);  // as `snapfit run` picks it
+      device_name = device.info.name;
+      std::cout << "device " << describe_device(device.info) << "\n";
+      ctx.emplace(make_compute_context(device));
+      fft.emplace();
     }
+    const std::string load_start = bench::read_loadavg();
+    fs::create_directories(o.out_dir);
+    TrialFiles out;
+    out.csv.open(fs::path(o.out_dir) / "trials.csv");
+    out.csv << "pair,method,clearance,trial,success,inserted,position_error,lateral_error,axial_error,angle_error,"
+               "max_penetration,max_force_step,force_hf_rms,peak_force,frame_p99_ms,frame_wall_p99_ms,misses,frames,"
+               "lateral_offset,tilt_deg,"
+               "approach_offset,duration_s\n";
+    out.depth_csv.open(fs::path(o.out_dir) / "wrench_vs_depth.csv");
+    out.depth_csv << "pair,method,clearance,trial,time_s,depth,force_n,torque_nm\n";
+    out.depth_clearance = o.clearances.size() > 1 ? o.clearances[o.clearances.size() / 2] : o.clearances[0];
+    std::vector<Summary> summaries;
+    const auto started = std::chrono::steady_clock::now();
+    for (const Cell& cell : cells) {
+      std::cout << "== " << cell.scene.name << "\n";
+      const AssemblyPair parts = prepare_assembly_pair(cell.scene);
+      const MeshDistanceIndex i1(parts.part(1).mesh), i2(parts.part(2).mesh);
+      for (const BenchMethod& method : methods)
+        summaries.push_back(run_method(o, out, cell, method, parts, i1, i2, ctx, fft));
+    }
+    const double seconds = bench::seconds_since(started);
+    const std::string load_end = bench::read_loadavg();
+
+    // The summary per cell: success rate, medians of the errors, the worst penetration.
+    std::ostringstream md;
+    std::ofstream scsv(fs::path(o.out_dir) / "summary.csv");
+    scsv << "pair,method,clearance,trials,success_rate,inserted_rate,median_position_error,median_angle_error,"
+            "median_max_penetration,max_penetration,median_max_force_step,median_force_hf_rms,frame_p99_ms,frame_wall_"
+            "p99_ms,"
+            "misses\n";
+    md << "| pair | method | clearance (mm) | trials | success | inserted | position error (mm, median) | angle "
+          "error (deg, median) | max penetration (mm, median / max) | max force step (N, median) | query CPU "
+          "p99 (ms, max) | misses |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    nlohmann::json cells_json = nlohmann::json::array();
+    std::map<std::string, Series> success_series;
+    for (const Summary& s : summaries) cells_json.push_back(summarise(s, scsv, md, success_series));
     std::cout << "\n"
               << md.str() << "\n"
-              << summaries.size() << " cells x methods, " << trials << " trials each, in " << bench::fixed(seconds, 0)
+              << summaries.size() << " cells x methods, " << o.trials << " trials each, in " << bench::fixed(seconds, 0)
               << " s; load average " << load_start << " -> " << load_end << "\n";
-    std::ofstream(fs::path(out_dir) / "summary.md") << md.str();
+    std::ofstream(fs::path(o.out_dir) / "summary.md") << md.str();
 
     Chart success;
-    success.title = "Imprecise-user insertions of the peg: success rate against clearance (" + std::to_string(trials) +
-                    " trials per point; clearance 0 drawn at 0.01 mm)";
+    success.title = "Imprecise-user insertions of the peg: success rate against clearance (" +
+                    std::to_string(o.trials) + " trials per point; clearance 0 drawn at 0.01 mm)";
     success.x_label = "clearance (mm)";
     success.y_label = "success (%)";
     success.log_x = true;
     for (auto& [name, series] : success_series) success.series.push_back(series);
     success.y_min = 0, success.y_max = 100;
-    const auto depth_chart = [&](const std::string& what, const std::string& unit,
-                                 const std::map<std::string, std::vector<std::pair<double, double>>>& data) {
-      Chart c;
-      c.title = what + " sent to the user against insertion depth, trial 0 at clearance " +
-                bench::fixed(depth_clearance, 2) + " mm (depth 0: the peg's tip at the hole's entry)";
-      c.x_label = "depth (mm)";
-      c.y_label = what + " (" + unit + ")";
-      for (const auto& [name, points] : data) {
-        Series s;
-        s.label = name;
-        s.style = Series::Style::points;
-        for (const auto& [x, y] : points) s.x.push_back(x), s.y.push_back(y);
-        c.series.push_back(s);
-      }
-      return c;
-    };
-    const std::vector<Chart> charts = {success, depth_chart("|force|", "N", force_depth),
-                                       depth_chart("|torque|", "N m", torque_depth)};
+    const std::vector<Chart> charts = {success, depth_chart("|force|", "N", out.depth_clearance, out.force_depth),
+                                       depth_chart("|torque|", "N m", out.depth_clearance, out.torque_depth)};
     const nlohmann::json report = {{"command", bench::command_line(argc, argv)},
                                    {"date", bench::now_iso()},
                                    {"device", device_name},
-                                   {"trials", trials},
-                                   {"seed", seed},
-                                   {"modes", modes},
-                                   {"penetration_stride", stride},
+                                   {"trials", o.trials},
+                                   {"seed", o.seed},
+                                   {"modes", o.modes},
+                                   {"penetration_stride", o.stride},
                                    {"seconds", seconds},
                                    {"load_average", {{"start", load_start}, {"end", load_end}}},
                                    {"cells", cells_json}};
-    std::ofstream(fs::path(out_dir) / "summary.json") << report.dump(2) << "\n";
-    const std::string page = bench::write_charts(out_dir, "bench_assembly: imprecise-user insertions",
+    std::ofstream(fs::path(o.out_dir) / "summary.json") << report.dump(2) << "\n";
+    const std::string page = bench::write_charts(o.out_dir, "bench_assembly: imprecise-user insertions",
                                                  bench::command_line(argc, argv), charts);
-    std::cout << "wrote " << out_dir << "/trials.csv, summary.csv, summary.md, summary.json, wrench_vs_depth.csv and "
+    std::cout << "wrote " << o.out_dir << "/trials.csv, summary.csv, summary.md, summary.json, wrench_vs_depth.csv and "
               << page << "\n";
     return 0;
   });

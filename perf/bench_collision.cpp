@@ -1,7 +1,7 @@
 // Seed 001's collision predicate (engine/query/collision_predicate.h) against FCL's verdicts on
 // the shipped scenes: agreement and per-query time at m' = 512 .. 4,096.
 //
-//   bench_collision [--quick] [--device SPEC] [--out DIR] [--poses N] [--scene FILE]...
+//   bench_collision --help lists its options.
 //
 // Scenes: every scenes/*.json (--quick: collision_only.json and default.json with the grid
 // spacing doubled, so its figures are not the scenes' own), each switched to the indicator
@@ -46,6 +46,7 @@
 #include "engine/query/query_engine.h"
 #include "mesh/mesh_distance.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
 #include "perf/fcl_peer.h"
 #include "pipeline/assembly_pair.h"
 #include "snapfit/error.h"
@@ -60,12 +61,6 @@ using bench::fixed;
 using bench::pad;
 using bench::padr;
 using Clock = std::chrono::steady_clock;
-
-void usage(std::ostream& os) {
-  os << "bench_collision [--quick] [--device SPEC] [--out DIR] [--poses N] [--scene FILE]...\n"
-        "  Seed 001's collision predicate (truncated overlap above its truncation bound) against\n"
-        "  fcl::collide on the shipped scenes, at m' = 512, 1024, 2048, 4096: agreement and query time.\n";
-}
 
 using bench::percentile;
 
@@ -106,155 +101,148 @@ struct Row {
   double bound = 0, spacing = 0, p50_us = 0, p99_us = 0;
 };
 
-int run(int argc, char** argv) {
+struct Options {
   bool quick = false;
   std::string device, out = "results/bench_collision";
-  int pose_arg = 0;
+  std::size_t pose_count = 0;
   std::vector<std::string> scene_files;
-  bench::parse_options(argc, argv, quick, device, out, usage, [&](const std::string&, auto value, auto is) {
-    if (is("--poses"))
-      pose_arg = int(bench::integer_option("--poses", value("--poses"), 2, 100000));
-    else if (is("--scene"))
-      scene_files.push_back(value("--scene"));
-    else
-      return false;
-    return true;
-  });
-  if (scene_files.empty()) {
-    if (quick) {
-      scene_files = {"scenes/collision_only.json", "scenes/default.json"};
+};
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  int pose_arg = 0;
+  CLI::App app{
+      "Seed 001's collision predicate (truncated overlap above its truncation bound) against fcl::collide "
+      "on the shipped scenes, at m' = 512, 1024, 2048, 4096: agreement and query time.",
+      "bench_collision"};
+  bench::add_common_options(app, o.quick, o.device, o.out,
+                            "collision_only.json and default.json (spacing doubled), 30 poses");
+  app.add_option("--poses", pose_arg, "poses per scene (0: 198, --quick 30)")->check(CLI::Range(2, 100000));
+  app.add_option("--scene", o.scene_files, "scene, repeatable (default: every scenes/*.json)");
+  bench::parse(app, argc, argv);
+  if (o.scene_files.empty()) {
+    if (o.quick) {
+      o.scene_files = {"scenes/collision_only.json", "scenes/default.json"};
     } else {
       for (const auto& e : fs::directory_iterator("scenes"))
-        if (e.path().extension() == ".json") scene_files.push_back(e.path().string());
-      std::sort(scene_files.begin(), scene_files.end());
+        if (e.path().extension() == ".json") o.scene_files.push_back(e.path().string());
+      std::sort(o.scene_files.begin(), o.scene_files.end());
     }
   }
-  const std::size_t pose_count = pose_arg > 0 ? std::size_t(pose_arg) : (quick ? 30 : 198);
-  const std::vector<std::size_t> modes_list = {512, 1024, 2048, 4096};
+  o.pose_count = pose_arg > 0 ? std::size_t(pose_arg) : (o.quick ? 30 : 198);
+  return o;
+}
+
+const std::vector<std::size_t> kModes = {512, 1024, 2048, 4096};
+
+// The scene's poses (see the top of the file) that snapfit does not flag as outside its
+// padded box at the first m'.
+std::vector<Pose> scene_poses(const Scene& scene, QueryEngine& engine, std::size_t pose_count, double h,
+                              const AssemblyPair& pair) {
+  const bool rotates = scene.motion == Motion::six_dof;
+  std::vector<Pose> candidates = bench::trajectory_poses(scene, pose_count / 3, 20261124u, 0.0, 0.0);
+  for (const Pose& p : bench::trajectory_poses(scene, pose_count / 3, 20261125u, 0.5, rotates ? 2.0 : 0.0))
+    candidates.push_back(p);
+  for (const Pose& p :
+       bench::trajectory_poses(scene, pose_count - 2 * (pose_count / 3), 20261126u, 3.0, rotates ? 10.0 : 0.0))
+    candidates.push_back(p);
+  if (!rotates)  // part 2's orientation is in its mesh (pipeline/assembly_pair.h)
+    for (Pose& p : candidates) p.rotation = Eigen::Quaterniond::Identity();
+  engine.set_modes(kModes.front());
+  std::vector<Pose> poses;
+  const std::vector<QueryResult> first = engine.query_batch(candidates);
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (first[i].flags == query_ok) poses.push_back(candidates[i]);
+  std::cout << "  FFT grid " << pair.spectra.dims[0] << "x" << pair.spectra.dims[1] << "x" << pair.spectra.dims[2]
+            << ", h " << h << "; poses " << poses.size() << " of " << candidates.size() << " inside the padded box\n";
+  return poses;
+}
+
+// FCL's verdict at each pose and the distance to contact (negative: the depth).
+struct Truth {
+  std::vector<int> collides;
+  std::vector<double> distance;
+};
+Truth fcl_truth(const AssemblyPair& pair, const std::vector<Pose>& poses) {
+  const Mesh& m1 = pair.parts.part1.mesh;
+  const Mesh& m2 = pair.parts.part2.mesh;
+  double build_s = 0;
+  fcl::CollisionObjectd o1(bench::fcl_model(m1, build_s), fcl::Transform3d::Identity());
+  fcl::CollisionObjectd o2(bench::fcl_model(m2, build_s), fcl::Transform3d::Identity());
+  const MeshDistanceIndex index1(m1), index2(m2);
+  Truth t{std::vector<int>(poses.size()), std::vector<double>(poses.size())};
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    o2.setTransform(bench::fcl_transform(poses[i]));
+    fcl::CollisionRequestd creq(1, false);
+    fcl::CollisionResultd cres;
+    fcl::collide(&o1, &o2, creq, cres);
+    t.collides[i] = cres.isCollision();
+    if (t.collides[i]) {
+      t.distance[i] = -std::max(deepest_vertex(m2, poses[i], index1), deepest_vertex(m1, poses[i].inverse(), index2));
+    } else {
+      fcl::DistanceRequestd dreq;
+      dreq.rel_err = dreq.abs_err = 0;
+      fcl::DistanceResultd dres;
+      fcl::distance(&o1, &o2, dreq, dres);
+      t.distance[i] = dres.min_distance;
+    }
+  }
+  return t;
+}
+
+// The three predicates' verdicts against FCL's at each m', and the query time; each
+// pose's overlap into poses.csv.
+void measure_modes(const std::string& file, QueryEngine& engine, const TruncationTails& tails, double h,
+                   const std::vector<Pose>& poses, const Truth& truth, std::ofstream& poses_csv,
+                   std::vector<Row>& rows) {
   const int warmup = 20;
-  const std::string load_start = bench::read_loadavg();
-  std::cout << "bench_collision: " << bench::command_line(argc, argv) << "\n  date " << bench::now_iso()
-            << ", load average at start: " << load_start << "\n";
-
-  const FftLibrary fft;
-  const ComputeContext ctx = make_compute_context(select_device(device_spec_from(device)));
-  std::cout << "  device: " << describe_device(ctx.device.info) << "\n";
-  PairOptions popt;
-  popt.descriptors.progress = pass_progress_bars(std::cerr);
-  popt.note = [](const std::string& m) { std::cerr << "  snapfit: " << m << "\n"; };
-
-  std::vector<Row> rows;
-  std::ofstream poses_csv;
-  fs::create_directories(out);
-  poses_csv.open(fs::path(out) / "poses.csv");
-  poses_csv << "scene,pose,x,y,z,qw,qx,qy,qz,fcl_collides,distance_to_contact,modes,overlap,bound\n";
-  for (const std::string& file : scene_files) {
-    Scene scene = indicator_scene(load_scene(file));
-    if (quick) {
-      if (scene.grid.spacing) scene.grid.spacing = 2.0 * *scene.grid.spacing;
-      if (scene.grid.resolution) scene.grid.resolution = std::max(8, *scene.grid.resolution / 2);
-    }
-    const bool rotates = scene.motion == Motion::six_dof;
-    std::cout << "\n[" << file << "] " << scene.name << " (" << (rotates ? "6-DOF" : "translation") << ")\n"
-              << std::flush;
-    const AssemblyPair pair = build_assembly_pair(scene, ctx, fft, popt);
-    const double h = pair.spectra.spacing;
-    QueryVariant variant = query_variant_for(scene);
-    variant.force = variant.torque = false;  // the predicate needs the energy alone
-    auto engine = make_query_engine(ctx, pair.spectra, variant);
-    const TruncationTails tails = truncation_tails(pair.spectra);
-
-    std::vector<Pose> candidates = bench::trajectory_poses(scene, pose_count / 3, 20261124u, 0.0, 0.0);
-    for (const Pose& p : bench::trajectory_poses(scene, pose_count / 3, 20261125u, 0.5, rotates ? 2.0 : 0.0))
-      candidates.push_back(p);
-    for (const Pose& p :
-         bench::trajectory_poses(scene, pose_count - 2 * (pose_count / 3), 20261126u, 3.0, rotates ? 10.0 : 0.0))
-      candidates.push_back(p);
-    if (!rotates)  // part 2's orientation is in its mesh (pipeline/assembly_pair.h)
-      for (Pose& p : candidates) p.rotation = Eigen::Quaterniond::Identity();
-    engine->set_modes(modes_list.front());
-    std::vector<Pose> poses;
-    const std::vector<QueryResult> first = engine->query_batch(candidates);
-    for (std::size_t i = 0; i < candidates.size(); ++i)
-      if (first[i].flags == query_ok) poses.push_back(candidates[i]);
-    std::cout << "  FFT grid " << pair.spectra.dims[0] << "x" << pair.spectra.dims[1] << "x" << pair.spectra.dims[2]
-              << ", h " << h << "; poses " << poses.size() << " of " << candidates.size() << " inside the padded box\n";
-
-    // FCL's verdicts and the distance to contact.
-    const Mesh& m1 = pair.parts.part1.mesh;
-    const Mesh& m2 = pair.parts.part2.mesh;
-    double build_s = 0;
-    fcl::CollisionObjectd o1(bench::fcl_model(m1, build_s), fcl::Transform3d::Identity());
-    fcl::CollisionObjectd o2(bench::fcl_model(m2, build_s), fcl::Transform3d::Identity());
-    const MeshDistanceIndex index1(m1), index2(m2);
-    std::vector<int> truth(poses.size());
-    std::vector<double> distance(poses.size());
+  for (std::size_t m : kModes) {
+    engine.set_modes(m);
+    const std::vector<QueryResult> res = engine.query_batch(poses);
+    Row bound_row{file, engine.modes(), "bound", {}, tails.bound(engine.modes()), h};
+    Row estimate_row{file, engine.modes(), "estimate", {}, 0.0, h};
+    Row zero_row{file, engine.modes(), "zero", {}, 0.0, h};
+    bound_row.c.near = estimate_row.c.near = zero_row.c.near = 2 * h;
     for (std::size_t i = 0; i < poses.size(); ++i) {
-      o2.setTransform(bench::fcl_transform(poses[i]));
-      fcl::CollisionRequestd creq(1, false);
-      fcl::CollisionResultd cres;
-      fcl::collide(&o1, &o2, creq, cres);
-      truth[i] = cres.isCollision();
-      if (truth[i]) {
-        distance[i] = -std::max(deepest_vertex(m2, poses[i], index1), deepest_vertex(m1, poses[i].inverse(), index2));
-      } else {
-        fcl::DistanceRequestd dreq;
-        dreq.rel_err = dreq.abs_err = 0;
-        fcl::DistanceResultd dres;
-        fcl::distance(&o1, &o2, dreq, dres);
-        distance[i] = dres.min_distance;
-      }
+      const CollisionVerdict v = collision_verdict(res[i], tails);
+      bound_row.c.add(v.collides, truth.collides[i] != 0, truth.distance[i]);
+      estimate_row.c.add(v.overlap > res[i].error_estimate.energy, truth.collides[i] != 0, truth.distance[i]);
+      zero_row.c.add(v.overlap > 0, truth.collides[i] != 0, truth.distance[i]);
+      const Pose& p = poses[i];
+      poses_csv << file << "," << i << "," << p.translation.x() << "," << p.translation.y() << "," << p.translation.z()
+                << "," << p.rotation.w() << "," << p.rotation.x() << "," << p.rotation.y() << "," << p.rotation.z()
+                << "," << truth.collides[i] << "," << truth.distance[i] << "," << engine.modes() << "," << v.overlap
+                << "," << v.bound << "\n";
     }
-    std::size_t colliding = 0;
-    for (int t : truth) colliding += std::size_t(t);
-    std::cout << "  FCL: " << colliding << " colliding, " << poses.size() - colliding << " free\n";
-
-    for (std::size_t m : modes_list) {
-      engine->set_modes(m);
-      const std::vector<QueryResult> res = engine->query_batch(poses);
-      Row bound_row{file, engine->modes(), "bound", {}, tails.bound(engine->modes()), h};
-      Row estimate_row{file, engine->modes(), "estimate", {}, 0.0, h};
-      Row zero_row{file, engine->modes(), "zero", {}, 0.0, h};
-      bound_row.c.near = estimate_row.c.near = zero_row.c.near = 2 * h;
-      for (std::size_t i = 0; i < poses.size(); ++i) {
-        const CollisionVerdict v = collision_verdict(res[i], tails);
-        bound_row.c.add(v.collides, truth[i] != 0, distance[i]);
-        estimate_row.c.add(v.overlap > res[i].error_estimate.energy, truth[i] != 0, distance[i]);
-        zero_row.c.add(v.overlap > 0, truth[i] != 0, distance[i]);
-        const Pose& p = poses[i];
-        poses_csv << file << "," << i << "," << p.translation.x() << "," << p.translation.y() << ","
-                  << p.translation.z() << "," << p.rotation.w() << "," << p.rotation.x() << "," << p.rotation.y() << ","
-                  << p.rotation.z() << "," << truth[i] << "," << distance[i] << "," << engine->modes() << ","
-                  << v.overlap << "," << v.bound << "\n";
-      }
-      // Time: one pose per call, as the haptic frame asks.
-      double sink = 0;
-      for (int i = 0; i < warmup; ++i) sink += engine->query(poses[std::size_t(i) % poses.size()]).energy;
-      std::vector<double> us;
-      for (const Pose& p : poses) {
-        const auto t0 = Clock::now();
-        sink += engine->query(p).energy;
-        us.push_back(bench::seconds_since(t0) * 1e6);
-      }
-      bound_row.p50_us = estimate_row.p50_us = zero_row.p50_us = percentile(us, 0.5);
-      bound_row.p99_us = estimate_row.p99_us = zero_row.p99_us = percentile(us, 0.99);
-      if (!std::isfinite(sink)) std::cout << "  (non-finite energy)\n";
-      for (const Row* r : {&bound_row, &estimate_row, &zero_row})
-        std::cout << "  m' " << pad(std::to_string(r->modes), 5) << " " << padr(r->predicate, 8) << " TP/FP/FN/TN "
-                  << r->c.tp << "/" << r->c.fp << "/" << r->c.fn << "/" << r->c.tn << "  beyond 2h " << r->c.far_agree
-                  << "/" << r->c.far << "  agreement " << fixed(100 * r->c.agreement(), 1) << "%  worst FP "
-                  << fixed(r->c.worst_fp, 2) << "  worst FN " << fixed(r->c.worst_fn, 2) << " (h " << h << ")"
-                  << (r->predicate == "bound" ? "  B " + fixed(r->bound, 3) : "") << "  query p50 "
-                  << fixed(r->p50_us, 1) << " us p99 " << fixed(r->p99_us, 1) << " us\n";
-      rows.push_back(bound_row);
-      rows.push_back(estimate_row);
-      rows.push_back(zero_row);
+    // Time: one pose per call, as the haptic frame asks.
+    double sink = 0;
+    for (int i = 0; i < warmup; ++i) sink += engine.query(poses[std::size_t(i) % poses.size()]).energy;
+    std::vector<double> us;
+    for (const Pose& p : poses) {
+      const auto t0 = Clock::now();
+      sink += engine.query(p).energy;
+      us.push_back(bench::seconds_since(t0) * 1e6);
     }
+    bound_row.p50_us = estimate_row.p50_us = zero_row.p50_us = percentile(us, 0.5);
+    bound_row.p99_us = estimate_row.p99_us = zero_row.p99_us = percentile(us, 0.99);
+    if (!std::isfinite(sink)) std::cout << "  (non-finite energy)\n";
+    for (const Row* r : {&bound_row, &estimate_row, &zero_row})
+      std::cout << "  m' " << pad(std::to_string(r->modes), 5) << " " << padr(r->predicate, 8) << " TP/FP/FN/TN "
+                << r->c.tp << "/" << r->c.fp << "/" << r->c.fn << "/" << r->c.tn << "  beyond 2h " << r->c.far_agree
+                << "/" << r->c.far << "  agreement " << fixed(100 * r->c.agreement(), 1) << "%  worst FP "
+                << fixed(r->c.worst_fp, 2) << "  worst FN " << fixed(r->c.worst_fn, 2) << " (h " << h << ")"
+                << (r->predicate == "bound" ? "  B " + fixed(r->bound, 3) : "") << "  query p50 " << fixed(r->p50_us, 1)
+                << " us p99 " << fixed(r->p99_us, 1) << " us\n";
+    rows.push_back(bound_row);
+    rows.push_back(estimate_row);
+    rows.push_back(zero_row);
   }
+}
 
-  // Totals over the scenes per m' and predicate; the query times of the slowest scene.
+// Totals over the scenes per m' and predicate; the query times of the slowest scene.
+std::vector<Row> totals_of(const std::vector<Row>& rows) {
   std::vector<Row> totals;
-  for (std::size_t m : modes_list)
+  for (std::size_t m : kModes)
     for (const std::string pred : {"bound", "estimate", "zero"}) {
       Row t{"all", m, pred, {}, 0.0, 0.0};
       for (const Row& r : rows)
@@ -270,7 +258,11 @@ int run(int argc, char** argv) {
               << "/" << t.c.tn << ")  beyond 2h " << t.c.far_agree << "/" << t.c.far << "  worst FP "
               << fixed(t.c.worst_fp, 2) << ", FN " << fixed(t.c.worst_fn, 2) << "  query p50 " << fixed(t.p50_us, 1)
               << " us, p99 " << fixed(t.p99_us, 1) << " us\n";
+  return totals;
+}
 
+void write_results(const std::string& out, const std::vector<Row>& rows, const std::vector<Row>& totals,
+                   const nlohmann::json& record) {
   std::ofstream csv(fs::path(out) / "collision.csv");
   csv << "scene,modes,predicate,tp,fp,fn,tn,tpr,fpr,agreement,beyond_2h,agree_beyond_2h,worst_fp_distance,worst_fn_"
          "distance,bound,spacing,"
@@ -298,11 +290,12 @@ int run(int argc, char** argv) {
                        {"query_p50_us", bench::num(r.p50_us)},
                        {"query_p99_us", bench::num(r.p99_us)}});
     }
-  nlohmann::json report = bench::run_record(argc, argv, describe_device(ctx.device.info), load_start);
-  report["quick"] = quick;
+  nlohmann::json report = record;
   report["rows"] = jrows;
   std::ofstream(fs::path(out) / "collision.json") << report.dump(2) << "\n";
+}
 
+std::vector<Chart> charts(const std::vector<Row>& totals) {
   Chart agreement;
   agreement.title = "Collision verdicts against fcl::collide, all scenes";
   agreement.x_label = "m' (retained modes)";
@@ -331,9 +324,56 @@ int run(int argc, char** argv) {
     agreement.series.push_back(fpr);
   }
   timing.series = {tp50, tp99};
-  const std::string page = bench::write_charts(out, "bench_collision: seed 001's collision predicate against FCL",
-                                               bench::command_line(argc, argv), {agreement, timing});
-  std::cout << "wrote " << out << "/collision.csv, poses.csv, collision.json and " << page << "\n";
+  return {agreement, timing};
+}
+
+int run(int argc, char** argv) {
+  const Options o = parse_options(argc, argv);
+  const std::string load_start = bench::read_loadavg();
+  std::cout << "bench_collision: " << bench::command_line(argc, argv) << "\n  date " << bench::now_iso()
+            << ", load average at start: " << load_start << "\n";
+
+  const FftLibrary fft;
+  const ComputeContext ctx = make_compute_context(select_device(device_spec_from(o.device)));
+  std::cout << "  device: " << describe_device(ctx.device.info) << "\n";
+  PairOptions popt;
+  popt.descriptors.progress = pass_progress_bars(std::cerr);
+  popt.note = [](const std::string& m) { std::cerr << "  snapfit: " << m << "\n"; };
+
+  std::vector<Row> rows;
+  std::ofstream poses_csv;
+  fs::create_directories(o.out);
+  poses_csv.open(fs::path(o.out) / "poses.csv");
+  poses_csv << "scene,pose,x,y,z,qw,qx,qy,qz,fcl_collides,distance_to_contact,modes,overlap,bound\n";
+  for (const std::string& file : o.scene_files) {
+    Scene scene = indicator_scene(load_scene(file));
+    if (o.quick) {
+      if (scene.grid.spacing) scene.grid.spacing = 2.0 * *scene.grid.spacing;
+      if (scene.grid.resolution) scene.grid.resolution = std::max(8, *scene.grid.resolution / 2);
+    }
+    const bool rotates = scene.motion == Motion::six_dof;
+    std::cout << "\n[" << file << "] " << scene.name << " (" << (rotates ? "6-DOF" : "translation") << ")\n"
+              << std::flush;
+    const AssemblyPair pair = build_assembly_pair(scene, ctx, fft, popt);
+    const double h = pair.spectra.spacing;
+    QueryVariant variant = query_variant_for(scene);
+    variant.force = variant.torque = false;  // the predicate needs the energy alone
+    auto engine = make_query_engine(ctx, pair.spectra, variant);
+    const TruncationTails tails = truncation_tails(pair.spectra);
+    const std::vector<Pose> poses = scene_poses(scene, *engine, o.pose_count, h, pair);
+    const Truth truth = fcl_truth(pair, poses);
+    std::size_t colliding = 0;
+    for (int t : truth.collides) colliding += std::size_t(t);
+    std::cout << "  FCL: " << colliding << " colliding, " << poses.size() - colliding << " free\n";
+    measure_modes(file, *engine, tails, h, poses, truth, poses_csv, rows);
+  }
+  const std::vector<Row> totals = totals_of(rows);
+  nlohmann::json record = bench::run_record(argc, argv, describe_device(ctx.device.info), load_start);
+  record["quick"] = o.quick;
+  write_results(o.out, rows, totals, record);
+  const std::string page = bench::write_charts(o.out, "bench_collision: seed 001's collision predicate against FCL",
+                                               bench::command_line(argc, argv), charts(totals));
+  std::cout << "wrote " << o.out << "/collision.csv, poses.csv, collision.json and " << page << "\n";
   return 0;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
-// Small helpers shared by the perf/ benchmarks: argument reading, load average, date.
+// Small helpers shared by the perf/ benchmarks: load average, date, CPU contention,
+// table formatting and the parts of their reports that they share.
 #include <CL/opencl.hpp>
 #include <algorithm>
 #include <chrono>
@@ -18,10 +19,13 @@
 #include <unistd.h>
 #include <vector>
 
+#include "core/quantile.h"
 #include "engine/runtime/device.h"
 #include "report/chart_spec.h"
+#include "report/device_json.h"
 #include "report/web_assets.h"
 #include "snapfit/error.h"
+#include "snapfit/query.h"
 
 namespace snapfit::bench {
 
@@ -30,58 +34,6 @@ inline std::string command_line(int argc, char** argv) {
   std::string out;
   for (int i = 0; i < argc; ++i) out += (i ? " " : "") + std::string(argv[i]);
   return out;
-}
-
-// True when argument `s` is option `name`, as "--name" or "--name=value".
-inline bool is_option(const std::string& s, const std::string& name) {
-  return s == name || s.rfind(name + "=", 0) == 0;
-}
-
-// The value of option `name` at argv[i]: after '=' or the next argument (advancing i).
-inline std::string option_value(int argc, char** argv, int& i, const std::string& name) {
-  const std::string s = argv[i];
-  const std::string prefix = name + "=";
-  if (s.rfind(prefix, 0) == 0) return s.substr(prefix.size());
-  if (i + 1 >= argc) throw snapfit::Error(name + ": needs a value");
-  return argv[++i];
-}
-
-// The options every benchmark takes, at argv[i]: --quick, -h/--help (prints `usage` and
-// exits), --device SPEC and --out DIR (not empty). True when argv[i] was one of them
-// (i then points at its last argument).
-inline bool common_option(int argc, char** argv, int& i, bool& quick, std::string& device, std::string& out,
-                          void (*usage)(std::ostream&)) {
-  const std::string s = argv[i];
-  if (s == "--quick") {
-    quick = true;
-  } else if (s == "-h" || s == "--help") {
-    usage(std::cout);
-    std::exit(0);
-  } else if (is_option(s, "--device")) {
-    device = option_value(argc, argv, i, "--device");
-  } else if (is_option(s, "--out")) {
-    out = option_value(argc, argv, i, "--out");
-    if (out.empty()) throw snapfit::Error("--out: must not be empty");
-  } else {
-    return false;
-  }
-  return true;
-}
-
-// Reads every argument: the common options above, then `own(s, value, is)` for the
-// benchmark's own options, where s is the argument, value(name) reads an option's value
-// and is(name) tells whether s is option `name`. `own` returns false for an argument it
-// does not know, which is an error naming it.
-template <class Own>
-void parse_options(int argc, char** argv, bool& quick, std::string& device, std::string& out,
-                   void (*usage)(std::ostream&), Own own) {
-  for (int i = 1; i < argc; ++i) {
-    if (common_option(argc, argv, i, quick, device, out, usage)) continue;
-    const std::string s = argv[i];
-    auto value = [&](const std::string& name) { return option_value(argc, argv, i, name); };
-    auto is = [&](const std::string& name) { return is_option(s, name); };
-    if (!own(s, value, is)) throw snapfit::Error("unknown argument '" + s + "' (see --help)");
-  }
 }
 
 // A benchmark's main: runs `body` and turns an escaping error into a message on stderr
@@ -181,20 +133,6 @@ inline double other_cores(const CpuSample& a, const CpuSample& b) {
   return std::max(0.0, ((b.machine_busy_s - a.machine_busy_s) - (b.own_s - a.own_s)) / wall);
 }
 
-// An integer option's value in [lo, hi]; snapfit::Error naming the option otherwise.
-inline long integer_option(const std::string& name, const std::string& text, long lo, long hi) {
-  std::size_t used = 0;
-  long n = 0;
-  try {
-    n = std::stol(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || text.empty() || n < lo || n > hi)
-    throw snapfit::Error(name + ": expected an integer >= " + std::to_string(lo) + " (got '" + text + "')");
-  return n;
-}
-
 // Table formatting shared by the benchmarks' console reports.
 inline double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -211,16 +149,34 @@ inline std::string pad(const std::string& s, std::size_t w) {
 inline std::string padr(const std::string& s, std::size_t w) {
   return s.size() >= w ? s : s + std::string(w - s.size(), ' ');
 }
-// A finite number as JSON, anything else as null (JSON has no NaN or Inf).
-// The nearest-rank q-quantile of v (NaN for none).
-inline double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
-  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
+// The nearest-rank q-quantile of v (core/quantile.h), NaN for none (a '-' in the tables,
+// null in the JSON).
+inline double percentile(const std::vector<double>& v, double q) {
+  return v.empty() ? std::numeric_limits<double>::quiet_NaN() : quantile(v, q);
 }
 
+// A finite number as JSON, anything else as null (JSON has no NaN or Inf).
 inline nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// The device's record in a report: `snapfit devices --json`'s fields (report/device_json.h)
+// and two more the benchmarks report: driver (as driver_version) and platform_version.
+inline nlohmann::json device_record(const DeviceInfo& info) {
+  nlohmann::json j = device_json(info);
+  j["driver"] = info.driver_version;
+  j["platform_version"] = info.platform_version;
+  return j;
+}
+
+// The variant of the exact reference: every one of `modes` modes of the exact-rotation
+// product, made for each pose's own rotation (scheduler/accuracy.h); translation-only
+// variants have no rotation and stay as they are.
+inline QueryVariant exact_reference_variant(QueryVariant v, std::size_t modes) {
+  if (v.translation_only) return v;
+  v.rotation = RotationMethod::exact_product;
+  v.product_update = ProductUpdate::each_query;
+  v.product_modes = modes;
+  return v;
+}
 
 // DIR/charts.html: the benchmark's charts on one self-contained page (report/chart_spec.h),
 // with the command, the date and the load average above them. Returns what was written, or

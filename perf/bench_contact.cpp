@@ -4,9 +4,7 @@
 // +-y, +-z, as contact_cost_ms times them for the loop. The thread counts are timed in
 // turn within each round, so their ratio is measured side by side on the same load.
 //
-//   ./build/perf/bench_contact [--scenes scenes/default.json,scenes/three_pegs.json]
-//                              [--threads 1,2,4] [--rounds 200] [--quick] [--out DIR]
-// --quick: 20 rounds on the default scene (CI proves it runs; no timing is checked).
+//   bench_contact --help lists its options.
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +16,7 @@
 
 #include "core/quantile.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/parallel_contact.h"
@@ -26,22 +25,7 @@
 using namespace snapfit;
 namespace fs = std::filesystem;
 
-namespace {
-
-void usage(std::ostream& o) {
-  o << "bench_contact [--scenes LIST] [--threads LIST] [--rounds N] [--quick] [--out DIR]\n"
-       "The rigid contact's time per evaluation near the fit, on 1 and more threads, per shipped scene.\n";
-}
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int main(int argc, char** argv) {
   return bench::guarded_main("bench_contact", [&] {
@@ -50,18 +34,15 @@ int main(int argc, char** argv) {
     std::vector<std::string> scenes = {"scenes/default.json", "scenes/three_pegs.json"};
     std::vector<unsigned> thread_counts = {1, 2, 4};
     long rounds = 200;
-    bench::parse_options(argc, argv, quick, device, out_dir, usage, [&](const std::string& s, auto value, auto is) {
-      if (is("--scenes")) return scenes = split(value("--scenes")), true;
-      if (is("--threads")) {
-        thread_counts.clear();
-        for (const std::string& t : split(value("--threads")))
-          thread_counts.push_back(static_cast<unsigned>(bench::integer_option("--threads", t, 1, 64)));
-        return true;
-      }
-      if (is("--rounds")) return rounds = bench::integer_option("--rounds", value("--rounds"), 1, 100000), true;
-      (void)s;
-      return false;
-    });
+    CLI::App app{"The rigid contact's time per evaluation near the fit, on 1 and more threads, per shipped scene.",
+                 "bench_contact"};
+    bench::add_common_options(app, quick, device, out_dir, "20 rounds on scenes/default.json");
+    app.add_option("--scenes", scenes, "comma-separated scenes")->delimiter(',');
+    app.add_option("--threads", thread_counts, "comma-separated thread counts")
+        ->delimiter(',')
+        ->check(CLI::Range(1, 64));
+    app.add_option("--rounds", rounds, "timed rounds per scene and thread count")->check(CLI::Range(1, 100000));
+    bench::parse(app, argc, argv);
     if (quick) rounds = 20, scenes = {"scenes/default.json"};
     const std::string load_start = bench::read_loadavg();
     nlohmann::json results = nlohmann::json::array();
@@ -83,14 +64,15 @@ int main(int argc, char** argv) {
       std::vector<std::function<ContactWrench(const Pose&)>> evaluators;
       for (unsigned t : thread_counts) evaluators.push_back(contact_evaluator(model, t));
       std::vector<std::vector<double>> ms(thread_counts.size()), round_ms(thread_counts.size());
-      volatile double kept = 0;
+      [[maybe_unused]] volatile double kept = 0;  // the result is used, so the call is timed
       for (long r = 0; r < rounds; ++r)
         for (std::size_t e = 0; e < evaluators.size(); ++e) {
           double total = 0;
           for (const Pose& pose : poses) {
             const auto start = std::chrono::steady_clock::now();
             kept = evaluators[e](pose).energy_j;
-            const double t = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            const double t =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
             ms[e].push_back(t);
             total += t;
           }

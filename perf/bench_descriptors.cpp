@@ -2,7 +2,7 @@
 // distance, winding number and skeletal density of one part on a uniform grid, on the
 // selected OpenCL device.
 //
-//   bench_descriptors [--quick] [--device SPEC] [--out DIR] [--only CASES] [--plots-only]
+//   bench_descriptors --help lists its options.
 //
 // Cases (all on the procedural three_peg_base of scenes/three_pegs.json - a CAD-like
 // part with flat faces, cylinders and toroidal fillets - whose triangle count is set by
@@ -57,6 +57,7 @@
 #include "mesh/mesh.h"
 #include "mesh/procedural/procedural_parts.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
 #include "pipeline/part_fields.h"
 #include "snapfit/error.h"
 #include "snapfit/scene.h"
@@ -87,49 +88,29 @@ struct Args {
 
 const std::set<std::string> kCases = {"m_sweep", "n_sweep", "brute", "headline", "tolerance"};
 
-void usage(std::ostream& os) {
-  os << "usage: bench_descriptors [--quick] [--device SPEC] [--out DIR] [--only CASES] [--plots-only]\n"
-        "  --quick         small sizes only (a smoke run, well under a minute)\n"
-        "  --device SPEC   OpenCL device: index, P:D, cpu|gpu|accelerator or a name substring\n"
-        "                  (default: $SNAPFIT_DEVICE, else PoCL's CPU device)\n"
-        "  --out DIR       where descriptors.csv/.json go (default results/bench_descriptors)\n"
-        "  --only CASES    comma-separated subset of m_sweep,n_sweep,brute,headline,tolerance\n"
-        "  --plots-only    redraw the charts from DIR/descriptors.json, measure nothing\n"
-        "  --headline-side S       headline grid of about S^3 points (default 128; for iterating)\n"
-        "  --headline-triangles N  headline triangle target (default 2e5)\n"
-        "  --density-lanes L       grid points per density work item, 1, 4, 8 or 16 (default: 8 on\n"
-        "                          CPU devices, 1 elsewhere)\n";
-}
-
 Args parse_args(int argc, char** argv) {
   Args a;
   a.command_line = snapfit::bench::command_line(argc, argv);
-  const auto own = [&](const std::string& s, auto& value, auto& is) {
-    if (s == "--plots-only") {
-      a.plots_only = true;
-    } else if (is("--headline-side")) {
-      a.headline_side = std::stoi(value("--headline-side"));
-      if (a.headline_side < 2) throw snapfit::Error("--headline-side: must be at least 2");
-    } else if (is("--headline-triangles")) {
-      a.headline_triangles = std::stod(value("--headline-triangles"));
-      if (!(a.headline_triangles >= 100)) throw snapfit::Error("--headline-triangles: must be at least 100");
-    } else if (is("--density-lanes")) {
-      a.density_lanes = std::stoi(value("--density-lanes"));
-      if (a.density_lanes != 1 && a.density_lanes != 4 && a.density_lanes != 8 && a.density_lanes != 16)
-        throw snapfit::Error("--density-lanes: must be 1, 4, 8 or 16");
-    } else if (is("--only")) {
-      std::stringstream list(value("--only"));
-      std::string item;
-      while (std::getline(list, item, ',')) {
-        if (!kCases.count(item)) throw snapfit::Error("--only: unknown case '" + item + "'");
-        a.only.insert(item);
-      }
-    } else {
-      return false;
-    }
-    return true;
-  };
-  snapfit::bench::parse_options(argc, argv, a.quick, a.device, a.out, usage, own);
+  std::vector<std::string> only;
+  CLI::App app{
+      "Descriptor fields' cost against grid points m and triangles n, the brute-force reference, a headline "
+      "part and the tolerance",
+      "bench_descriptors"};
+  snapfit::bench::add_common_options(app, a.quick, a.device, a.out,
+                                     "small sizes only (a smoke run, well under a minute)");
+  app.add_option("--only", only, "comma-separated subset of m_sweep,n_sweep,brute,headline,tolerance")
+      ->delimiter(',')
+      ->check(CLI::IsMember(kCases));
+  app.add_flag("--plots-only", a.plots_only, "redraw the charts from DIR/descriptors.json, measure nothing");
+  app.add_option("--headline-side", a.headline_side, "headline grid of about S^3 points (0: 128, --quick 24)")
+      ->check(CLI::Range(2, std::numeric_limits<int>::max()));
+  app.add_option("--headline-triangles", a.headline_triangles, "headline triangle target (0: 2e5, --quick 1e4)")
+      ->check(CLI::Range(100.0, std::numeric_limits<double>::max()));
+  app.add_option("--density-lanes", a.density_lanes,
+                 "grid points per density work item, 1, 4, 8 or 16 (0: 8 on CPU devices, 1 elsewhere)")
+      ->check(CLI::IsMember({1, 4, 8, 16}));
+  snapfit::bench::parse(app, argc, argv);
+  a.only.insert(only.begin(), only.end());
   return a;
 }
 
@@ -571,20 +552,203 @@ std::string write_plots(const std::filesystem::path& dir, const nlohmann::json& 
 
 // ---------------------------------------------------------------- the run
 
-int run(const Args& args) {
-  if (args.plots_only) {
-    const std::filesystem::path path = std::filesystem::path(args.out) / "descriptors.json";
-    std::ifstream in(path);
-    if (!in) throw snapfit::Error(path.string() + ": cannot read");
-    nlohmann::json j;
-    try {
-      in >> j;
-    } catch (const std::exception& e) {
-      throw snapfit::Error(path.string() + ": " + e.what());
-    }
-    std::cout << write_plots(args.out, j.at("rows"), j.value("command_line", std::string("bench_descriptors"))) << "\n";
-    return 0;
+// What every case needs: the command line, the device and the part at its resolutions.
+struct Cases {
+  const Args& args;
+  const snapfit::ComputeContext& ctx;
+  Parts& parts;
+};
+
+constexpr double kSigma = 0.5;
+const double kDefaultTolerance = DescriptorParams{}.tolerance;  // the descriptors' own
+
+std::string label(int side) { return std::to_string(side) + "^3"; }
+Grid grid_for(const Mesh& mesh, int side) { return make_bench_grid(mesh, std::pow(side, 3.0)); }
+// Progress bars for cases expected to take more than a few seconds.
+bool long_case(const Args& args, std::size_t points, std::size_t n) { return !args.quick && points * 1.0 * n > 5e10; }
+
+// a. time against m at fixed n.
+void m_sweep(Cases& c, std::vector<Row>& rows) {
+  std::vector<Row> m_rows;
+  const double n_target = c.args.quick ? 2e3 : 1e4;
+  const std::vector<int> sides = c.args.quick ? std::vector<int>{12, 16, 24} : std::vector<int>{32, 48, 64, 96, 128};
+  const int seg = c.parts.segments_for(n_target);
+  const Mesh& mesh = c.parts.with_segments(seg);
+  for (int side : sides) {
+    const Grid g = grid_for(mesh, side);
+    std::cerr << "m_sweep: " << label(side) << " (" << dims_string(g.spec) << "), n " << mesh.triangles.size() << "\n";
+    m_rows.push_back(measure(c.ctx, "m_sweep", label(side), mesh, seg, g, kDefaultTolerance, kSigma, false,
+                             c.args.density_lanes, long_case(c.args, g.spec.count(), mesh.triangles.size()))
+                         .row);
   }
+  print_rows("a. time against grid points m (n = " + std::to_string(mesh.triangles.size()) + " triangles, tolerance " +
+                 fmt(kDefaultTolerance) + ", sigma 0.5)",
+             m_rows);
+  rows.insert(rows.end(), m_rows.begin(), m_rows.end());
+}
+
+// b. time against n at fixed m.
+void n_sweep(Cases& c, std::vector<Row>& rows) {
+  std::vector<Row> n_rows;
+  const int side = c.args.quick ? 16 : 64;
+  const std::vector<double> targets =
+      c.args.quick ? std::vector<double>{1e3, 5e3} : std::vector<double>{1e3, 1e4, 5e4, 2e5};
+  for (double target : targets) {
+    const int seg = c.parts.segments_for(target);
+    const Mesh& mesh = c.parts.with_segments(seg);
+    const Grid g = grid_for(mesh, side);
+    std::cerr << "n_sweep: n " << mesh.triangles.size() << " (segments " << seg << "), " << dims_string(g.spec) << "\n";
+    n_rows.push_back(measure(c.ctx, "n_sweep", label(side), mesh, seg, g, kDefaultTolerance, kSigma, false,
+                             c.args.density_lanes, long_case(c.args, g.spec.count(), mesh.triangles.size()))
+                         .row);
+  }
+  print_rows(
+      "b. time against triangle count n (m = " + label(side) + ", tolerance " + fmt(kDefaultTolerance) + ", sigma 0.5)",
+      n_rows);
+  rows.insert(rows.end(), n_rows.begin(), n_rows.end());
+}
+
+// c. brute force against the hierarchy.
+void brute_force(Cases& c, std::vector<Row>& rows, std::vector<BruteComparison>& comparisons) {
+  struct Size {
+    int side;
+    double n;
+  };
+  const std::vector<Size> sizes =
+      c.args.quick ? std::vector<Size>{{12, 1e3}} : std::vector<Size>{{24, 2e3}, {24, 1e4}, {32, 2e3}};
+  std::vector<Row> b_rows;
+  for (const Size& s : sizes) {
+    const int seg = c.parts.segments_for(s.n);
+    const Mesh& mesh = c.parts.with_segments(seg);
+    const Grid g = grid_for(mesh, s.side);
+    std::cerr << "brute: " << label(s.side) << " (" << dims_string(g.spec) << "), n " << mesh.triangles.size() << "\n";
+    const Measured h = measure(c.ctx, "brute_vs_hier", label(s.side), mesh, seg, g, kDefaultTolerance, kSigma, false,
+                               c.args.density_lanes, false);
+    const Measured b = measure(c.ctx, "brute_vs_hier", label(s.side), mesh, seg, g, kDefaultTolerance, kSigma, true,
+                               c.args.density_lanes, !c.args.quick, true);
+    comparisons.push_back(compare(h, b));
+    b_rows.push_back(h.row);
+    b_rows.push_back(b.row);
+  }
+  print_rows("c. brute-force density (the paper's O(mn) sum) against the hierarchy", b_rows);
+  std::cout << "\n";
+  std::vector<std::vector<std::string>> t;
+  for (const auto& c : comparisons)
+    t.push_back({c.m_label, c.dims, std::to_string(c.n_triangles), fixed(c.hier_density, 3), fixed(c.brute_density, 3),
+                 fixed(c.speedup_density, 1) + "x", fixed(c.hier_total, 3), fixed(c.brute_total, 3),
+                 fixed(c.speedup_total, 1) + "x", fmt(c.max_abs_diff), fmt(c.mean_abs_diff), fmt(c.max_bound_sum),
+                 fmt(c.mean_bound_sum), fmt(c.max_diff_over_bounds), std::to_string(c.points_over), fmt(c.mean_abs_s)});
+  print_table(
+      {"m", "dims", "n", "hier dens s", "brute dens s", "speed-up", "hier total", "brute total", "speed-up",
+       "max|s_h-s_b|", "mean|s_h-s_b|", "max(b_h+b_b)", "mean(b_h+b_b)", "max|diff|/(b_h+b_b)", "pts over", "mean|s|"},
+      t);
+  rows.insert(rows.end(), b_rows.begin(), b_rows.end());
+}
+
+// d. the headline; returns its row as JSON.
+nlohmann::json headline(Cases& c, std::vector<Row>& rows) {
+  const int side = c.args.headline_side > 0 ? c.args.headline_side : c.args.quick ? 24 : 128;
+  const double n_target = c.args.headline_triangles > 0 ? c.args.headline_triangles : c.args.quick ? 1e4 : 2e5;
+  const int seg = c.parts.segments_for(n_target);
+  const Mesh& mesh = c.parts.with_segments(seg);
+  const Grid g = grid_for(mesh, side);
+  std::cerr << "headline: " << label(side) << " (" << dims_string(g.spec) << " = " << g.spec.count()
+            << " points, spacing " << g.spec.spacing << " mm), n " << mesh.triangles.size() << " (segments " << seg
+            << "), tolerance " << kDefaultTolerance << ", sigma " << kSigma << "\n";
+  const Measured m = measure(c.ctx, "headline", label(side), mesh, seg, g, kDefaultTolerance, kSigma, false,
+                             c.args.density_lanes, !c.args.quick, true);
+  const Row& r = m.row;
+  print_rows("d. headline: m = " + label(side) + " points, n ~ " + fmt(n_target) + " triangles", {r});
+  std::cout << "   grid " << dims_string(r.grid) << " = " << r.grid.count() << " points, spacing "
+            << fmt(r.grid.spacing, 4) << " mm, faces >= " << fixed(r.face_clearance, 2)
+            << " spacings from grid planes\n"
+            << "   total " << fixed(r.seconds) << " s = bvh " << fixed(r.bvh_s) << " + refine " << fixed(r.refine_s)
+            << " (" << r.refined_triangles << " triangles) + distance " << fixed(r.distance_s) << " + winding "
+            << fixed(r.winding_s) << " + density " << fixed(r.density_s) << " s (rest "
+            << fixed(r.seconds - r.bvh_s - r.refine_s - r.distance_s - r.winding_s - r.density_s) << " s)\n"
+            << "   process CPU " << fixed(r.cpu_s, 1) << " s (" << fixed(r.cpu_s / r.seconds, 2)
+            << " cores busy on average; on an idle machine with all " << c.ctx.device.info.compute_units
+            << " compute units, about " << fixed(r.cpu_s / std::max(1u, c.ctx.device.info.compute_units), 1) << " s)\n"
+            << "   density bound: max " << fmt(r.max_bound) << ", mean " << fmt(r.mean_bound) << ", median "
+            << fmt(r.median_bound) << "; mean |s| " << fmt(r.mean_abs_s) << "; mean bound / mean |s| "
+            << fmt(r.mean_bound / r.mean_abs_s) << "\n"
+            << "   winding bound: max " << fmt(r.max_winding_bound) << ", mean " << fmt(r.mean_winding_bound) << "\n";
+  if (!c.args.quick && side == 128 && n_target == 2e5)
+    std::cout << "   target (m = 128^3, n = 2e5 in <= 60 s): " << (r.seconds <= 60 ? "met" : "NOT met") << " ("
+              << fixed(r.seconds, 1) << " s, load " << fixed(r.load_before, 1) << " -> " << fixed(r.load_after, 1)
+              << ")\n";
+  rows.push_back(r);
+  return row_json(r);
+}
+
+// e. tolerance sweep.
+void tolerance_sweep(Cases& c, std::vector<Row>& rows) {
+  const int side = c.args.quick ? 16 : 48;
+  const double n_target = c.args.quick ? 2e3 : 5e4;
+  const int seg = c.parts.segments_for(n_target);
+  const Mesh& mesh = c.parts.with_segments(seg);
+  const Grid g = grid_for(mesh, side);
+  std::vector<Row> t_rows;
+  for (double tol : {0.2, 0.1, 0.05}) {
+    std::cerr << "tolerance: " << tol << ", " << dims_string(g.spec) << ", n " << mesh.triangles.size() << "\n";
+    t_rows.push_back(
+        measure(c.ctx, "tolerance", label(side), mesh, seg, g, tol, kSigma, false, c.args.density_lanes, false).row);
+  }
+  print_rows("e. tolerance sweep (m = " + label(side) + ", n = " + std::to_string(mesh.triangles.size()) + ")", t_rows);
+  rows.insert(rows.end(), t_rows.begin(), t_rows.end());
+}
+
+// Fills the program cache for every kernel and both density variants.
+void warm_up(const snapfit::ComputeContext& ctx, Parts& parts) {
+  const auto t = std::chrono::steady_clock::now();
+  const Mesh& m = parts.with_segments(8);
+  const Grid g = make_bench_grid(m, 6 * 6 * 6);
+  DescriptorParams p;
+  DescriptorOptions o;
+  snapfit::compute_descriptors(ctx, m, g.spec, p, o);
+  o.brute_force_density = true;
+  snapfit::compute_descriptors(ctx, m, g.spec, p, o);
+  std::cout << "warm-up (program build or cache load, both variants): "
+            << fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count()) << " s\n";
+}
+
+// --plots-only: the charts again from DIR/descriptors.json.
+int redraw_plots(const Args& args) {
+  const std::filesystem::path path = std::filesystem::path(args.out) / "descriptors.json";
+  std::ifstream in(path);
+  if (!in) throw snapfit::Error(path.string() + ": cannot read");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    throw snapfit::Error(path.string() + ": " + e.what());
+  }
+  std::cout << write_plots(args.out, j.at("rows"), j.value("command_line", std::string("bench_descriptors"))) << "\n";
+  return 0;
+}
+
+nlohmann::json comparison_json(const BruteComparison& c) {
+  return {{"m_label", c.m_label},
+          {"dims", c.dims},
+          {"m", c.points},
+          {"n_triangles", c.n_triangles},
+          {"hierarchical_density_s", c.hier_density},
+          {"brute_force_density_s", c.brute_density},
+          {"speedup_density", c.speedup_density},
+          {"hierarchical_total_s", c.hier_total},
+          {"brute_force_total_s", c.brute_total},
+          {"speedup_total", c.speedup_total},
+          {"max_abs_difference", c.max_abs_diff},
+          {"mean_abs_difference", c.mean_abs_diff},
+          {"mean_bound_sum", c.mean_bound_sum},
+          {"max_bound_sum", c.max_bound_sum},
+          {"max_difference_over_bound_sum", c.max_diff_over_bounds},
+          {"points_over_bound_sum", c.points_over},
+          {"mean_abs_s", c.mean_abs_s}};
+}
+
+int run(const Args& args) {
+  if (args.plots_only) return redraw_plots(args);
   const auto wall_start = std::chrono::steady_clock::now();
   const snapfit::Device device = snapfit::select_device(snapfit::device_spec_from(args.device));
   const snapfit::ComputeContext ctx = snapfit::make_compute_context(device);
@@ -604,165 +768,17 @@ int run(const Args& args) {
             << (mesh_box(parts.with_segments(seg64)).sizes().transpose()) << " mm, padding " << kPadding
             << " mm; segments 64 gives " << parts.triangles(seg64) << " triangles\n";
 
-  // Warm-up: fills the program cache for every kernel and both density variants.
-  {
-    const auto t = std::chrono::steady_clock::now();
-    const Mesh& m = parts.with_segments(8);
-    const Grid g = make_bench_grid(m, 6 * 6 * 6);
-    DescriptorParams p;
-    DescriptorOptions o;
-    snapfit::compute_descriptors(ctx, m, g.spec, p, o);
-    o.brute_force_density = true;
-    snapfit::compute_descriptors(ctx, m, g.spec, p, o);
-    std::cout << "warm-up (program build or cache load, both variants): "
-              << fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count()) << " s\n";
-  }
+  warm_up(ctx, parts);
 
+  Cases cases{args, ctx, parts};
   std::vector<Row> rows;
   std::vector<BruteComparison> comparisons;
   nlohmann::json headline_json;
-  const double sigma = 0.5;
-  const double default_tol = DescriptorParams{}.tolerance;
-  auto label = [](int side) { return std::to_string(side) + "^3"; };
-  auto grid_for = [&](const Mesh& mesh, int side) { return make_bench_grid(mesh, std::pow(side, 3.0)); };
-  // Progress bars for cases expected to take more than a few seconds.
-  auto long_case = [&](std::size_t points, std::size_t n) { return !args.quick && points * 1.0 * n > 5e10; };
-
-  // a. time against m at fixed n.
-  std::vector<Row> m_rows;
-  if (want("m_sweep")) {
-    const double n_target = args.quick ? 2e3 : 1e4;
-    const std::vector<int> sides = args.quick ? std::vector<int>{12, 16, 24} : std::vector<int>{32, 48, 64, 96, 128};
-    const int seg = parts.segments_for(n_target);
-    const Mesh& mesh = parts.with_segments(seg);
-    for (int side : sides) {
-      const Grid g = grid_for(mesh, side);
-      std::cerr << "m_sweep: " << label(side) << " (" << dims_string(g.spec) << "), n " << mesh.triangles.size()
-                << "\n";
-      m_rows.push_back(measure(ctx, "m_sweep", label(side), mesh, seg, g, default_tol, sigma, false, args.density_lanes,
-                               long_case(g.spec.count(), mesh.triangles.size()))
-                           .row);
-    }
-    print_rows("a. time against grid points m (n = " + std::to_string(mesh.triangles.size()) +
-                   " triangles, tolerance " + fmt(default_tol) + ", sigma 0.5)",
-               m_rows);
-    rows.insert(rows.end(), m_rows.begin(), m_rows.end());
-  }
-
-  // b. time against n at fixed m.
-  std::vector<Row> n_rows;
-  if (want("n_sweep")) {
-    const int side = args.quick ? 16 : 64;
-    const std::vector<double> targets =
-        args.quick ? std::vector<double>{1e3, 5e3} : std::vector<double>{1e3, 1e4, 5e4, 2e5};
-    for (double target : targets) {
-      const int seg = parts.segments_for(target);
-      const Mesh& mesh = parts.with_segments(seg);
-      const Grid g = grid_for(mesh, side);
-      std::cerr << "n_sweep: n " << mesh.triangles.size() << " (segments " << seg << "), " << dims_string(g.spec)
-                << "\n";
-      n_rows.push_back(measure(ctx, "n_sweep", label(side), mesh, seg, g, default_tol, sigma, false, args.density_lanes,
-                               long_case(g.spec.count(), mesh.triangles.size()))
-                           .row);
-    }
-    print_rows(
-        "b. time against triangle count n (m = " + label(side) + ", tolerance " + fmt(default_tol) + ", sigma 0.5)",
-        n_rows);
-    rows.insert(rows.end(), n_rows.begin(), n_rows.end());
-  }
-
-  // c. brute force against the hierarchy.
-  if (want("brute")) {
-    struct Size {
-      int side;
-      double n;
-    };
-    const std::vector<Size> sizes =
-        args.quick ? std::vector<Size>{{12, 1e3}} : std::vector<Size>{{24, 2e3}, {24, 1e4}, {32, 2e3}};
-    std::vector<Row> b_rows;
-    for (const Size& s : sizes) {
-      const int seg = parts.segments_for(s.n);
-      const Mesh& mesh = parts.with_segments(seg);
-      const Grid g = grid_for(mesh, s.side);
-      std::cerr << "brute: " << label(s.side) << " (" << dims_string(g.spec) << "), n " << mesh.triangles.size()
-                << "\n";
-      const Measured h = measure(ctx, "brute_vs_hier", label(s.side), mesh, seg, g, default_tol, sigma, false,
-                                 args.density_lanes, false);
-      const Measured b = measure(ctx, "brute_vs_hier", label(s.side), mesh, seg, g, default_tol, sigma, true,
-                                 args.density_lanes, !args.quick, true);
-      comparisons.push_back(compare(h, b));
-      b_rows.push_back(h.row);
-      b_rows.push_back(b.row);
-    }
-    print_rows("c. brute-force density (the paper's O(mn) sum) against the hierarchy", b_rows);
-    std::cout << "\n";
-    std::vector<std::vector<std::string>> t;
-    for (const auto& c : comparisons)
-      t.push_back({c.m_label, c.dims, std::to_string(c.n_triangles), fixed(c.hier_density, 3),
-                   fixed(c.brute_density, 3), fixed(c.speedup_density, 1) + "x", fixed(c.hier_total, 3),
-                   fixed(c.brute_total, 3), fixed(c.speedup_total, 1) + "x", fmt(c.max_abs_diff), fmt(c.mean_abs_diff),
-                   fmt(c.max_bound_sum), fmt(c.mean_bound_sum), fmt(c.max_diff_over_bounds),
-                   std::to_string(c.points_over), fmt(c.mean_abs_s)});
-    print_table({"m", "dims", "n", "hier dens s", "brute dens s", "speed-up", "hier total", "brute total", "speed-up",
-                 "max|s_h-s_b|", "mean|s_h-s_b|", "max(b_h+b_b)", "mean(b_h+b_b)", "max|diff|/(b_h+b_b)", "pts over",
-                 "mean|s|"},
-                t);
-    rows.insert(rows.end(), b_rows.begin(), b_rows.end());
-  }
-
-  // d. the headline.
-  if (want("headline")) {
-    const int side = args.headline_side > 0 ? args.headline_side : args.quick ? 24 : 128;
-    const double n_target = args.headline_triangles > 0 ? args.headline_triangles : args.quick ? 1e4 : 2e5;
-    const int seg = parts.segments_for(n_target);
-    const Mesh& mesh = parts.with_segments(seg);
-    const Grid g = grid_for(mesh, side);
-    std::cerr << "headline: " << label(side) << " (" << dims_string(g.spec) << " = " << g.spec.count()
-              << " points, spacing " << g.spec.spacing << " mm), n " << mesh.triangles.size() << " (segments " << seg
-              << "), tolerance " << default_tol << ", sigma " << sigma << "\n";
-    const Measured m = measure(ctx, "headline", label(side), mesh, seg, g, default_tol, sigma, false,
-                               args.density_lanes, !args.quick, true);
-    const Row& r = m.row;
-    print_rows("d. headline: m = " + label(side) + " points, n ~ " + fmt(n_target) + " triangles", {r});
-    std::cout << "   grid " << dims_string(r.grid) << " = " << r.grid.count() << " points, spacing "
-              << fmt(r.grid.spacing, 4) << " mm, faces >= " << fixed(r.face_clearance, 2)
-              << " spacings from grid planes\n"
-              << "   total " << fixed(r.seconds) << " s = bvh " << fixed(r.bvh_s) << " + refine " << fixed(r.refine_s)
-              << " (" << r.refined_triangles << " triangles) + distance " << fixed(r.distance_s) << " + winding "
-              << fixed(r.winding_s) << " + density " << fixed(r.density_s) << " s (rest "
-              << fixed(r.seconds - r.bvh_s - r.refine_s - r.distance_s - r.winding_s - r.density_s) << " s)\n"
-              << "   process CPU " << fixed(r.cpu_s, 1) << " s (" << fixed(r.cpu_s / r.seconds, 2)
-              << " cores busy on average; on an idle machine with all " << info.compute_units
-              << " compute units, about " << fixed(r.cpu_s / std::max(1u, info.compute_units), 1) << " s)\n"
-              << "   density bound: max " << fmt(r.max_bound) << ", mean " << fmt(r.mean_bound) << ", median "
-              << fmt(r.median_bound) << "; mean |s| " << fmt(r.mean_abs_s) << "; mean bound / mean |s| "
-              << fmt(r.mean_bound / r.mean_abs_s) << "\n"
-              << "   winding bound: max " << fmt(r.max_winding_bound) << ", mean " << fmt(r.mean_winding_bound) << "\n";
-    if (!args.quick && side == 128 && n_target == 2e5)
-      std::cout << "   target (m = 128^3, n = 2e5 in <= 60 s): " << (r.seconds <= 60 ? "met" : "NOT met") << " ("
-                << fixed(r.seconds, 1) << " s, load " << fixed(r.load_before, 1) << " -> " << fixed(r.load_after, 1)
-                << ")\n";
-    headline_json = row_json(r);
-    rows.push_back(r);
-  }
-
-  // e. tolerance sweep.
-  if (want("tolerance")) {
-    const int side = args.quick ? 16 : 48;
-    const double n_target = args.quick ? 2e3 : 5e4;
-    const int seg = parts.segments_for(n_target);
-    const Mesh& mesh = parts.with_segments(seg);
-    const Grid g = grid_for(mesh, side);
-    std::vector<Row> t_rows;
-    for (double tol : {0.2, 0.1, 0.05}) {
-      std::cerr << "tolerance: " << tol << ", " << dims_string(g.spec) << ", n " << mesh.triangles.size() << "\n";
-      t_rows.push_back(
-          measure(ctx, "tolerance", label(side), mesh, seg, g, tol, sigma, false, args.density_lanes, false).row);
-    }
-    print_rows("e. tolerance sweep (m = " + label(side) + ", n = " + std::to_string(mesh.triangles.size()) + ")",
-               t_rows);
-    rows.insert(rows.end(), t_rows.begin(), t_rows.end());
-  }
+  if (want("m_sweep")) m_sweep(cases, rows);
+  if (want("n_sweep")) n_sweep(cases, rows);
+  if (want("brute")) brute_force(cases, rows, comparisons);
+  if (want("headline")) headline_json = headline(cases, rows);
+  if (want("tolerance")) tolerance_sweep(cases, rows);
 
   // Files.
   const std::filesystem::path dir(args.out);
@@ -773,14 +789,7 @@ int run(const Args& args) {
   j["command_line"] = args.command_line;
   j["date"] = now_iso();
   j["quick"] = args.quick;
-  j["device"] = {{"name", info.name},
-                 {"vendor", info.vendor},
-                 {"platform", info.platform_name},
-                 {"platform_version", info.platform_version},
-                 {"device_version", info.device_version},
-                 {"driver", info.driver_version},
-                 {"type", info.type},
-                 {"compute_units", info.compute_units}};
+  j["device"] = snapfit::bench::device_record(info);
   j["host"] = {{"hardware_threads", std::thread::hardware_concurrency()},
                {"load_average_start", load_start},
                {"load_average_end", load_average()}};
@@ -790,24 +799,7 @@ int run(const Args& args) {
   j["rows"] = nlohmann::json::array();
   for (const Row& r : rows) j["rows"].push_back(row_json(r));
   j["brute_force_comparison"] = nlohmann::json::array();
-  for (const auto& c : comparisons)
-    j["brute_force_comparison"].push_back({{"m_label", c.m_label},
-                                           {"dims", c.dims},
-                                           {"m", c.points},
-                                           {"n_triangles", c.n_triangles},
-                                           {"hierarchical_density_s", c.hier_density},
-                                           {"brute_force_density_s", c.brute_density},
-                                           {"speedup_density", c.speedup_density},
-                                           {"hierarchical_total_s", c.hier_total},
-                                           {"brute_force_total_s", c.brute_total},
-                                           {"speedup_total", c.speedup_total},
-                                           {"max_abs_difference", c.max_abs_diff},
-                                           {"mean_abs_difference", c.mean_abs_diff},
-                                           {"mean_bound_sum", c.mean_bound_sum},
-                                           {"max_bound_sum", c.max_bound_sum},
-                                           {"max_difference_over_bound_sum", c.max_diff_over_bounds},
-                                           {"points_over_bound_sum", c.points_over},
-                                           {"mean_abs_s", c.mean_abs_s}});
+  for (const auto& c : comparisons) j["brute_force_comparison"].push_back(comparison_json(c));
   if (!headline_json.is_null()) j["headline"] = headline_json;
   j["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   std::ofstream jf(dir / "descriptors.json");

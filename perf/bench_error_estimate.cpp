@@ -7,8 +7,7 @@
 // the error at 95 % of poses); the coverage and the median estimate / error at the
 // shipped scale say how the estimate does.
 //
-//   ./build/perf/bench_error_estimate [--scene scenes/default.json] [--poses N] [--quick] [--out DIR]
-// --quick: 4 poses, m' = 8,192 only.
+//   bench_error_estimate --help lists its options.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +19,7 @@
 #include "engine/query/error_estimate.h"
 #include "engine/query/query_engine.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/accuracy.h"
 #include "scheduler/engine_tuning.h"
@@ -28,8 +28,18 @@ using namespace snapfit;
 
 namespace {
 
-void usage(std::ostream& out) {
-  out << "bench_error_estimate [--scene FILE] [--poses N] [--quick] [--device SPEC] [--out DIR]\n";
+// The reference at each pose: every mode, exact in rotation, made for the pose's rotation.
+std::vector<QueryResult> reference_results(const ComputeContext& ctx, const PairSpectra& spectra,
+                                           const QueryVariant& variant, const std::vector<Pose>& poses) {
+  std::vector<QueryResult> reference;
+  auto engine = make_query_engine(ctx, spectra, bench::exact_reference_variant(variant, spectra.part1.rho.size()));
+  engine->set_modes(engine->max_modes());
+  for (const Pose& p : poses) {
+    reference.push_back(engine->query(p));
+    std::cerr << "\rreference " << reference.size() << "/" << poses.size() << std::flush;
+  }
+  std::cerr << "\n";
+  return reference;
 }
 
 }  // namespace
@@ -39,15 +49,14 @@ int main(int argc, char** argv) {
     bool quick = false;
     std::string device_spec, out_dir = "results/bench_error_estimate", scene_path = "scenes/default.json";
     long pose_count = 40;
-    bench::parse_options(argc, argv, quick, device_spec, out_dir, usage, [&](const std::string&, auto value, auto is) {
-      if (is("--scene"))
-        scene_path = value("--scene");
-      else if (is("--poses"))
-        pose_count = bench::integer_option("--poses", value("--poses"), 2, 10000);
-      else
-        return false;
-      return true;
-    });
+    CLI::App app{
+        "How the per-query error estimate relates to the true error, at poses along a scene's trajectory and several "
+        "m'",
+        "bench_error_estimate"};
+    bench::add_common_options(app, quick, device_spec, out_dir, "4 poses, m' = 8,192 only");
+    app.add_option("--scene", scene_path, "scene");
+    app.add_option("--poses", pose_count, "poses along the trajectory")->check(CLI::Range(2, 10000));
+    bench::parse(app, argc, argv);
     if (quick) pose_count = 4;
     const Scene scene = load_scene(scene_path);
     const Device device = select_device(device_spec_from(device_spec));
@@ -57,23 +66,7 @@ int main(int argc, char** argv) {
     const QueryVariant variant = query_variant_for(scene, Interpolation::tricubic);
     const std::vector<Pose> poses = accuracy_poses(scene, std::size_t(pose_count));
 
-    // The reference: every mode, exact in rotation, made for each pose's rotation.
-    QueryVariant exact = variant;
-    if (!variant.translation_only) {
-      exact.rotation = RotationMethod::exact_product;
-      exact.product_update = ProductUpdate::each_query;
-      exact.product_modes = pair.spectra.part1.rho.size();
-    }
-    std::vector<QueryResult> reference;
-    {
-      auto engine = make_query_engine(ctx, pair.spectra, exact);
-      engine->set_modes(engine->max_modes());
-      for (const Pose& p : poses) {
-        reference.push_back(engine->query(p));
-        std::cerr << "\rreference " << reference.size() << "/" << poses.size() << std::flush;
-      }
-      std::cerr << "\n";
-    }
+    const std::vector<QueryResult> reference = reference_results(ctx, pair.spectra, variant, poses);
 
     auto engine = make_query_engine(ctx, pair.spectra, variant);
     const char* names[3] = {"energy", "force", "torque"};

@@ -2,7 +2,7 @@
 // VkFFT on the same 3D transforms, side by side in one run, and the full-map throughput
 // (rotations per second) with each library's inverse FFT.
 //
-//   bench_fft [--quick] [--device SPEC] [--out DIR] [--repeats N]
+//   bench_fft --help lists its options.
 //
 // Libraries (all single precision, complex-to-complex, interleaved, x fastest):
 //   clfft   engine/spectra/fft3d.h Fft3d on the OpenCL device (out of place, inverse unnormalized)
@@ -86,15 +86,17 @@
 #include <thread>
 #include <vector>
 
+#include "engine/maps/full_map.h"
 #include "engine/runtime/compute_context.h"
 #include "engine/runtime/device.h"
-#include "engine/spectra/fft3d.h"
-#include "engine/maps/full_map.h"
 #include "engine/runtime/kernel_sources.h"
 #include "engine/runtime/program_cache.h"
+#include "engine/spectra/fft3d.h"
 #include "engine/spectra/spectra.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
 #include "perf/bench_spectra.h"
+#include "perf/quiet_guard.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/part_fields.h"
 #include "snapfit/error.h"
@@ -123,27 +125,18 @@ struct Args {
   std::string command_line;
 };
 
-void usage(std::ostream& os) {
-  os << "usage: bench_fft [--quick] [--device SPEC] [--out DIR] [--repeats N]\n"
-        "  --quick         64^3 and 128^3 only, 5 transforms and 3 map rotations per point (under a minute)\n"
-        "  --device SPEC   OpenCL device for clFFT and VkFFT: index, P:D, cpu|gpu|accelerator or a name\n"
-        "                  substring (default: $SNAPFIT_DEVICE, else PoCL's CPU device)\n"
-        "  --out DIR       output folder (default results/bench_fft)\n"
-        "  --repeats N     timed transforms per point (default 30, --quick 5)\n";
-}
-
 Args parse_args(int argc, char** argv) {
   Args a;
   a.command_line = snapfit::bench::command_line(argc, argv);
-  const auto own = [&](const std::string&, auto& value, auto& is) {
-    if (is("--repeats")) {
-      a.repeats = static_cast<int>(snapfit::bench::integer_option("--repeats", value("--repeats"), 1, 100000));
-    } else {
-      return false;
-    }
-    return true;
-  };
-  snapfit::bench::parse_options(argc, argv, a.quick, a.device, a.out, usage, own);
+  CLI::App app{
+      "clFFT against FFTW and VkFFT on the same 3D transforms, and the full-map throughput with each library's "
+      "inverse FFT",
+      "bench_fft"};
+  snapfit::bench::add_common_options(
+      app, a.quick, a.device, a.out,
+      "64^3 and 128^3 only, 5 transforms and 3 map rotations per point (under a minute)");
+  app.add_option("--repeats", a.repeats, "timed transforms per point (0: 30, --quick 5)")->check(CLI::Range(1, 100000));
+  snapfit::bench::parse(app, argc, argv);
   return a;
 }
 
@@ -298,41 +291,26 @@ struct VkfftPlan {
 
 // ---------------------------------------------------------------- 1. transforms
 
-// Re-measures a row while other processes kept more than `threshold` cores busy during it
-// (a shared 2-core machine): waits `wait_s` and measures again, up to `max_retries` times
-// per row and `budget_s` of waiting per run, keeping the quietest attempt. Off in --quick.
-struct QuietGuard {
-  bool enabled = true;
-  double threshold = 0.25, wait_s = 15, budget_s = 240, waited_s = 0;
-  int max_retries = 2, retries = 0;
-};
-QuietGuard g_quiet;
+// Rows are re-measured while other processes keep cores busy (perf/quiet_guard.h); off
+// in --quick.
+snapfit::bench::QuietGuard g_quiet{true, 0.25, 2, 15, 240};
 
-// Runs `body` (which fills row.times_s / total_s ...) with load and contention recorded.
+// Runs `body` (which fills row.times_s / total_s ...) under the guard, with the load
+// around it; the row keeps the quietest attempt, its number and its contention.
 template <class Row, class F>
 void quiet_measure(Row& row, const std::string& what, F&& body) {
-  Row best;
-  double best_o = std::numeric_limits<double>::infinity();
-  for (int a = 0;; ++a) {
+  int attempt = 0, attempts = 0;
+  double others = 0;
+  const auto measure = [&] {
     Row r = row;
+    r.attempts = ++attempt;
     r.load_before = snapfit::bench::load1();
-    const auto cpu0 = snapfit::bench::cpu_sample();
     body(r);
     r.load_after = snapfit::bench::load1();
-    r.other_cores = snapfit::bench::other_cores(cpu0, snapfit::bench::cpu_sample());
-    r.attempts = a + 1;
-    if (r.other_cores < best_o) best = r, best_o = r.other_cores;
-    if (!g_quiet.enabled || r.other_cores <= g_quiet.threshold || a >= g_quiet.max_retries ||
-        g_quiet.waited_s + g_quiet.wait_s > g_quiet.budget_s)
-      break;
-    std::cerr << "  (other processes used " << std::fixed << std::setprecision(2) << r.other_cores << " cores during "
-              << what << "; waiting " << std::setprecision(0) << g_quiet.wait_s << " s and measuring it again)\n";
-    std::this_thread::sleep_for(std::chrono::duration<double>(g_quiet.wait_s));
-    g_quiet.waited_s += g_quiet.wait_s;
-    ++g_quiet.retries;
-  }
-  best.attempts = std::max(best.attempts, 1);
-  row = best;
+    return r;
+  };
+  row = g_quiet.run(what, measure, others, attempts);
+  row.other_cores = others;
 }
 
 struct TransformRow {
@@ -474,47 +452,54 @@ struct MapRow {
   int attempts = 1;
 };
 
+// `count` rotations, uniform (normalised Gaussian quaternions), from `seed`.
+std::vector<Eigen::Matrix3d> random_rotations(int count, unsigned seed) {
+  std::vector<Eigen::Matrix3d> rots;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (int i = 0; i < count; ++i) {
+    Eigen::Quaterniond q(g(rng), g(rng), g(rng), g(rng));
+    rots.push_back(q.normalized().toRotationMatrix());
+  }
+  return rots;
+}
+
+// The real code path (engine/maps/full_map.cpp), trilinear as in seed 000: the first map cold,
+// then `warm_real` warm ones.
+MapRow measure_full_map(const snapfit::FftLibrary& lib, const snapfit::ComputeContext& ctx,
+                        const snapfit::PairSpectra& s, const Dims& d, const std::vector<Eigen::Matrix3d>& rots,
+                        int warm_real) {
+  MapRow r;
+  r.library = "full_map";
+  r.dims = d;
+  bool first = true;
+  quiet_measure(r, "full_map " + dims_text(d), [&](MapRow& q) {
+    for (int i = 0; i <= warm_real; ++i) {
+      const auto t = Clock::now();
+      const auto map = snapfit::translational_energy_map(lib, ctx, s, rots[std::size_t(i) % rots.size()],
+                                                         snapfit::Interpolation::trilinear, 0);
+      const double sec = seconds_since(t);
+      if (map.energy.size() != count_of(d)) throw snapfit::Error("full map: wrong size");
+      if (i == 0) {
+        if (first) q.cold_s = sec;  // a repeated attempt is not cold: keep the first
+        first = false;
+      } else {
+        q.total_s.push_back(sec);
+      }
+    }
+  });
+  r.median_s = median(r.total_s);
+  r.rotations_per_s = 1.0 / r.median_s;
+  return r;
+}
+
 std::vector<MapRow> bench_maps(const snapfit::FftLibrary& lib, const snapfit::ComputeContext& ctx, const Dims& d,
                                int rotations, int warm_real, unsigned seed) {
   const double spacing = 0.6;
   const snapfit::PairSpectra s = synthetic_spectra(lib, ctx, d, spacing);
   const std::size_t n = count_of(d), bytes = sizeof(cf) * n;
-  std::vector<Eigen::Matrix3d> rots;
-  {
-    std::mt19937 rng(seed);
-    std::normal_distribution<double> g(0.0, 1.0);
-    for (int i = 0; i < rotations + 2; ++i) {
-      Eigen::Quaterniond q(g(rng), g(rng), g(rng), g(rng));
-      rots.push_back(q.normalized().toRotationMatrix());
-    }
-  }
-  std::vector<MapRow> rows;
-
-  // The real code path (engine/maps/full_map.cpp), trilinear as in seed 000.
-  {
-    MapRow r;
-    r.library = "full_map";
-    r.dims = d;
-    bool first = true;
-    quiet_measure(r, "full_map " + dims_text(d), [&](MapRow& q) {
-      for (int i = 0; i <= warm_real; ++i) {
-        const auto t = Clock::now();
-        const auto map = snapfit::translational_energy_map(lib, ctx, s, rots[std::size_t(i) % rots.size()],
-                                                           snapfit::Interpolation::trilinear, 0);
-        const double sec = seconds_since(t);
-        if (map.energy.size() != n) throw snapfit::Error("full map: wrong size");
-        if (i == 0) {
-          if (first) q.cold_s = sec;  // a repeated attempt is not cold: keep the first
-          first = false;
-        } else {
-          q.total_s.push_back(sec);
-        }
-      }
-    });
-    r.median_s = median(r.total_s);
-    r.rotations_per_s = 1.0 / r.median_s;
-    rows.push_back(r);
-  }
+  const std::vector<Eigen::Matrix3d> rots = random_rotations(rotations + 2, seed);
+  std::vector<MapRow> rows = {measure_full_map(lib, ctx, s, d, rots, warm_real)};
 
   // Product kernel + each library's inverse FFT.
   cl::Kernel kernel(snapfit::build_program(
@@ -754,6 +739,63 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
 
 // ---------------------------------------------------------------- the run
 
+// The verdict: the fastest (smallest p50) library per size and direction, the most
+// rotations/s per map size, and whether every output agrees with FFTW double.
+std::string verdict_text(const std::vector<Dims>& sizes, const std::vector<Dims>& map_sizes,
+                         const std::vector<TransformRow>& transforms, const std::vector<MapRow>& maps) {
+  std::ostringstream verdict;
+  verdict << "fastest p50 per transform:";
+  for (const Dims& d : sizes)
+    for (const std::string dir : {"forward", "inverse"}) {
+      const TransformRow* best = nullptr;
+      const TransformRow* second = nullptr;
+      for (const auto& r : transforms)
+        if (r.dims == d && r.direction == dir) {
+          if (!best || r.p50_s < best->p50_s)
+            second = best, best = &r;
+          else if (!second || r.p50_s < second->p50_s)
+            second = &r;
+        }
+      if (best)
+        verdict << " " << dims_text(d) << " " << dir << " " << best->library << " ("
+                << (second ? fixed(second->p50_s / best->p50_s, 2) + "x ahead of " + second->library : "") << ");";
+    }
+  verdict << " most rotations/s (product + inverse FFT):";
+  for (const Dims& d : map_sizes) {
+    const MapRow* best = nullptr;
+    for (const auto& r : maps)
+      if (r.dims == d && r.library != "full_map" && (!best || r.rotations_per_s > best->rotations_per_s)) best = &r;
+    const MapRow* fastest_fft = nullptr;
+    for (const auto& r : maps)
+      if (r.dims == d && r.library != "full_map" &&
+          (!fastest_fft ||
+           r.fft_median_s + r.readback_median_s < fastest_fft->fft_median_s + fastest_fft->readback_median_s))
+        fastest_fft = &r;
+    if (best)
+      verdict << " " << dims_text(d) << " " << best->library << " (" << fixed(best->rotations_per_s, 1)
+              << "/s; FFT part fastest: " << fastest_fft->library << " "
+              << fixed((fastest_fft->fft_median_s + fastest_fft->readback_median_s) * 1e3, 1) << " ms);";
+  }
+  bool agree = true;
+  for (const auto& r : transforms) agree = agree && r.max_rel_diff < 1e-4;
+  for (const auto& r : maps)
+    if (std::isfinite(r.max_rel_diff)) agree = agree && r.max_rel_diff < 1e-4;
+  verdict << (agree ? " all outputs within 1e-4 of FFTW double" : " SOME OUTPUT DIFFERS BY >= 1e-4 FROM FFTW DOUBLE");
+  return verdict.str();
+}
+
+void print_map_row(const MapRow& r) {
+  std::cout << "  " << padr(dims_text(r.dims), 12) << padr(r.library, 10) << pad(fixed(r.plan_s, 2), 8)
+            << pad(fixed(r.rotations_per_s, 2), 9) << pad(fixed(r.median_s * 1e3, 1), 9)
+            << pad(r.library == "full_map" ? "-" : fixed(r.product_median_s * 1e3, 1), 9)
+            << pad(r.library == "fftw" ? fixed(r.readback_median_s * 1e3, 1) : "-", 9)
+            << pad(r.library == "full_map" ? "-" : fixed(r.fft_median_s * 1e3, 1), 9) << pad(sci(r.max_rel_diff), 11)
+            << pad(fixed(r.other_cores, 2), 8)
+            << (r.library == "full_map" ? "  (cold " + fixed(r.cold_s, 2) + " s: program, plan bake, uploads)" : "")
+            << "\n"
+            << std::flush;
+}
+
 int run(const Args& args) {
   const std::string load_start = snapfit::bench::read_loadavg();
   const std::string date = snapfit::bench::now_iso();
@@ -819,58 +861,12 @@ int run(const Args& args) {
   for (const Dims& d : map_sizes) {
     auto rows = bench_maps(lib, ctx, d, map_rotations, map_warm_real, 4242u);
     for (const auto& r : rows) {
-      std::cout << "  " << padr(dims_text(d), 12) << padr(r.library, 10) << pad(fixed(r.plan_s, 2), 8)
-                << pad(fixed(r.rotations_per_s, 2), 9) << pad(fixed(r.median_s * 1e3, 1), 9)
-                << pad(r.library == "full_map" ? "-" : fixed(r.product_median_s * 1e3, 1), 9)
-                << pad(r.library == "fftw" ? fixed(r.readback_median_s * 1e3, 1) : "-", 9)
-                << pad(r.library == "full_map" ? "-" : fixed(r.fft_median_s * 1e3, 1), 9)
-                << pad(sci(r.max_rel_diff), 11) << pad(fixed(r.other_cores, 2), 8)
-                << (r.library == "full_map" ? "  (cold " + fixed(r.cold_s, 2) + " s: program, plan bake, uploads)" : "")
-                << "\n"
-                << std::flush;
+      print_map_row(r);
       maps.push_back(r);
     }
   }
 
-  // ---- verdict: fastest (smallest p50) per size and direction; most rotations/s per map size
-  std::ostringstream verdict;
-  verdict << "fastest p50 per transform:";
-  for (const Dims& d : sizes)
-    for (const std::string dir : {"forward", "inverse"}) {
-      const TransformRow* best = nullptr;
-      const TransformRow* second = nullptr;
-      for (const auto& r : transforms)
-        if (r.dims == d && r.direction == dir) {
-          if (!best || r.p50_s < best->p50_s)
-            second = best, best = &r;
-          else if (!second || r.p50_s < second->p50_s)
-            second = &r;
-        }
-      if (best)
-        verdict << " " << dims_text(d) << " " << dir << " " << best->library << " ("
-                << (second ? fixed(second->p50_s / best->p50_s, 2) + "x ahead of " + second->library : "") << ");";
-    }
-  verdict << " most rotations/s (product + inverse FFT):";
-  for (const Dims& d : map_sizes) {
-    const MapRow* best = nullptr;
-    for (const auto& r : maps)
-      if (r.dims == d && r.library != "full_map" && (!best || r.rotations_per_s > best->rotations_per_s)) best = &r;
-    const MapRow* fastest_fft = nullptr;
-    for (const auto& r : maps)
-      if (r.dims == d && r.library != "full_map" &&
-          (!fastest_fft ||
-           r.fft_median_s + r.readback_median_s < fastest_fft->fft_median_s + fastest_fft->readback_median_s))
-        fastest_fft = &r;
-    if (best)
-      verdict << " " << dims_text(d) << " " << best->library << " (" << fixed(best->rotations_per_s, 1)
-              << "/s; FFT part fastest: " << fastest_fft->library << " "
-              << fixed((fastest_fft->fft_median_s + fastest_fft->readback_median_s) * 1e3, 1) << " ms);";
-  }
-  bool agree = true;
-  for (const auto& r : transforms) agree = agree && r.max_rel_diff < 1e-4;
-  for (const auto& r : maps)
-    if (std::isfinite(r.max_rel_diff)) agree = agree && r.max_rel_diff < 1e-4;
-  verdict << (agree ? " all outputs within 1e-4 of FFTW double" : " SOME OUTPUT DIFFERS BY >= 1e-4 FROM FFTW DOUBLE");
+  const std::string verdict = verdict_text(sizes, map_sizes, transforms, maps);
 
   const std::string load_end = snapfit::bench::read_loadavg();
   const double total_s = seconds_since(t_start);
@@ -883,13 +879,7 @@ int run(const Args& args) {
   meta["loadavg_start"] = load_start;
   meta["loadavg_end"] = load_end;
   meta["nproc"] = threads;
-  meta["device"] = {{"name", info.name},
-                    {"vendor", info.vendor},
-                    {"platform", info.platform_name},
-                    {"platform_version", info.platform_version},
-                    {"driver", info.driver_version},
-                    {"type", info.type},
-                    {"compute_units", info.compute_units}};
+  meta["device"] = snapfit::bench::device_record(info);
   meta["quiet_guard"] = {{"enabled", g_quiet.enabled},
                          {"threshold_cores", g_quiet.threshold},
                          {"max_retries", g_quiet.max_retries},
@@ -913,11 +903,11 @@ int run(const Args& args) {
        "median over seeded random rotations of product kernel + inverse FFT (FFTW also reads the product back); "
        "full_map = engine/maps/full_map.h translational_energy_map, all modes, trilinear, warm median"}};
   const std::filesystem::path dir(args.out);
-  write_outputs(dir, args, transforms, maps, meta, verdict.str());
+  write_outputs(dir, args, transforms, maps, meta, verdict);
   std::cout << "\nload average at end: " << load_end << " (start: " << load_start << "), total " << fixed(total_s, 0)
             << " s; " << g_quiet.retries << " rows re-measured after waiting " << fixed(g_quiet.waited_s, 0)
             << " s for other processes\nwrote " << (dir / "fft.csv").string()
-            << ", maps.csv, fft.json, charts.html\nverdict: " << verdict.str() << "\n";
+            << ", maps.csv, fft.json, charts.html\nverdict: " << verdict << "\n";
   return 0;
 }
 

@@ -6,8 +6,7 @@
 // Then the fuzz regression files that make Assimp allocate gigabytes
 // (tests/data/fuzz/*_memory_blowup.bin) are loaded with the default limits: time to the error.
 //
-//   ./build/perf/bench_mesh_import [--triangles 1000000] [--quick] [--out results/bench_mesh_import]
-// --quick: 20,000 triangles and no fuzz files (CI proves it runs; no number is checked).
+//   bench_mesh_import --help lists its options.
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -21,6 +20,7 @@
 #include "io/mesh_export.h"
 #include "io/mesh_load.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
 #include "snapfit/error.h"
 
 using namespace snapfit;
@@ -94,18 +94,13 @@ int main(int argc, char** argv) try {
   std::string out_dir = "results/bench_mesh_import";
   long triangles = 1000000;
   bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (bench::is_option(a, "--triangles"))
-      triangles =
-          bench::integer_option("--triangles", bench::option_value(argc, argv, i, "--triangles"), 100, 20000000);
-    else if (bench::is_option(a, "--out"))
-      out_dir = bench::option_value(argc, argv, i, "--out");
-    else if (a == "--quick")
-      quick = true;
-    else
-      throw Error("unknown option " + a + " (see the comment at the top of perf/bench_mesh_import.cpp)");
-  }
+  CLI::App app{
+      "Mesh import cost and the import child's limits: a torus as binary STL and OBJ, then the fuzz files "
+      "that make Assimp allocate gigabytes",
+      "bench_mesh_import"};
+  bench::add_quick_and_out(app, quick, out_dir, "20,000 triangles and no fuzz files");
+  app.add_option("--triangles", triangles, "the torus's triangles")->check(CLI::Range(100L, 20000000L));
+  bench::parse(app, argc, argv);
   if (quick) triangles = 20000;
   const std::string load_start = bench::read_loadavg();
   fs::create_directories(out_dir);

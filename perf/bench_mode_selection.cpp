@@ -14,8 +14,7 @@
 // sum over every mode, checked against the engine's own all-mode query at each pose.
 // Error over the poses as scheduler/accuracy.h: sqrt(sum |x - ref|^2 / sum |ref|^2).
 //
-//   ./build/perf/bench_mode_selection [--scene scenes/default.json] [--poses 12] [--quick] [--out DIR]
-// --quick: 2 poses, m' up to 16,384.
+//   bench_mode_selection --help lists its options.
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -30,6 +29,7 @@
 #include "engine/query/rotated_product.h"
 #include "engine/query/translation_lines.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/accuracy.h"
 
@@ -37,10 +37,6 @@ using namespace snapfit;
 using Cd = std::complex<double>;
 
 namespace {
-
-void usage(std::ostream& out) {
-  out << "bench_mode_selection [--scene FILE] [--poses N] [--quick] [--device SPEC] [--out DIR]\n";
-}
 
 struct Terms {
   std::vector<double> e;
@@ -52,6 +48,62 @@ constexpr int kSelections = 4;
 const char* const kSelectionNames[kSelections] = {"lowest frequency", "largest product", "largest torque weight",
                                                   "largest normalised sum"};
 
+// Each mode's term at the pose (the product's node `node[i]` of `host`, frequency w[i]),
+// their sums E, F, T, and each mode's score for the selections after the first.
+void mode_terms(const std::vector<float>& host, const std::vector<std::size_t>& node,
+                const std::vector<Eigen::Vector3d>& w, const Eigen::Vector3d& Rc2, const Eigen::Vector3d& tau,
+                Terms& terms, std::vector<double> (&score)[kSelections], double& E, Eigen::Vector3d& F,
+                Eigen::Vector3d& T) {
+  double sums[3] = {0, 0, 0};
+  const std::size_t M = node.size();
+  for (std::size_t i = 0; i < M; ++i) {
+    const float* n = &host[8 * node[i]];
+    const Cd W(n[0], n[1]);
+    const Cd two_pi_i_W = Cd(0, 2 * M_PI) * W;
+    const Eigen::Vector3d a = Rc2.cross(w[i]);
+    const Cd G[3] = {Cd(n[2], n[3]) + two_pi_i_W * a.x(), Cd(n[4], n[5]) + two_pi_i_W * a.y(),
+                     Cd(n[6], n[7]) + two_pi_i_W * a.z()};
+    const double phi = 2 * M_PI * w[i].dot(tau);
+    const Cd e(std::cos(phi), std::sin(phi));
+    terms.e[i] = -(W * e).real();
+    terms.f[i] = (two_pi_i_W * e).real() * w[i];
+    terms.t[i] = Eigen::Vector3d((G[0] * e).real(), (G[1] * e).real(), (G[2] * e).real());
+    E += terms.e[i], F += terms.f[i], T += terms.t[i];
+    score[1][i] = std::abs(W);
+    score[2][i] = std::sqrt(std::norm(G[0]) + std::norm(G[1]) + std::norm(G[2]));
+    score[3][i] = std::abs(W) * w[i].norm();  // the force's weight, for the sum below
+    sums[0] += score[1][i], sums[1] += score[2][i], sums[2] += score[3][i];
+  }
+  for (std::size_t i = 0; i < M; ++i)
+    score[3][i] = score[1][i] / sums[0] + score[2][i] / sums[1] + score[3][i] / sums[2];
+}
+
+// Adds each selection's squared error against the full sums (E, F, T) at each m' of
+// `levels` to dE, dF, dT (index selection * levels + level); `idx` is scratch.
+void add_selection_errors(const Terms& terms, const std::vector<double> (&score)[kSelections],
+                          const std::vector<std::size_t>& levels, double E, const Eigen::Vector3d& F,
+                          const Eigen::Vector3d& T, std::vector<std::uint32_t>& idx, std::vector<double>& dE,
+                          std::vector<double>& dF, std::vector<double>& dT) {
+  const std::size_t L = levels.size();
+  for (int s = 0; s < kSelections; ++s) {
+    std::iota(idx.begin(), idx.end(), 0u);
+    if (s > 0) {
+      const std::vector<double>& sc = score[s];
+      std::partial_sort(idx.begin(), idx.begin() + levels.back(), idx.end(),
+                        [&](std::uint32_t a, std::uint32_t b) { return sc[a] > sc[b]; });
+    }
+    double e = 0;
+    Eigen::Vector3d f = Eigen::Vector3d::Zero(), t = Eigen::Vector3d::Zero();
+    std::size_t done = 0;
+    for (std::size_t j = 0; j < L; ++j) {
+      for (; done < levels[j]; ++done) e += terms.e[idx[done]], f += terms.f[idx[done]], t += terms.t[idx[done]];
+      dE[s * L + j] += (e - E) * (e - E);
+      dF[s * L + j] += (f - F).squaredNorm();
+      dT[s * L + j] += (t - T).squaredNorm();
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -59,15 +111,13 @@ int main(int argc, char** argv) {
     bool quick = false;
     std::string device_spec, out_dir = "results/bench_mode_selection", scene_path = "scenes/default.json";
     long pose_count = 12;
-    bench::parse_options(argc, argv, quick, device_spec, out_dir, usage, [&](const std::string&, auto value, auto is) {
-      if (is("--scene"))
-        scene_path = value("--scene");
-      else if (is("--poses"))
-        pose_count = bench::integer_option("--poses", value("--poses"), 1, 10000);
-      else
-        return false;
-      return true;
-    });
+    CLI::App app{
+        "Which m' modes to keep: the truncation error of E, F and T per mode selection of the exact-rotation product",
+        "bench_mode_selection"};
+    bench::add_common_options(app, quick, device_spec, out_dir, "2 poses, m' up to 16,384");
+    app.add_option("--scene", scene_path, "scene");
+    app.add_option("--poses", pose_count, "poses along the trajectory")->check(CLI::Range(1, 10000));
+    bench::parse(app, argc, argv);
     if (quick) pose_count = 2;
     const std::string load_start = bench::read_loadavg();
     const Scene scene = load_scene(scene_path);
@@ -119,51 +169,16 @@ int main(int argc, char** argv) {
       queue.enqueueReadBuffer(box, CL_TRUE, 0, product.box_bytes(), host.data());
       const Eigen::Vector3d tau = poses[p].translation + R * sp.part2.centre - sp.part1.centre;
       const Eigen::Vector3d Rc2 = R * sp.part2.centre;
-      double sums[3] = {0, 0, 0};
       double E = 0;
       Eigen::Vector3d F = Eigen::Vector3d::Zero(), T = Eigen::Vector3d::Zero();
-      for (std::size_t i = 0; i < M; ++i) {
-        const float* n = &host[8 * node[i]];
-        const Cd W(n[0], n[1]);
-        const Cd two_pi_i_W = Cd(0, 2 * M_PI) * W;
-        const Eigen::Vector3d a = Rc2.cross(w[i]);
-        const Cd G[3] = {Cd(n[2], n[3]) + two_pi_i_W * a.x(), Cd(n[4], n[5]) + two_pi_i_W * a.y(),
-                         Cd(n[6], n[7]) + two_pi_i_W * a.z()};
-        const double phi = 2 * M_PI * w[i].dot(tau);
-        const Cd e(std::cos(phi), std::sin(phi));
-        terms.e[i] = -(W * e).real();
-        terms.f[i] = (two_pi_i_W * e).real() * w[i];
-        terms.t[i] = Eigen::Vector3d((G[0] * e).real(), (G[1] * e).real(), (G[2] * e).real());
-        E += terms.e[i], F += terms.f[i], T += terms.t[i];
-        score[1][i] = std::abs(W);
-        score[2][i] = std::sqrt(std::norm(G[0]) + std::norm(G[1]) + std::norm(G[2]));
-        score[3][i] = std::abs(W) * w[i].norm();  // the force's weight, for the sum below
-        sums[0] += score[1][i], sums[1] += score[2][i], sums[2] += score[3][i];
-      }
-      for (std::size_t i = 0; i < M; ++i)
-        score[3][i] = score[1][i] / sums[0] + score[2][i] / sums[1] + score[3][i] / sums[2];
+      mode_terms(host, node, w, Rc2, tau, terms, score, E, F, T);
       const QueryResult ref = engine->query(poses[p]);
       const double diff[3] = {std::abs(ref.energy - E), (ref.force - F).norm(), (ref.torque - T).norm()},
                    size[3] = {std::abs(E), F.norm(), T.norm()};
-      for (int q = 0; q < 3; ++q) largest_diff[q] = std::max(largest_diff[q], diff[q]), scale[q] = std::max(scale[q], size[q]);
+      for (int q = 0; q < 3; ++q)
+        largest_diff[q] = std::max(largest_diff[q], diff[q]), scale[q] = std::max(scale[q], size[q]);
       rE += E * E, rF += F.squaredNorm(), rT += T.squaredNorm();
-      for (int s = 0; s < kSelections; ++s) {
-        std::iota(idx.begin(), idx.end(), 0u);
-        if (s > 0) {
-          const std::vector<double>& sc = score[s];
-          std::partial_sort(idx.begin(), idx.begin() + levels.back(), idx.end(),
-                            [&](std::uint32_t a, std::uint32_t b) { return sc[a] > sc[b]; });
-        }
-        double e = 0;
-        Eigen::Vector3d f = Eigen::Vector3d::Zero(), t = Eigen::Vector3d::Zero();
-        std::size_t done = 0;
-        for (std::size_t j = 0; j < L; ++j) {
-          for (; done < levels[j]; ++done) e += terms.e[idx[done]], f += terms.f[idx[done]], t += terms.t[idx[done]];
-          dE[s * L + j] += (e - E) * (e - E);
-          dF[s * L + j] += (f - F).squaredNorm();
-          dT[s * L + j] += (t - T).squaredNorm();
-        }
-      }
+      add_selection_errors(terms, score, levels, E, F, T, idx, dE, dF, dT);
       std::cerr << "\rpose " << p + 1 << "/" << poses.size() << std::flush;
     }
     std::cerr << "\n";
@@ -176,10 +191,12 @@ int main(int argc, char** argv) {
     std::ofstream csv(std::filesystem::path(out_dir) / "mode_selection.csv");
     csv << "selection,modes,energy_error,force_error,torque_error\n";
     nlohmann::json rows = nlohmann::json::array();
-    std::cout << "scene " << scene_path << ", " << poses.size() << " poses, " << M
-              << " modes in all; relative error against the sum over every mode\n"
-              << "host sums against the engine's all-mode query: largest difference, relative to the output's largest size, " << check << "\n\n"
-              << "| selection | m' | energy | force | torque |\n|---|---|---|---|---|\n";
+    std::cout
+        << "scene " << scene_path << ", " << poses.size() << " poses, " << M
+        << " modes in all; relative error against the sum over every mode\n"
+        << "host sums against the engine's all-mode query: largest difference, relative to the output's largest size, "
+        << check << "\n\n"
+        << "| selection | m' | energy | force | torque |\n|---|---|---|---|---|\n";
     for (int s = 0; s < kSelections; ++s)
       for (std::size_t j = 0; j < L; ++j) {
         const double e = std::sqrt(dE[s * L + j] / rE), f = std::sqrt(dF[s * L + j] / rF),

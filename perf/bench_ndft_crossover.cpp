@@ -2,7 +2,7 @@
 // (engine/spectra/ball_spectrum.h), the measurement behind the pipeline's "auto" method
 // (pipeline/sphere_spectra.h ball_spectrum_method).
 //
-//   bench_ndft_crossover [--quick] [--device SPEC] [--out DIR]
+//   bench_ndft_crossover --help lists its options.
 //
 // Balls: seed 001 Algorithm 1 on the hole block of scenes/default.json at tolerance 0.5
 // (--quick: 1), the first k of them for k = 16, 32, ... (beyond the decomposition's count,
@@ -26,12 +26,14 @@
 #include <string>
 #include <vector>
 
+#include "core/quantile.h"
 #include "engine/spectra/ball_spectrum.h"
 #include "engine/runtime/compute_context.h"
 #include "engine/runtime/device.h"
 #include "engine/spectra/fft3d.h"
 #include "engine/fields/sphere_decomposition.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/sphere_spectra.h"
 #include "snapfit/scene.h"
@@ -43,11 +45,7 @@ using namespace snapfit;
 using bench::fixed;
 using bench::pad;
 
-void usage(std::ostream& os) {
-  os << "bench_ndft_crossover [--quick] [--device SPEC] [--out DIR]\n"
-        "  Direct NDFT against type-1 NUFFT of ball spectra over ball counts and lattice sizes.\n";
-}
-
+// The median (nearest rank) of `runs` timed calls of f.
 template <class F>
 double median_seconds(int runs, F f) {
   std::vector<double> s;
@@ -56,8 +54,7 @@ double median_seconds(int runs, F f) {
     f();
     s.push_back(bench::seconds_since(t0));
   }
-  std::sort(s.begin(), s.end());
-  return s[s.size() / 2];
+  return quantile(s, 0.5);
 }
 
 std::vector<Ball> first_balls(const std::vector<Ball>& balls, std::size_t k) {
@@ -78,7 +75,10 @@ struct Point {
 int run(int argc, char** argv) {
   bool quick = false;
   std::string device, out = "results/bench_ndft_crossover";
-  bench::parse_options(argc, argv, quick, device, out, usage, [](const std::string&, auto, auto) { return false; });
+  CLI::App app{"Direct NDFT against type-1 NUFFT of ball spectra over ball counts and lattice sizes.",
+               "bench_ndft_crossover"};
+  bench::add_common_options(app, quick, device, out);
+  bench::parse(app, argc, argv);
   const std::string load_start = bench::read_loadavg();
   std::cout << "bench_ndft_crossover: " << bench::command_line(argc, argv) << "\n  date " << bench::now_iso()
             << ", load average at start: " << load_start << "\n";

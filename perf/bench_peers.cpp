@@ -2,7 +2,7 @@
 // at the same poses: query time against triangle count, and how often snapfit's
 // collision verdict agrees with FCL's, against m'.
 //
-//   bench_peers [--quick] [--device SPEC] [--scene FILE] [--out DIR] [--poses N] [--no-cache]
+//   bench_peers --help lists its options.
 //
 // Part pair: the scene's two parts (default scenes/default.json: the peg and the hole
 // block, zero clearance, built by the pipeline, pipeline/assembly_pair.h), then refined by
@@ -72,6 +72,7 @@
 #include "engine/spectra/spectra.h"
 #include "mesh/triangle_refine.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
 #include "perf/fcl_peer.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/part_fields.h"
@@ -105,34 +106,22 @@ struct Args {
   std::string command_line;
 };
 
-void usage(std::ostream& os) {
-  os << "usage: bench_peers [--quick] [--device SPEC] [--scene FILE] [--out DIR] [--poses N] [--no-cache]\n"
-        "  --quick         1e3 and 1e4 triangles, 60 poses, 3 m' values, grid spacing doubled (about a minute)\n"
-        "  --device SPEC   OpenCL device: index, P:D, cpu|gpu|accelerator or a name substring\n"
-        "                  (default: $SNAPFIT_DEVICE, else PoCL's CPU device)\n"
-        "  --scene FILE    scene (default scenes/default.json)\n"
-        "  --out DIR       output folder (default results/bench_peers)\n"
-        "  --poses N       poses along the trajectory (default 400, --quick 60)\n"
-        "  --no-cache      recompute the descriptor fields (cold precompute times)\n";
-}
-
 Args parse_args(int argc, char** argv) {
   Args a;
   a.command_line = snapfit::bench::command_line(argc, argv);
-  const auto own = [&](const std::string& s, auto& value, auto& is) {
-    if (s == "--no-cache") {
-      a.use_cache = false;
-    } else if (is("--scene")) {
-      a.scene = value("--scene");
-      if (a.scene.empty()) throw snapfit::Error("--scene: must not be empty");
-    } else if (is("--poses")) {
-      a.poses = static_cast<int>(snapfit::bench::integer_option("--poses", value("--poses"), 2, 1000000));
-    } else {
-      return false;
-    }
-    return true;
-  };
-  snapfit::bench::parse_options(argc, argv, a.quick, a.device, a.out, usage, own);
+  bool no_cache = false;
+  CLI::App app{
+      "snapfit against exact mesh collision (FCL) on the same part pair at the same poses: query time against "
+      "triangle count, and agreement of the collision verdicts against m'",
+      "bench_peers"};
+  snapfit::bench::add_common_options(
+      app, a.quick, a.device, a.out,
+      "1e3 and 1e4 triangles, 60 poses, 3 m' values, grid spacing doubled (about a minute)");
+  app.add_option("--scene", a.scene, "scene")->check(snapfit::bench::non_empty());
+  app.add_option("--poses", a.poses, "poses along the trajectory (0: 400, --quick 60)")->check(CLI::Range(2, 1000000));
+  app.add_flag("--no-cache", no_cache, "recompute the descriptor fields (cold precompute times)");
+  snapfit::bench::parse(app, argc, argv);
+  a.use_cache = !no_cache;
   return a;
 }
 
@@ -243,217 +232,242 @@ struct AgreementRow {
 
 // ---------------------------------------------------------------- the run
 
-int run(const Args& args) {
-  const std::string load_start = snapfit::bench::read_loadavg();
-  const auto cpu_start = snapfit::bench::cpu_sample();
-  const std::string date = snapfit::bench::now_iso();
-  const auto t_start = Clock::now();
-  std::cout << "bench_peers: " << args.command_line << "\n  date " << date << ", load average at start: " << load_start
-            << "\n";
+// The sweep: triangle counts, poses, the m' timed and judged, the verdict's thresholds.
+struct Plan {
+  std::vector<std::pair<std::string, std::size_t>> targets;  // label, triangles of both parts
+  std::size_t pose_count = 0;
+  std::vector<std::size_t> timing_modes = {4096, 32768}, verdict_modes;
+  std::vector<double> tau_voxels = {0.1, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0};
+  double tau_main = 0.5;
+  double distance_budget_s = 0;  // FCL's distance queries per level stop after this
+  int warmup = 20;
+};
 
-  const std::vector<std::pair<std::string, std::size_t>> targets =
-      args.quick ? std::vector<std::pair<std::string, std::size_t>>{{"1e3", 1000}, {"1e4", 10000}}
-                 : std::vector<std::pair<std::string, std::size_t>>{
-                       {"1e3", 1000}, {"1e4", 10000}, {"1e5", 100000}, {"1e6", 1000000}};
-  const std::size_t pose_count = args.poses > 0 ? std::size_t(args.poses) : (args.quick ? 60 : 400);
-  const std::vector<std::size_t> timing_modes = {4096, 32768};
-  const std::vector<std::size_t> verdict_modes = args.quick
-                                                     ? std::vector<std::size_t>{1024, 4096, 32768}
-                                                     : std::vector<std::size_t>{1024, 2048, 4096, 8192, 16384, 32768};
-  const std::vector<double> tau_voxels = {0.1, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0};
-  const double tau_main = 0.5;
-  const double distance_budget_s = args.quick ? 3.0 : 30.0;
-  const int warmup = 20;
+Plan plan_for(const Args& args) {
+  Plan p;
+  p.targets = args.quick ? std::vector<std::pair<std::string, std::size_t>>{{"1e3", 1000}, {"1e4", 10000}}
+                         : std::vector<std::pair<std::string, std::size_t>>{
+                               {"1e3", 1000}, {"1e4", 10000}, {"1e5", 100000}, {"1e6", 1000000}};
+  p.pose_count = args.poses > 0 ? std::size_t(args.poses) : (args.quick ? 60 : 400);
+  p.verdict_modes = args.quick ? std::vector<std::size_t>{1024, 4096, 32768}
+                               : std::vector<std::size_t>{1024, 2048, 4096, 8192, 16384, 32768};
+  p.distance_budget_s = args.quick ? 3.0 : 30.0;
+  return p;
+}
 
-  // ---- device, scene, parts
-  const snapfit::FftLibrary fft;
-  const snapfit::ComputeContext ctx =
-      snapfit::make_compute_context(snapfit::select_device(snapfit::device_spec_from(args.device)));
-  const auto& info = ctx.device.info;
-  std::cout << "  device: " << snapfit::describe_device(info) << ", driver " << info.driver_version << "\n";
-  const snapfit::Scene base_scene = snapfit::load_scene(args.scene);
-  snapfit::Scene scene = snapfit::indicator_scene(base_scene);  // (scenes/collision_only.json style), 6-DOF
+// What the levels share: the sweep, the device, the indicator scene and its poses (those
+// snapfit accepts, chosen at the first level).
+struct Peers {
+  const Args& args;
+  Plan plan;
+  const snapfit::FftLibrary& fft;
+  const snapfit::ComputeContext& ctx;
+  const snapfit::Scene& scene;
+  snapfit::PairOptions popt;
+  std::vector<Pose> all_poses, poses;
+  std::size_t dropped = 0;
+
+  Peers(const Args& a, const snapfit::FftLibrary& f, const snapfit::ComputeContext& c, const snapfit::Scene& s)
+      : args(a), plan(plan_for(a)), fft(f), ctx(c), scene(s) {}
+};
+
+const QueryVariant kEft{true, true, false, snapfit::Interpolation::tricubic};  // the default scene's variant
+const QueryVariant kEf{true, false, false, snapfit::Interpolation::tricubic};  // the verdict's
+
+// The scene with the indicator descriptor (scenes/collision_only.json style), 6-DOF; with
+// --quick a grid twice as coarse.
+snapfit::Scene peers_scene(const snapfit::Scene& base_scene, bool quick) {
+  snapfit::Scene scene = snapfit::indicator_scene(base_scene);
   scene.name = base_scene.name + " (indicator)";
   scene.motion = snapfit::Motion::six_dof;
   scene.outputs = snapfit::Outputs{true, true, true};
-  if (args.quick) {  // CI proves the program runs: a grid twice as coarse (8x fewer points) keeps it short
+  if (quick) {  // CI proves the program runs: a grid twice as coarse (8x fewer points) keeps it short
     if (scene.grid.spacing) scene.grid.spacing = 2.0 * *scene.grid.spacing;
     if (scene.grid.resolution) scene.grid.resolution = std::max(8, *scene.grid.resolution / 2);
     std::cout << "  --quick: grid spacing doubled (figures are not the default scene's)\n";
   }
-  const snapfit::PreparedParts parts = snapfit::prepare_assembly_pair(scene).parts;
-  std::cout << "  scene " << args.scene << " (" << base_scene.name << "): " << base_scene.part1.name << " "
-            << parts.part1.mesh.triangles.size() << " triangles, " << base_scene.part2.name << " "
-            << parts.part2.mesh.triangles.size() << " triangles; descriptor switched to the indicator\n";
-  const QueryVariant eft{true, true, false, snapfit::Interpolation::tricubic};  // the default scene's variant
-  const QueryVariant ef{true, false, false, snapfit::Interpolation::tricubic};  // the verdict's
-  if (!(snapfit::query_variant_for(base_scene).torque))
-    std::cout << "  note: the scene itself does not ask for torque; E+F+T is timed anyway (the default scene's)\n";
+  return scene;
+}
 
-  const std::vector<Pose> all_poses = snapfit::bench::trajectory_poses(scene, pose_count, 20261122u, 0.5, 2.0);
-  std::vector<Pose> poses;  // filled at the first level (those snapfit accepts)
-  std::size_t dropped = 0;
-
-  snapfit::PairOptions popt;
-  popt.use_cache = args.use_cache;
-  popt.descriptors.progress = snapfit::pass_progress_bars(std::cerr);
-  popt.note = [](const std::string& m) { std::cerr << "  snapfit: " << m << "\n"; };
-
-  std::vector<LevelResult> levels;
-  double spacing = 0;
-  for (const auto& [label, target] : targets) {
-    LevelResult R;
-    R.label = label;
-    R.target = target;
-    std::cout << "\n[level " << label << "] refining..." << std::flush;
-    Level L = make_level(parts, target, label);
-    R.tri1 = L.part1.triangles.size();
-    R.tri2 = L.part2.triangles.size();
-    R.radius = L.radius;
-    R.refine_s = L.refine_s;
-    std::cout << " " << R.tri1 << " + " << R.tri2 << " = " << L.triangles() << " triangles"
-              << (L.radius > 0 ? " (split to radius " + fixed(L.radius, 3) + ", " + fixed(L.refine_s, 1) + " s)"
-                               : " (the scene's meshes)")
-              << "\n";
-    R.load_before = snapfit::bench::load1();
-
-    // ---- snapfit: pair (fields + spectra) and engines
-    const auto cs0 = snapfit::bench::cpu_sample();
-    snapfit::PairSpectra spectra;
-    {
-      const auto t0 = Clock::now();
-      // The pipeline's stages, with the level's meshes in place of the scene's (the same
-      // surface split finer: the same boxes, so the same grids).
-      snapfit::AssemblyPair pair = snapfit::prepare_assembly_pair(scene);
-      if (L.radius > 0) {
-        pair.parts.part1.mesh = L.part1;
-        pair.parts.part2.mesh = L.part2;
-      }
-      snapfit::compute_assembly_fields(pair, ctx, popt);
-      R.fields_cached = pair.fields1.from_cache && pair.fields2.from_cache;
-      R.fields_s = seconds_since(t0);
-      const auto t1 = Clock::now();
-      snapfit::compute_assembly_spectra(pair, ctx, fft, popt);
-      R.spectra_s = pair.spectra_from_cache ? 0.0 : seconds_since(t1);
-      spectra = std::move(pair.spectra);
+// snapfit's precompute at the level: the pipeline's stages with the level's meshes in
+// place of the scene's (the same surface split finer: the same boxes, so the same grids).
+snapfit::PairSpectra precompute(Peers& b, const Level& L, LevelResult& R) {
+  const auto& scene = b.scene;
+  const auto& ctx = b.ctx;
+  const auto& popt = b.popt;
+  const auto& fft = b.fft;
+  snapfit::PairSpectra spectra;
+  {
+    const auto t0 = Clock::now();
+    // The pipeline's stages, with the level's meshes in place of the scene's (the same
+    // surface split finer: the same boxes, so the same grids).
+    snapfit::AssemblyPair pair = snapfit::prepare_assembly_pair(scene);
+    if (L.radius > 0) {
+      pair.parts.part1.mesh = L.part1;
+      pair.parts.part2.mesh = L.part2;
     }
-    R.fft_dims = spectra.dims;
-    spacing = spectra.spacing;
-    std::cout << "  snapfit precompute: fields " << fixed(R.fields_s, 1) << " s"
-              << (R.fields_cached ? " (from the field cache)" : " (computed)") << ", spectra " << fixed(R.spectra_s, 1)
-              << " s, FFT grid " << spectra.dims[0] << "x" << spectra.dims[1] << "x" << spectra.dims[2] << ", h "
-              << spectra.spacing << "\n"
-              << std::flush;
-    auto engine_eft = make_query_engine(ctx, spectra, eft);
-    auto engine_ef = make_query_engine(ctx, spectra, ef);
-    if (poses.empty()) {
-      engine_ef->set_modes(1024);
-      const auto res = engine_ef->query_batch(all_poses);
-      for (std::size_t i = 0; i < all_poses.size(); ++i)
-        if (res[i].flags == snapfit::query_ok)
-          poses.push_back(all_poses[i]);
-        else
-          ++dropped;
-      if (poses.empty()) throw snapfit::Error("no pose inside snapfit's padded box");
-      std::cout << "  poses: " << poses.size() << " (" << dropped << " of " << all_poses.size()
-                << " outside snapfit's padded box dropped)\n";
-    }
-    double sink = 0;
-    for (std::size_t m : timing_modes)
-      for (QueryEngine* e : {engine_eft.get(), engine_ef.get()}) {
-        e->set_modes(m);
-        for (int i = 0; i < warmup; ++i) sink += e->query(poses[std::size_t(i) % poses.size()]).energy;
-        std::vector<double> s;
-        std::vector<double> energies;
-        for (const Pose& p : poses) {
-          const auto t = Clock::now();
-          const auto q = e->query(p);
-          s.push_back(seconds_since(t));
-          sink += q.energy;
-        }
-        R.snap.push_back({e == engine_eft.get() ? "eft_tricubic" : "ef_tricubic", e->modes(), stat_us(s)});
-      }
-    for (std::size_t m : verdict_modes) {
-      engine_ef->set_modes(m);
-      std::vector<double> E;
-      for (const auto& q : engine_ef->query_batch(poses)) E.push_back(q.flags == snapfit::query_ok ? q.energy : NAN);
-      R.energy[m] = E;
-    }
-    R.other_cores_snap = snapfit::bench::other_cores(cs0, snapfit::bench::cpu_sample());
-    for (const auto& s : R.snap)
-      std::cout << "  snapfit " << padr(s.variant == "eft_tricubic" ? "6-DOF E+F+T tricubic" : "6-DOF E+F tricubic", 21)
-                << " m' " << pad(std::to_string(s.modes), 6) << "  p50 " << pad(fixed(s.stat.p50, 1), 8) << " us  p99 "
-                << pad(fixed(s.stat.p99, 1), 8) << " us\n";
-    if (sink == 12345.678) std::cout << "";
+    snapfit::compute_assembly_fields(pair, ctx, popt);
+    R.fields_cached = pair.fields1.from_cache && pair.fields2.from_cache;
+    R.fields_s = seconds_since(t0);
+    const auto t1 = Clock::now();
+    snapfit::compute_assembly_spectra(pair, ctx, fft, popt);
+    R.spectra_s = pair.spectra_from_cache ? 0.0 : seconds_since(t1);
+    spectra = std::move(pair.spectra);
+  }
+  return spectra;
+}
 
-    // ---- FCL
-    const auto cf0 = snapfit::bench::cpu_sample();
-    auto m1 = fcl_model(L.part1, R.fcl_build1_s);
-    auto m2 = fcl_model(L.part2, R.fcl_build2_s);
-    std::cout << "  FCL BVH build (OBBRSS): " << fixed(R.fcl_build1_s, 2) << " s + " << fixed(R.fcl_build2_s, 2)
-              << " s\n"
-              << std::flush;
-    fcl::CollisionObjectd o1(m1, fcl::Transform3d::Identity()), o2(m2, fcl::Transform3d::Identity());
-    {
-      fcl::CollisionRequestd req(1, false);
+// At the first level: the poses snapfit accepts (inside its padded box).
+void select_poses(Peers& b, QueryEngine& engine_ef) {
+  engine_ef.set_modes(1024);
+  const auto res = engine_ef.query_batch(b.all_poses);
+  for (std::size_t i = 0; i < b.all_poses.size(); ++i)
+    if (res[i].flags == snapfit::query_ok)
+      b.poses.push_back(b.all_poses[i]);
+    else
+      ++b.dropped;
+  if (b.poses.empty()) throw snapfit::Error("no pose inside snapfit's padded box");
+  std::cout << "  poses: " << b.poses.size() << " (" << b.dropped << " of " << b.all_poses.size()
+            << " outside snapfit's padded box dropped)\n";
+}
+
+// snapfit's query time per pose at each timed m' (E+F+T and E+F), and the verdict
+// variant's energies at each judged m'.
+void time_snapfit(Peers& b, QueryEngine& engine_eft, QueryEngine& engine_ef, LevelResult& R) {
+  const std::vector<Pose>& poses = b.poses;
+  double sink = 0;
+  for (std::size_t m : b.plan.timing_modes)
+    for (QueryEngine* e : {&engine_eft, &engine_ef}) {
+      e->set_modes(m);
+      for (int i = 0; i < b.plan.warmup; ++i) sink += e->query(poses[std::size_t(i) % poses.size()]).energy;
       std::vector<double> s;
+      std::vector<double> energies;
       for (const Pose& p : poses) {
         const auto t = Clock::now();
-        o2.setTransform(fcl_transform(p));
-        o2.computeAABB();
-        fcl::CollisionResultd res;
-        fcl::collide(&o1, &o2, req, res);
+        const auto q = e->query(p);
         s.push_back(seconds_since(t));
-        R.fcl_collides.push_back(res.isCollision() ? 1 : 0);
+        sink += q.energy;
       }
-      R.collide = stat_us(s);
+      R.snap.push_back({e == &engine_eft ? "eft_tricubic" : "ef_tricubic", e->modes(), stat_us(s)});
     }
-    {
-      fcl::DistanceRequestd req;
-      req.enable_nearest_points = false;
-      req.rel_err = 0;
-      req.abs_err = 0;
-      std::vector<double> s;
-      const auto t_budget = Clock::now();
-      R.fcl_distance.assign(poses.size(), NAN);
-      for (std::size_t i = 0; i < poses.size(); ++i) {
-        if (seconds_since(t_budget) > distance_budget_s) {
-          R.distance_skipped = poses.size() - i;
-          break;
-        }
-        const auto t = Clock::now();
-        o2.setTransform(fcl_transform(poses[i]));
-        o2.computeAABB();
-        fcl::DistanceResultd res;
-        fcl::distance(&o1, &o2, req, res);
-        s.push_back(seconds_since(t));
-        R.fcl_distance[i] = res.min_distance;
-      }
-      R.distance = stat_us(s);
-    }
-    R.other_cores_fcl = snapfit::bench::other_cores(cf0, snapfit::bench::cpu_sample());
-    R.load_after = snapfit::bench::load1();
-    std::size_t colliding = 0;
-    for (int c : R.fcl_collides) colliding += std::size_t(c);
-    std::cout << "  FCL collide   p50 " << pad(fixed(R.collide.p50, 1), 10) << " us  p99 "
-              << pad(fixed(R.collide.p99, 1), 10) << " us  (" << colliding << " of " << poses.size()
-              << " poses collide)\n"
-              << "  FCL distance  p50 " << pad(fixed(R.distance.p50, 1), 10) << " us  p99 "
-              << pad(fixed(R.distance.p99, 1), 10) << " us  (" << R.distance.n << " poses"
-              << (R.distance_skipped ? ", " + std::to_string(R.distance_skipped) + " left out by the time budget" : "")
-              << ")\n"
-              << "  other processes used " << fixed(R.other_cores_snap, 2) << " cores (snapfit part), "
-              << fixed(R.other_cores_fcl, 2) << " cores (FCL part)\n"
-              << std::flush;
-    levels.push_back(std::move(R));
+  for (std::size_t m : b.plan.verdict_modes) {
+    engine_ef.set_modes(m);
+    std::vector<double> E;
+    for (const auto& q : engine_ef.query_batch(poses)) E.push_back(q.flags == snapfit::query_ok ? q.energy : NAN);
+    R.energy[m] = E;
   }
+  if (sink == 12345.678) std::cout << "";
+}
 
-  // ---- agreement
+// FCL at the level: BVH build, collide at every pose, distance within the time budget.
+void run_fcl(Peers& b, const Level& L, LevelResult& R) {
+  const std::vector<Pose>& poses = b.poses;
+  auto m1 = fcl_model(L.part1, R.fcl_build1_s);
+  auto m2 = fcl_model(L.part2, R.fcl_build2_s);
+  std::cout << "  FCL BVH build (OBBRSS): " << fixed(R.fcl_build1_s, 2) << " s + " << fixed(R.fcl_build2_s, 2) << " s\n"
+            << std::flush;
+  fcl::CollisionObjectd o1(m1, fcl::Transform3d::Identity()), o2(m2, fcl::Transform3d::Identity());
+  {
+    fcl::CollisionRequestd req(1, false);
+    std::vector<double> s;
+    for (const Pose& p : poses) {
+      const auto t = Clock::now();
+      o2.setTransform(fcl_transform(p));
+      o2.computeAABB();
+      fcl::CollisionResultd res;
+      fcl::collide(&o1, &o2, req, res);
+      s.push_back(seconds_since(t));
+      R.fcl_collides.push_back(res.isCollision() ? 1 : 0);
+    }
+    R.collide = stat_us(s);
+  }
+  {
+    fcl::DistanceRequestd req;
+    req.enable_nearest_points = false;
+    req.rel_err = 0;
+    req.abs_err = 0;
+    std::vector<double> s;
+    const auto t_budget = Clock::now();
+    R.fcl_distance.assign(poses.size(), NAN);
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      if (seconds_since(t_budget) > b.plan.distance_budget_s) {
+        R.distance_skipped = poses.size() - i;
+        break;
+      }
+      const auto t = Clock::now();
+      o2.setTransform(fcl_transform(poses[i]));
+      o2.computeAABB();
+      fcl::DistanceResultd res;
+      fcl::distance(&o1, &o2, req, res);
+      s.push_back(seconds_since(t));
+      R.fcl_distance[i] = res.min_distance;
+    }
+    R.distance = stat_us(s);
+  }
+}
+
+LevelResult measure_level(Peers& b, const snapfit::PreparedParts& parts, const std::string& label, std::size_t target,
+                          double& spacing) {
+  LevelResult R;
+  R.label = label;
+  R.target = target;
+  std::cout << "\n[level " << label << "] refining..." << std::flush;
+  Level L = make_level(parts, target, label);
+  R.tri1 = L.part1.triangles.size();
+  R.tri2 = L.part2.triangles.size();
+  R.radius = L.radius;
+  R.refine_s = L.refine_s;
+  std::cout << " " << R.tri1 << " + " << R.tri2 << " = " << L.triangles() << " triangles"
+            << (L.radius > 0 ? " (split to radius " + fixed(L.radius, 3) + ", " + fixed(L.refine_s, 1) + " s)"
+                             : " (the scene's meshes)")
+            << "\n";
+  R.load_before = snapfit::bench::load1();
+
+  const auto cs0 = snapfit::bench::cpu_sample();
+  const snapfit::PairSpectra spectra = precompute(b, L, R);
+  R.fft_dims = spectra.dims;
+  spacing = spectra.spacing;
+  std::cout << "  snapfit precompute: fields " << fixed(R.fields_s, 1) << " s"
+            << (R.fields_cached ? " (from the field cache)" : " (computed)") << ", spectra " << fixed(R.spectra_s, 1)
+            << " s, FFT grid " << spectra.dims[0] << "x" << spectra.dims[1] << "x" << spectra.dims[2] << ", h "
+            << spectra.spacing << "\n"
+            << std::flush;
+  auto engine_eft = make_query_engine(b.ctx, spectra, kEft);
+  auto engine_ef = make_query_engine(b.ctx, spectra, kEf);
+  if (b.poses.empty()) select_poses(b, *engine_ef);
+  time_snapfit(b, *engine_eft, *engine_ef, R);
+  R.other_cores_snap = snapfit::bench::other_cores(cs0, snapfit::bench::cpu_sample());
+  for (const auto& s : R.snap)
+    std::cout << "  snapfit " << padr(s.variant == "eft_tricubic" ? "6-DOF E+F+T tricubic" : "6-DOF E+F tricubic", 21)
+              << " m' " << pad(std::to_string(s.modes), 6) << "  p50 " << pad(fixed(s.stat.p50, 1), 8) << " us  p99 "
+              << pad(fixed(s.stat.p99, 1), 8) << " us\n";
+
+  const auto cf0 = snapfit::bench::cpu_sample();
+  run_fcl(b, L, R);
+  R.other_cores_fcl = snapfit::bench::other_cores(cf0, snapfit::bench::cpu_sample());
+  R.load_after = snapfit::bench::load1();
+  std::size_t colliding = 0;
+  for (int c : R.fcl_collides) colliding += std::size_t(c);
+  std::cout << "  FCL collide   p50 " << pad(fixed(R.collide.p50, 1), 10) << " us  p99 "
+            << pad(fixed(R.collide.p99, 1), 10) << " us  (" << colliding << " of " << b.poses.size()
+            << " poses collide)\n"
+            << "  FCL distance  p50 " << pad(fixed(R.distance.p50, 1), 10) << " us  p99 "
+            << pad(fixed(R.distance.p99, 1), 10) << " us  (" << R.distance.n << " poses"
+            << (R.distance_skipped ? ", " + std::to_string(R.distance_skipped) + " left out by the time budget" : "")
+            << ")\n"
+            << "  other processes used " << fixed(R.other_cores_snap, 2) << " cores (snapfit part), "
+            << fixed(R.other_cores_fcl, 2) << " cores (FCL part)\n"
+            << std::flush;
+  return R;
+}
+
+// snapfit's verdict (E > tau) against FCL's per level, m' and tau.
+std::vector<AgreementRow> agreement_rows(const std::vector<LevelResult>& levels, const Plan& plan, double spacing) {
   const double voxel = spacing * spacing * spacing;
   std::vector<AgreementRow> agreement;
   for (const auto& R : levels)
-    for (std::size_t m : verdict_modes)
-      for (double tv : tau_voxels) {
+    for (std::size_t m : plan.verdict_modes)
+      for (double tv : plan.tau_voxels) {
         AgreementRow a;
         a.level = R.label;
         a.triangles = R.tri1 + R.tri2;
@@ -474,13 +488,10 @@ int run(const Args& args) {
         }
         agreement.push_back(a);
       }
-  // FCL's verdicts should not change with refinement (the surface is the same).
-  std::size_t fcl_changes = 0;
-  for (std::size_t l = 1; l < levels.size(); ++l)
-    for (std::size_t i = 0; i < poses.size(); ++i)
-      fcl_changes += levels[l].fcl_collides[i] != levels[0].fcl_collides[i];
+  return agreement;
+}
 
-  // ---- table
+void print_times(const std::vector<LevelResult>& levels) {
   std::cout << "\nquery time per pose (us), p50 / p99; FCL BVH build and snapfit precompute (s)\n";
   std::cout << "  " << padr("triangles", 10) << pad("FCL build", 10) << pad("collide", 20) << pad("distance", 22)
             << pad("snap m'4096", 18) << pad("snap m'32768", 18) << pad("snap pre", 10) << "\n";
@@ -500,6 +511,12 @@ int run(const Args& args) {
               << pad(fixed(R.fields_s + R.spectra_s, 1) + (R.fields_cached ? "c" : ""), 10) << "\n";
   }
   std::cout << "  (snapfit: 6-DOF E+F+T tricubic, the default scene's variant; 'c': fields from the cache)\n";
+}
+
+void print_agreement(const std::vector<LevelResult>& levels, const std::vector<AgreementRow>& agreement,
+                     const Plan& plan, double spacing, std::size_t fcl_changes) {
+  const double voxel = spacing * spacing * spacing;
+  const double tau_main = plan.tau_main;
   std::cout << "\nverdict agreement with fcl::collide, tau = " << tau_main << " h^3 = " << fixed(tau_main * voxel, 4)
             << " (h = " << spacing << "), per m' [both collide / both free / snapfit only / FCL only]\n";
   for (const auto& a : agreement)
@@ -509,7 +526,7 @@ int run(const Args& args) {
                 << a.snap_only << " / " << a.fcl_only << "] of " << a.poses
                 << "; snapfit-only with FCL distance <= h: " << a.snap_only_within_h << "\n";
   std::cout << "  best tau of the sweep per m' (first level):";
-  for (std::size_t m : verdict_modes) {
+  for (std::size_t m : plan.verdict_modes) {
     const AgreementRow* best = nullptr;
     for (const auto& a : agreement)
       if (a.level == levels.front().label && a.modes == m && (!best || a.agree > best->agree)) best = &a;
@@ -518,13 +535,12 @@ int run(const Args& args) {
                 << " %;";
   }
   std::cout << "\n  FCL verdict changes across refinement levels: " << fcl_changes << "\n";
+}
 
-  // ---- outputs
-  const std::string load_end = snapfit::bench::read_loadavg();
-  const double others_run = snapfit::bench::other_cores(cpu_start, snapfit::bench::cpu_sample());
-  const double total_s = seconds_since(t_start);
-  const std::filesystem::path dir(args.out);
-  std::filesystem::create_directories(dir);
+void write_csvs(const std::filesystem::path& dir, const std::vector<LevelResult>& levels,
+                const std::vector<AgreementRow>& agreement, const std::vector<Pose>& poses, const Plan& plan) {
+  const auto& timing_modes = plan.timing_modes;
+  const auto& verdict_modes = plan.verdict_modes;
   {
     std::ofstream f(dir / "peers.csv");
     f << "level,triangles,triangles_part1,triangles_part2,refine_radius,refine_s,fcl_build_s,fcl_build_part1_s,fcl_"
@@ -572,34 +588,94 @@ int run(const Args& args) {
     }
     if (!f) throw snapfit::Error((dir / "poses.csv").string() + ": cannot write");
   }
+}
+
+nlohmann::json level_json(const LevelResult& R) {
+  nlohmann::json sj = nlohmann::json::array();
+  for (const auto& s : R.snap)
+    sj.push_back({{"variant", s.variant},
+                  {"modes", s.modes},
+                  {"p50_us", num(s.stat.p50)},
+                  {"p99_us", num(s.stat.p99)},
+                  {"max_us", num(s.stat.max)},
+                  {"n", s.stat.n}});
+  return {{"level", R.label},
+          {"target", R.target},
+          {"triangles", R.tri1 + R.tri2},
+          {"triangles_part1", R.tri1},
+          {"triangles_part2", R.tri2},
+          {"refine_radius", R.radius},
+          {"refine_s", R.refine_s},
+          {"fcl_build_s", {R.fcl_build1_s, R.fcl_build2_s}},
+          {"fcl_collide",
+           {{"p50_us", num(R.collide.p50)},
+            {"p99_us", num(R.collide.p99)},
+            {"max_us", num(R.collide.max)},
+            {"n", R.collide.n}}},
+          {"fcl_distance",
+           {{"p50_us", num(R.distance.p50)},
+            {"p99_us", num(R.distance.p99)},
+            {"max_us", num(R.distance.max)},
+            {"n", R.distance.n},
+            {"skipped_by_budget", R.distance_skipped}}},
+          {"snapfit_fields_s", R.fields_s},
+          {"snapfit_fields_cached", R.fields_cached},
+          {"snapfit_spectra_s", R.spectra_s},
+          {"fft_dims", R.fft_dims},
+          {"snapfit_latency", sj},
+          {"other_cores_snap", R.other_cores_snap},
+          {"other_cores_fcl", R.other_cores_fcl},
+          {"load_before", R.load_before},
+          {"load_after", R.load_after}};
+}
+
+nlohmann::json agreement_json(const AgreementRow& a) {
+  return {{"level", a.level},
+          {"triangles", a.triangles},
+          {"modes", a.modes},
+          {"tau_voxels", a.tau_voxels},
+          {"tau", a.tau},
+          {"poses", a.poses},
+          {"agree", a.agree},
+          {"fraction", a.fraction()},
+          {"both_collide", a.both_collide},
+          {"both_free", a.both_free},
+          {"snapfit_only", a.snap_only},
+          {"fcl_only", a.fcl_only},
+          {"snapfit_only_fcl_distance_within_h", a.snap_only_within_h}};
+}
+
+// The run as a whole: when, the load and contention around it, the scene's name and spacing.
+struct RunRecord {
+  std::string date, load_start, load_end, base_scene_name;
+  double total_s = 0, others_run = 0, spacing = 0;
+};
+
+nlohmann::json report_json(const Peers& b, const RunRecord& run, const std::vector<LevelResult>& levels,
+                           const std::vector<AgreementRow>& agreement, std::size_t fcl_changes) {
   nlohmann::json j;
   j["benchmark"] = "bench_peers";
-  j["command_line"] = args.command_line;
-  j["date"] = date;
-  j["quick"] = args.quick;
-  j["total_seconds"] = total_s;
-  j["loadavg_start"] = load_start;
-  j["loadavg_end"] = load_end;
-  j["other_cores_run"] = others_run;
+  j["command_line"] = b.args.command_line;
+  j["date"] = run.date;
+  j["quick"] = b.args.quick;
+  j["total_seconds"] = run.total_s;
+  j["loadavg_start"] = run.load_start;
+  j["loadavg_end"] = run.load_end;
+  j["other_cores_run"] = run.others_run;
   j["nproc"] = std::thread::hardware_concurrency();
-  j["device"] = {{"name", info.name},
-                 {"vendor", info.vendor},
-                 {"platform", info.platform_name},
-                 {"driver", info.driver_version},
-                 {"type", info.type},
-                 {"compute_units", info.compute_units}};
-  j["scene"] = {{"file", args.scene},
-                {"name", base_scene.name},
+  j["device"] = snapfit::bench::device_record(b.ctx.device.info);
+  j["scene"] = {{"file", b.args.scene},
+                {"name", run.base_scene_name},
                 {"descriptor_used", "indicator (winding number), as scenes/collision_only.json"},
-                {"spacing", spacing},
-                {"units", scene.units}};
-  j["poses"] = {{"requested", all_poses.size()},
-                {"used", poses.size()},
-                {"dropped_outside_grid", dropped},
+                {"spacing", run.spacing},
+                {"units", b.scene.units}};
+  j["poses"] = {{"requested", b.all_poses.size()},
+                {"used", b.poses.size()},
+                {"dropped_outside_grid", b.dropped},
                 {"perturbation", "+-0.5 scene units per axis, up to 2 degrees about a random axis, seed 20261122"}};
   j["verdict"] = {{"rule", "collision when E > tau; E = overlap volume of the two indicators, low-passed to m' modes"},
-                  {"tau_main_voxels", tau_main},
-                  {"tau_main", tau_main * voxel},
+                  {"tau_main_voxels", b.plan.tau_main},
+                  {"tau_main", b.plan.tau_main * run.spacing * run.spacing * run.spacing},
                   {"why",
                    "half a grid cell: the sampled indicators cannot resolve an overlap smaller than the volume "
                    "one grid point stands for"}};
@@ -607,72 +683,18 @@ int run(const Args& args) {
       {"fcl",
        "BVHModel<OBBRSSd>; collide with 1 contact and no contact data; distance exact (rel_err = abs_err = 0); "
        "wall clock of setTransform + computeAABB + the call, one call per pose"},
-      {"snapfit", "QueryEngine::query wall clock, one call per pose after " + std::to_string(warmup) +
+      {"snapfit", "QueryEngine::query wall clock, one call per pose after " + std::to_string(b.plan.warmup) +
                       " warm-up; fields + spectra as build_assembly_pair does on the indicator scene"}};
-  nlohmann::json lj = nlohmann::json::array();
-  for (const auto& R : levels) {
-    nlohmann::json sj = nlohmann::json::array();
-    for (const auto& s : R.snap)
-      sj.push_back({{"variant", s.variant},
-                    {"modes", s.modes},
-                    {"p50_us", num(s.stat.p50)},
-                    {"p99_us", num(s.stat.p99)},
-                    {"max_us", num(s.stat.max)},
-                    {"n", s.stat.n}});
-    lj.push_back({{"level", R.label},
-                  {"target", R.target},
-                  {"triangles", R.tri1 + R.tri2},
-                  {"triangles_part1", R.tri1},
-                  {"triangles_part2", R.tri2},
-                  {"refine_radius", R.radius},
-                  {"refine_s", R.refine_s},
-                  {"fcl_build_s", {R.fcl_build1_s, R.fcl_build2_s}},
-                  {"fcl_collide",
-                   {{"p50_us", num(R.collide.p50)},
-                    {"p99_us", num(R.collide.p99)},
-                    {"max_us", num(R.collide.max)},
-                    {"n", R.collide.n}}},
-                  {"fcl_distance",
-                   {{"p50_us", num(R.distance.p50)},
-                    {"p99_us", num(R.distance.p99)},
-                    {"max_us", num(R.distance.max)},
-                    {"n", R.distance.n},
-                    {"skipped_by_budget", R.distance_skipped}}},
-                  {"snapfit_fields_s", R.fields_s},
-                  {"snapfit_fields_cached", R.fields_cached},
-                  {"snapfit_spectra_s", R.spectra_s},
-                  {"fft_dims", R.fft_dims},
-                  {"snapfit_latency", sj},
-                  {"other_cores_snap", R.other_cores_snap},
-                  {"other_cores_fcl", R.other_cores_fcl},
-                  {"load_before", R.load_before},
-                  {"load_after", R.load_after}});
-  }
-  j["levels"] = lj;
-  nlohmann::json aj = nlohmann::json::array();
-  for (const auto& a : agreement)
-    aj.push_back({{"level", a.level},
-                  {"triangles", a.triangles},
-                  {"modes", a.modes},
-                  {"tau_voxels", a.tau_voxels},
-                  {"tau", a.tau},
-                  {"poses", a.poses},
-                  {"agree", a.agree},
-                  {"fraction", a.fraction()},
-                  {"both_collide", a.both_collide},
-                  {"both_free", a.both_free},
-                  {"snapfit_only", a.snap_only},
-                  {"fcl_only", a.fcl_only},
-                  {"snapfit_only_fcl_distance_within_h", a.snap_only_within_h}});
-  j["agreement"] = aj;
+  j["levels"] = nlohmann::json::array();
+  for (const auto& R : levels) j["levels"].push_back(level_json(R));
+  j["agreement"] = nlohmann::json::array();
+  for (const auto& a : agreement) j["agreement"].push_back(agreement_json(a));
   j["fcl_verdict_changes_across_levels"] = fcl_changes;
-  {
-    std::ofstream f(dir / "peers.json");
-    f << j.dump(2) << "\n";
-    if (!f) throw snapfit::Error((dir / "peers.json").string() + ": cannot write");
-  }
+  return j;
+}
 
-  // ---- charts
+std::vector<snapfit::Chart> charts(const std::vector<LevelResult>& levels, const std::vector<AgreementRow>& agreement,
+                                   const Plan& plan) {
   std::vector<snapfit::Chart> charts;
   {
     snapfit::Chart c;
@@ -690,7 +712,7 @@ int run(const Args& args) {
     add("FCL collide p99", [](const LevelResult& R) { return R.collide.p99; });
     add("FCL distance p50", [](const LevelResult& R) { return R.distance.p50; });
     add("FCL distance p99", [](const LevelResult& R) { return R.distance.p99; });
-    for (std::size_t m : timing_modes)
+    for (std::size_t m : plan.timing_modes)
       for (const bool p99 : {false, true})
         add("snapfit E+F+T m' " + std::to_string(m) + (p99 ? " p99" : " p50"), [&](const LevelResult& R) {
           for (const auto& s : R.snap)
@@ -726,16 +748,74 @@ int run(const Args& args) {
       snapfit::Series s;
       s.label = R.label + " (" + std::to_string(R.tri1 + R.tri2) + " triangles)";
       for (const auto& a : agreement)
-        if (a.level == R.label && a.tau_voxels == tau_main)
+        if (a.level == R.label && a.tau_voxels == plan.tau_main)
           s.x.push_back(double(a.modes)), s.y.push_back(100.0 * a.fraction());
       c.series.push_back(s);
     }
     charts.push_back(c);
   }
-  snapfit::bench::write_charts(dir, "bench_peers: FCL and snapfit", args.command_line, charts);
-  std::cout << "\nload average at end: " << load_end << " (start: " << load_start << "), total " << fixed(total_s, 0)
-            << " s; other processes kept " << fixed(others_run, 2) << " cores busy on average\nwrote "
-            << (dir / "peers.csv").string() << ", agreement.csv, poses.csv, peers.json, charts.html\n";
+  return charts;
+}
+
+int run(const Args& args) {
+  RunRecord run;
+  run.load_start = snapfit::bench::read_loadavg();
+  const auto cpu_start = snapfit::bench::cpu_sample();
+  run.date = snapfit::bench::now_iso();
+  const auto t_start = Clock::now();
+  std::cout << "bench_peers: " << args.command_line << "\n  date " << run.date
+            << ", load average at start: " << run.load_start << "\n";
+
+  const snapfit::FftLibrary fft;
+  const snapfit::ComputeContext ctx =
+      snapfit::make_compute_context(snapfit::select_device(snapfit::device_spec_from(args.device)));
+  const auto& info = ctx.device.info;
+  std::cout << "  device: " << snapfit::describe_device(info) << ", driver " << info.driver_version << "\n";
+  const snapfit::Scene base_scene = snapfit::load_scene(args.scene);
+  run.base_scene_name = base_scene.name;
+  const snapfit::Scene scene = peers_scene(base_scene, args.quick);
+  const snapfit::PreparedParts parts = snapfit::prepare_assembly_pair(scene).parts;
+  std::cout << "  scene " << args.scene << " (" << base_scene.name << "): " << base_scene.part1.name << " "
+            << parts.part1.mesh.triangles.size() << " triangles, " << base_scene.part2.name << " "
+            << parts.part2.mesh.triangles.size() << " triangles; descriptor switched to the indicator\n";
+  if (!(snapfit::query_variant_for(base_scene).torque))
+    std::cout << "  note: the scene itself does not ask for torque; E+F+T is timed anyway (the default scene's)\n";
+
+  Peers b(args, fft, ctx, scene);
+  b.all_poses = snapfit::bench::trajectory_poses(scene, b.plan.pose_count, 20261122u, 0.5, 2.0);
+  b.popt.use_cache = args.use_cache;
+  b.popt.descriptors.progress = snapfit::pass_progress_bars(std::cerr);
+  b.popt.note = [](const std::string& m) { std::cerr << "  snapfit: " << m << "\n"; };
+  std::vector<LevelResult> levels;
+  for (const auto& [label, target] : b.plan.targets)
+    levels.push_back(measure_level(b, parts, label, target, run.spacing));
+
+  const std::vector<AgreementRow> agreement = agreement_rows(levels, b.plan, run.spacing);
+  // FCL's verdicts should not change with refinement (the surface is the same).
+  std::size_t fcl_changes = 0;
+  for (std::size_t l = 1; l < levels.size(); ++l)
+    for (std::size_t i = 0; i < b.poses.size(); ++i)
+      fcl_changes += levels[l].fcl_collides[i] != levels[0].fcl_collides[i];
+  print_times(levels);
+  print_agreement(levels, agreement, b.plan, run.spacing, fcl_changes);
+
+  run.load_end = snapfit::bench::read_loadavg();
+  run.others_run = snapfit::bench::other_cores(cpu_start, snapfit::bench::cpu_sample());
+  run.total_s = seconds_since(t_start);
+  const std::filesystem::path dir(args.out);
+  std::filesystem::create_directories(dir);
+  write_csvs(dir, levels, agreement, b.poses, b.plan);
+  {
+    std::ofstream f(dir / "peers.json");
+    f << report_json(b, run, levels, agreement, fcl_changes).dump(2) << "\n";
+    if (!f) throw snapfit::Error((dir / "peers.json").string() + ": cannot write");
+  }
+  snapfit::bench::write_charts(dir, "bench_peers: FCL and snapfit", args.command_line,
+                               charts(levels, agreement, b.plan));
+  std::cout << "\nload average at end: " << run.load_end << " (start: " << run.load_start << "), total "
+            << fixed(run.total_s, 0) << " s; other processes kept " << fixed(run.others_run, 2)
+            << " cores busy on average\nwrote " << (dir / "peers.csv").string()
+            << ", agreement.csv, poses.csv, peers.json, charts.html\n";
   return 0;
 }
 

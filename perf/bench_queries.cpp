@@ -2,7 +2,7 @@
 // translational maps (engine/maps/full_map.h) and a roofline of the query kernel against
 // this device's measured memory bandwidth and arithmetic peak.
 //
-//   bench_queries [--quick] [--device SPEC] [--scene FILE] [--out DIR] [--repeats N]
+//   bench_queries --help lists its options.
 //
 // What is measured, on the selected OpenCL device, for the scene (default
 // scenes/default.json; its descriptor fields come from the field cache or are computed
@@ -32,7 +32,7 @@
 //                cost_model below), times m'; the device's memory bandwidth (copy and
 //                read-reduce kernels over a 256 MiB buffer, best of 5) and arithmetic
 //                peak (independent fma chains on float4 / float8, best of 5), measured
-//                with small kernels built here from source; achieved GB/s and GFLOP/s
+//                with the kernels of kernels/device_limits.cl; achieved GB/s and GFLOP/s
 //                per variant at m' = 32768, from the single-query p50 and from the
 //                largest batch.
 //   5. targets   6-DOF E+F+T at m' >= 32768 with p99 <= 1 ms, per scheme; translation
@@ -72,6 +72,9 @@
 #include "engine/maps/full_map.h"
 #include "engine/query/query_engine.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
+#include "perf/device_limits.h"
+#include "perf/quiet_guard.h"
 #include "pipeline/assembly_pair.h"
 #include "snapfit/error.h"
 #include "snapfit/query.h"
@@ -90,6 +93,8 @@ using snapfit::Pose;
 using snapfit::QueryEngine;
 using snapfit::QueryVariant;
 using Clock = std::chrono::steady_clock;
+using snapfit::bench::DeviceLimits;
+using snapfit::bench::measure_limits;
 
 // ---------------------------------------------------------------- command line
 
@@ -105,54 +110,26 @@ struct Args {
   std::string command_line;
 };
 
-void usage(std::ostream& os) {
-  os << "usage: bench_queries [--quick] [--device SPEC] [--scene FILE] [--out DIR] [--repeats N]\n"
-        "  --quick         a few m' values, 300 repetitions (under a minute once fields are cached)\n"
-        "  --device SPEC   OpenCL device: index, P:D, cpu|gpu|accelerator or a name substring\n"
-        "                  (default: $SNAPFIT_DEVICE, else PoCL's CPU device; 'basic': PoCL's single-threaded\n"
-        "                  driver, the haptic loop's)\n"
-        "  --scene FILE    scene (default scenes/default.json)\n"
-        "  --out DIR       output folder (default results/bench_queries)\n"
-        "  --repeats N     timed queries per latency point (default 2000, --quick 300)\n"
-        "  --latency-only  per-query latency and targets only (no batches, maps, device limits, roofline)\n"
-        "  --modes LIST    comma-separated m' values for the latency points (default 1,1024,...,131072)\n"
-        "  --variants LIST comma-separated variant keys (default all: 6dof_eft_trilinear, 6dof_eft_tricubic,\n"
-        "                  6dof_eft_trilinear_half, 6dof_eft_tricubic_half, 6dof_ef_trilinear, translation_ef)\n";
-}
-
 Args parse_args(int argc, char** argv) {
   Args a;
   a.command_line = snapfit::bench::command_line(argc, argv);
-  const auto own = [&](const std::string& s, auto& value, auto& is) {
-    if (is("--scene")) {
-      a.scene = value("--scene");
-      if (a.scene.empty()) throw snapfit::Error("--scene: must not be empty");
-    } else if (s == "--latency-only") {
-      a.latency_only = true;
-    } else if (is("--modes")) {
-      std::stringstream in(value("--modes"));
-      for (std::string item; std::getline(in, item, ',');) {
-        std::size_t used = 0;
-        unsigned long n = 0;
-        try {
-          n = std::stoul(item, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used != item.size() || n < 1) throw snapfit::Error("--modes: expected integers >= 1 (got '" + item + "')");
-        a.modes.push_back(n);
-      }
-    } else if (is("--variants")) {
-      std::stringstream in(value("--variants"));
-      for (std::string item; std::getline(in, item, ',');) a.variants.push_back(item);
-    } else if (is("--repeats")) {
-      a.repeats = static_cast<int>(snapfit::bench::integer_option("--repeats", value("--repeats"), 1, 10000000));
-    } else {
-      return false;
-    }
-    return true;
-  };
-  snapfit::bench::parse_options(argc, argv, a.quick, a.device, a.out, usage, own);
+  CLI::App app{"Per-pose queries, batched queries, full translational maps and a roofline of the query kernel",
+               "bench_queries"};
+  snapfit::bench::add_common_options(app, a.quick, a.device, a.out,
+                                     "a few m' values, 300 repetitions (under a minute once fields are cached)");
+  app.add_option("--scene", a.scene, "scene")->check(snapfit::bench::non_empty());
+  app.add_option("--repeats", a.repeats, "timed queries per latency point (0: 2000, --quick 300)")
+      ->check(CLI::Range(1, 10000000));
+  app.add_flag("--latency-only", a.latency_only,
+               "per-query latency and targets only (no batches, maps, device limits, roofline)");
+  app.add_option("--modes", a.modes, "comma-separated m' values for the latency points (default 1,1024,...,131072)")
+      ->delimiter(',')
+      ->check(snapfit::cli::positive_number());
+  app.add_option("--variants", a.variants,
+                 "comma-separated variant keys (default all: 6dof_eft_trilinear, 6dof_eft_tricubic, "
+                 "6dof_eft_trilinear_half, 6dof_eft_tricubic_half, 6dof_ef_trilinear, translation_ef)")
+      ->delimiter(',');
+  snapfit::bench::parse(app, argc, argv);
   return a;
 }
 
@@ -166,36 +143,7 @@ using snapfit::bench::cpu_sample;
 using snapfit::bench::CpuSample;
 using snapfit::bench::other_cores;
 
-// Re-measures a point while other processes took more than `threshold` cores during
-// it (this is a shared 2-core machine): waits `wait_s` and tries again, up to
-// `max_retries` times and `budget_s` of waiting per run, keeping the quietest attempt.
-struct QuietGuard {
-  double threshold = 0.25;
-  int max_retries = 3;
-  double wait_s = 20, budget_s = 600;
-  double waited_s = 0;
-  int retries = 0;
-  template <class F>
-  auto run(const std::string& what, F&& measure, double& others, int& attempts) -> decltype(measure()) {
-    decltype(measure()) best{};
-    double best_o = std::numeric_limits<double>::infinity();
-    for (int a = 0;; ++a) {
-      const CpuSample c0 = cpu_sample();
-      auto r = measure();
-      const double o = other_cores(c0, cpu_sample());
-      if (o < best_o) best = std::move(r), best_o = o;
-      attempts = a + 1;
-      if (o <= threshold || a >= max_retries || waited_s + wait_s > budget_s) break;
-      std::cerr << "  (other processes used " << std::fixed << std::setprecision(2) << o << " cores during " << what
-                << "; waiting " << std::setprecision(0) << wait_s << " s and measuring it again)\n";
-      std::this_thread::sleep_for(std::chrono::duration<double>(wait_s));
-      waited_s += wait_s;
-      ++retries;
-    }
-    others = best_o;
-    return best;
-  }
-};
+using snapfit::bench::QuietGuard;  // perf/quiet_guard.h
 
 using snapfit::bench::now_iso;
 
@@ -206,16 +154,8 @@ std::string fmt(double v, int prec = 3) {
   return os.str();
 }
 
-// Nearest-rank percentile of sorted values.
-double percentile(const std::vector<double>& sorted, double q) {
-  if (sorted.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size())));
-  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
-}
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return percentile(v, 0.5);
-}
+using snapfit::bench::percentile;
+double median(const std::vector<double>& v) { return percentile(v, 0.5); }
 
 // ---------------------------------------------------------------- variants and cost model
 
@@ -410,211 +350,6 @@ Footprint footprint(const snapfit::PairSpectra& s, const std::vector<float>& rad
   return f;
 }
 
-// ---------------------------------------------------------------- device limits
-
-const char* kLimitsSource = R"CLC(
-__kernel void copy_f4(__global const float4* src, __global float4* dst) {
-  const size_t i = get_global_id(0);
-  dst[i] = src[i];
-}
-// Each work-item sums every stride-th float4 (coalesced on GPUs).
-__kernel void read_strided(__global const float4* src, const uint n, __global float* out) {
-  const uint g = get_global_id(0), stride = get_global_size(0);
-  float4 s = (float4)(0.0f);
-  for (uint i = g; i < n; i += stride) s += src[i];
-  out[g] = s.x + s.y + s.z + s.w;
-}
-// Each work-item sums one contiguous block (streams well on CPUs).
-__kernel void read_blocked(__global const float4* src, const uint chunk, __global float* out) {
-  const uint g = get_global_id(0);
-  __global const float4* p = src + (size_t)g * chunk;
-  float4 s0 = (float4)(0.0f), s1 = (float4)(0.0f);
-  for (uint i = 0; i < chunk; i += 2) { s0 += p[i]; s1 += p[i + 1]; }
-  const float4 s = s0 + s1;
-  out[g] = s.x + s.y + s.z + s.w;
-}
-// Same, each block read `reps` times: a buffer that fits in the last-level cache.
-__kernel void read_blocked_repeat(__global const float4* src, const uint chunk, const uint reps, __global float* out) {
-  const uint g = get_global_id(0);
-  __global const float4* p = src + (size_t)g * chunk;
-  float4 s0 = (float4)(0.0f), s1 = (float4)(0.0f);
-  for (uint r = 0; r < reps; ++r)
-    for (uint i = 0; i < chunk; i += 2) { s0 += p[i]; s1 += p[i + 1]; }
-  const float4 s = s0 + s1;
-  out[g] = s.x + s.y + s.z + s.w;
-}
-// 8 independent fma chains per work-item, ITERS steps each.
-#define CHAINS(T)                                                                       \
-  const float g = (float)get_global_id(0) * 1e-7f;                                      \
-  T a0 = (T)(g), a1 = a0 + (T)(0.01f), a2 = a0 + (T)(0.02f), a3 = a0 + (T)(0.03f),      \
-    a4 = a0 + (T)(0.04f), a5 = a0 + (T)(0.05f), a6 = a0 + (T)(0.06f), a7 = a0 + (T)(0.07f); \
-  const T vb = (T)(b), vc = (T)(c);                                                     \
-  for (int i = 0; i < ITERS; ++i) {                                                     \
-    a0 = fma(a0, vb, vc); a1 = fma(a1, vb, vc); a2 = fma(a2, vb, vc); a3 = fma(a3, vb, vc); \
-    a4 = fma(a4, vb, vc); a5 = fma(a5, vb, vc); a6 = fma(a6, vb, vc); a7 = fma(a7, vb, vc); \
-  }                                                                                     \
-  const T s = ((a0 + a1) + (a2 + a3)) + ((a4 + a5) + (a6 + a7));
-__kernel void fma_f4(const float b, const float c, __global float* out) {
-  CHAINS(float4)
-  out[get_global_id(0)] = s.x + s.y + s.z + s.w;
-}
-__kernel void fma_f8(const float b, const float c, __global float* out) {
-  CHAINS(float8)
-  out[get_global_id(0)] = s.s0 + s.s1 + s.s2 + s.s3 + s.s4 + s.s5 + s.s6 + s.s7;
-}
-__kernel void fma_f16(const float b, const float c, __global float* out) {
-  CHAINS(float16)
-  out[get_global_id(0)] = s.s0 + s.s1 + s.s2 + s.s3 + s.s4 + s.s5 + s.s6 + s.s7 + s.s8 + s.s9 + s.sa + s.sb + s.sc + s.sd +
-                          s.se + s.sf;
-}
-)CLC";
-
-constexpr int kFmaIters = 1024;
-
-struct LimitResult {
-  std::string name;
-  double best = 0;  // GB/s or GFLOP/s
-  std::vector<double> runs;
-  std::string detail;
-};
-
-struct DeviceLimits {
-  std::vector<LimitResult> bandwidth, compute;
-  double bandwidth_gbs = 0, read_gbs = 0, peak_gflops = 0;
-  double cached_gbs = 0, cached_mib = 0;  // reads of a buffer that fits in the last-level cache
-  double buffer_mib = 0;
-};
-
-// Seconds of one kernel run (event profiling when the queue has it, else wall clock).
-double time_kernel(const snapfit::ComputeContext& ctx, cl::Kernel& k, std::size_t global) {
-  cl::Event ev;
-  const auto t0 = Clock::now();
-  ctx.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global), cl::NullRange, nullptr, &ev);
-  ev.wait();
-  const double wall = seconds_since(t0);
-  try {
-    const cl_ulong a = ev.getProfilingInfo<CL_PROFILING_COMMAND_START>();
-    const cl_ulong b = ev.getProfilingInfo<CL_PROFILING_COMMAND_END>();
-    if (b > a) return double(b - a) * 1e-9;
-  } catch (const cl::Error&) {
-  }
-  return wall;
-}
-
-DeviceLimits measure_limits(const snapfit::ComputeContext& ctx, bool quick) {
-  DeviceLimits L;
-  cl::Program program(ctx.context, std::string(kLimitsSource));
-  const std::string options = "-cl-std=CL1.2 -D ITERS=" + std::to_string(kFmaIters);
-  try {
-    program.build({ctx.device.device}, options.c_str());
-  } catch (const cl::Error&) {
-    const std::string log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(ctx.device.device);
-    throw snapfit::Error("bench_queries: the limit kernels do not build on " + ctx.device.info.name + ":\n" + log);
-  }
-  const int runs = 5;
-  // Memory: a 256 MiB buffer (less if the device cannot allocate it).
-  std::size_t bytes = std::size_t(256) << 20;
-  if (ctx.device.info.max_alloc_bytes > 0)
-    bytes = std::min<std::size_t>(bytes, ctx.device.info.max_alloc_bytes / 4096 * 4096);
-  const std::size_t n4 = bytes / 16;
-  L.buffer_mib = double(bytes) / (1 << 20);
-  {
-    std::vector<float> host(n4 * 4);
-    for (std::size_t i = 0; i < host.size(); ++i) host[i] = float(i % 1024) * 1e-3f;
-    cl::Buffer src(ctx.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, host.data());
-    cl::Buffer dst(ctx.context, CL_MEM_READ_WRITE, bytes);
-    const std::size_t strided_items = 65536, blocked_items = 1024;
-    cl::Buffer partial(ctx.context, CL_MEM_READ_WRITE, sizeof(float) * strided_items);
-    cl::Kernel copy(program, "copy_f4"), strided(program, "read_strided"), blocked(program, "read_blocked");
-    copy.setArg(0, src);
-    copy.setArg(1, dst);
-    strided.setArg(0, src);
-    strided.setArg(1, cl_uint(n4));
-    strided.setArg(2, partial);
-    blocked.setArg(0, src);
-    blocked.setArg(1, cl_uint(n4 / blocked_items));
-    blocked.setArg(2, partial);
-    struct Case {
-      const char* name;
-      cl::Kernel* k;
-      std::size_t global;
-      double bytes;
-      const char* detail;
-    };
-    const Case cases[] = {
-        {"copy", &copy, n4, 2.0 * double(bytes), "dst[i] = src[i] (float4): read + write counted, write-allocate not"},
-        {"read_strided", &strided, strided_items, double(bytes), "65536 work-items, grid-stride float4 sums"},
-        {"read_blocked", &blocked, blocked_items, double(bytes), "1024 work-items, contiguous float4 blocks"},
-    };
-    for (const Case& c : cases) {
-      LimitResult r;
-      r.name = c.name;
-      r.detail = c.detail;
-      time_kernel(ctx, *c.k, c.global);  // warm-up (first touch, page mapping)
-      for (int i = 0; i < runs; ++i) {
-        const double s = time_kernel(ctx, *c.k, c.global);
-        r.runs.push_back(c.bytes / s * 1e-9);
-        r.best = std::max(r.best, r.runs.back());
-      }
-      if (r.name == "copy")
-        L.bandwidth_gbs = std::max(L.bandwidth_gbs, r.best);
-      else
-        L.read_gbs = std::max(L.read_gbs, r.best);
-      L.bandwidth.push_back(r);
-    }
-    L.bandwidth_gbs = std::max(L.bandwidth_gbs, L.read_gbs);
-    // Cache-resident reads: 6 MiB (about the query kernel's largest working set at
-    // m' = 32768), read 64 times per run.
-    const std::size_t small4 = (std::size_t(6) << 20) / 16, reps = quick ? 16 : 64;
-    cl::Kernel cached(program, "read_blocked_repeat");
-    cached.setArg(0, src);
-    cached.setArg(1, cl_uint(small4 / blocked_items));
-    cached.setArg(2, cl_uint(reps));
-    cached.setArg(3, partial);
-    LimitResult r;
-    r.name = "read_cached";
-    r.detail = "6 MiB of the buffer, contiguous blocks, read " + std::to_string(reps) + " times";
-    time_kernel(ctx, cached, blocked_items);
-    for (int i = 0; i < runs; ++i) {
-      r.runs.push_back(double(small4 * 16 * reps) / time_kernel(ctx, cached, blocked_items) * 1e-9);
-      r.best = std::max(r.best, r.runs.back());
-    }
-    L.cached_gbs = r.best;
-    L.cached_mib = 6;
-    L.bandwidth.push_back(r);
-  }
-  // Arithmetic: grow the work until one run takes >= 0.1 s (0.03 s with --quick).
-  for (const auto& [name, width] :
-       std::vector<std::pair<std::string, int>>{{"fma_f4", 4}, {"fma_f8", 8}, {"fma_f16", 16}}) {
-    cl::Kernel k(program, name.c_str());
-    k.setArg(0, 0.9999f);
-    k.setArg(1, 1e-4f);
-    std::size_t global = 4096;
-    const double target = quick ? 0.03 : 0.1;
-    cl::Buffer out;
-    double s = 0;
-    while (true) {
-      out = cl::Buffer(ctx.context, CL_MEM_WRITE_ONLY, sizeof(float) * global);
-      k.setArg(2, out);
-      s = time_kernel(ctx, k, global);
-      if (s >= target || global >= (std::size_t(1) << 26)) break;
-      global *= std::clamp<std::size_t>(std::size_t(target / std::max(s, 1e-6)) + 1, 2, 64);
-    }
-    const double flops = double(global) * kFmaIters * 8 * width * 2;
-    LimitResult r;
-    r.name = name;
-    r.detail = std::to_string(global) + " work-items x " + std::to_string(kFmaIters) +
-               " iterations x 8 chains x float" + std::to_string(width) + " fma (2 flops per lane)";
-    for (int i = 0; i < runs; ++i) {
-      r.runs.push_back(flops / time_kernel(ctx, k, global) * 1e-9);
-      r.best = std::max(r.best, r.runs.back());
-    }
-    L.peak_gflops = std::max(L.peak_gflops, r.best);
-    L.compute.push_back(r);
-  }
-  return L;
-}
-
 // ---------------------------------------------------------------- measurements
 
 struct LatencyRow {
@@ -737,244 +472,286 @@ void write_csvs(const std::filesystem::path& dir, const std::vector<LatencyRow>&
   }
 }
 
-// ---------------------------------------------------------------- the run
+// ---------------------------------------------------------------- the sweep
 
-int run(const Args& args) {
-  const std::string load_start = read_loadavg();
-  const CpuSample cpu_start = cpu_sample();
-  const std::string date = now_iso();
-  const auto t_start = Clock::now();
-  std::cout << "bench_queries: " << args.command_line << "\n  date " << date
-            << ", load average at start: " << load_start << "\n";
+struct Plan {
+  std::vector<std::size_t> modes_list;  // m' of the latency points
+  int repeats = 0, warmup = 100;
+  std::vector<std::size_t> batch_modes, batch_sizes;
+  double batch_cap_s = 0;  // a batch predicted to take longer is skipped
+};
 
-  const std::vector<std::size_t> modes_list =
-      !args.modes.empty() ? args.modes
-      : args.quick        ? std::vector<std::size_t>{1, 1024, 4096, 32768}
-                          : std::vector<std::size_t>{1, 1024, 4096, 8192, 16384, 32768, 65536, 131072};
-  const int repeats = args.repeats > 0 ? args.repeats : (args.quick ? 300 : 2000);
-  const int warmup = 100;
-  const std::vector<std::size_t> batch_modes =
-      args.latency_only ? std::vector<std::size_t>{} : std::vector<std::size_t>{4096, 32768};
+Plan plan_for(const Args& args) {
+  Plan p;
+  p.modes_list = !args.modes.empty() ? args.modes
+                 : args.quick        ? std::vector<std::size_t>{1, 1024, 4096, 32768}
+                                     : std::vector<std::size_t>{1, 1024, 4096, 8192, 16384, 32768, 65536, 131072};
+  p.repeats = args.repeats > 0 ? args.repeats : (args.quick ? 300 : 2000);
+  if (!args.latency_only) p.batch_modes = {4096, 32768};
   // --quick stops at 256: a 4096-pose batch takes seconds per point on a CPU.
-  const std::vector<std::size_t> batch_sizes =
-      args.quick ? std::vector<std::size_t>{1, 16, 256} : std::vector<std::size_t>{1, 16, 256, 4096};
-  const double batch_cap_s = args.quick ? 3.0 : 30.0;
+  p.batch_sizes = args.quick ? std::vector<std::size_t>{1, 16, 256} : std::vector<std::size_t>{1, 16, 256, 4096};
+  p.batch_cap_s = args.quick ? 3.0 : 30.0;
+  return p;
+}
 
-  // ---- device, scene, spectra
-  const snapfit::FftLibrary fft;
-  const snapfit::ComputeContext ctx =
-      snapfit::make_compute_context(snapfit::select_device(snapfit::device_spec_from(args.device)));
-  const auto& info = ctx.device.info;
-  std::cout << "  device: " << snapfit::describe_device(info) << "\n  driver " << info.driver_version << ", "
-            << info.compute_units << " compute units\n";
-  const snapfit::Scene scene = snapfit::load_scene(args.scene);
-  std::cout << "  scene " << args.scene << " (" << scene.name << ")\n";
-  snapfit::PairOptions popt;
-  popt.descriptors.progress = snapfit::pass_progress_bars(std::cerr);
-  auto t0 = Clock::now();
-  const snapfit::AssemblyPair pair = snapfit::build_assembly_pair(scene, ctx, fft, popt);
-  const double pair_s = seconds_since(t0);
-  const snapfit::PairSpectra& spectra = pair.spectra;
-  const auto& dims = spectra.dims;
-  const std::size_t total_modes = dims[0] * dims[1] * dims[2];
-  std::cout << "  pair ready in " << fixed(pair_s, 1) << " s (fields "
-            << (pair.fields1.from_cache ? "cached" : "computed") << " / "
-            << (pair.fields2.from_cache ? "cached" : "computed") << "), FFT grid " << dims[0] << "x" << dims[1] << "x"
-            << dims[2] << " = " << total_modes << " modes, spacing " << spectra.spacing << " " << scene.units << "\n";
-  if (!snapfit::query_variant_for(scene).torque)
-    throw snapfit::Error(args.scene + ": the scene asks for no torque; the benchmark needs a 6-DOF scene with torque");
-  const std::vector<float> radii = sorted_mode_radii(spectra);
-
-  // ---- 1. latency
+std::vector<VariantSpec> selected_specs(const Args& args) {
   std::vector<VariantSpec> specs;
   for (const auto& spec : variant_specs())
     if (args.variants.empty() || std::find(args.variants.begin(), args.variants.end(), spec.key) != args.variants.end())
       specs.push_back(spec);
   if (specs.empty()) throw snapfit::Error("--variants: no known variant named (see --help)");
+  return specs;
+}
+
+struct RoofRow {
+  std::string key, label;
+  std::size_t modes = 0;
+  Cost cost;
+  Footprint fp;
+  double p50_us = 0, single_gbs = 0, single_gflops = 0;
+  double batch = 0, batch_pps = 0, batch_gbs = 0, batch_gflops = 0;
+};
+
+// What the sections share: the command line, the sweep, the device and the scene's
+// spectra, and the rows each section adds.
+struct Bench {
+  const Args& args;
+  Plan plan;
+  const snapfit::FftLibrary& fft;
+  const snapfit::ComputeContext& ctx;
+  const snapfit::Scene& scene;
+  const snapfit::PairSpectra& spectra;
+  std::vector<float> radii;
+  std::vector<VariantSpec> specs;
   QuietGuard guard;
-  if (args.quick) guard.max_retries = 0;  // --quick only records the contention
+  double sink = 0;  // keeps the results alive
   std::vector<LatencyRow> latency;
   std::map<std::string, std::vector<Pose>> poses_of;
   std::map<std::string, std::size_t> rejected_of;
-  double sink = 0;
-  std::cout << "\n[1] per-query latency: " << repeats << " timed queries after " << warmup
-            << " warm-up per point (wall clock around engine.query)\n";
-  const std::size_t pose_count = std::max<std::size_t>(4096, std::size_t(repeats) + warmup);
   std::map<std::string, std::unique_ptr<QueryEngine>> engines;
-  for (const auto& spec : specs) {
-    auto engine = make_query_engine(ctx, spectra, spec.variant);
-    engine->set_modes(1024);
-    const auto all = make_poses(scene, spectra.spacing, pose_count, !spec.variant.translation_only, 12345u);
-    std::size_t rejected = 0;
-    poses_of[spec.key] = usable_poses(*engine, all, rejected);
-    rejected_of[spec.key] = rejected;
-    if (poses_of[spec.key].empty())
-      throw snapfit::Error("no usable pose for " + spec.label + " (all outside the grid?)");
-    std::cout << "  " << padr(spec.label, 24) << " " << poses_of[spec.key].size() << " poses (" << rejected
-              << " outside the padded box dropped)\n";
-    std::size_t cursor = 0;
-    for (std::size_t m : modes_list) {
-      double others = 0;
-      int attempts = 1;
-      LatencyRow r = guard.run(
-          spec.key + " m' " + std::to_string(m),
-          [&] { return measure_latency(*engine, spec, poses_of[spec.key], m, warmup, repeats, cursor, sink); }, others,
-          attempts);
-      r.attempts = attempts;
-      r.cost = cost_model(spec.variant, double(r.terms) / double(std::max<std::size_t>(r.modes_used, 1)));
-      r.fp = footprint(spectra, radii, r.modes_used, r.terms, spec.variant);
-      std::cout << "    m' " << pad(std::to_string(r.modes_used), 7) << "  p50 " << pad(fixed(r.p50), 9) << " us  p99 "
-                << pad(fixed(r.p99), 9) << " us  max " << pad(fixed(r.max), 9) << " us  [p10 " << pad(fixed(r.p10), 8)
-                << " p90 " << pad(fixed(r.p90), 8) << " mean " << pad(fixed(r.mean), 8) << "]  (load "
-                << fixed(r.load_before, 2) << " -> " << fixed(r.load_after, 2) << ", others " << fixed(r.other_cores, 2)
-                << " cores; set_modes from 1: " << fixed(r.set_modes_us, 0) << " us"
-                << (r.attempts > 1 ? ", attempt " + std::to_string(r.attempts) : "")
-                << (r.flagged ? ", FLAGGED " + std::to_string(r.flagged) : "") << ")\n"
-                << std::flush;
-      latency.push_back(r);
-    }
-    engines[spec.key] = std::move(engine);
-  }
-  auto find_lat = [&](const std::string& key, std::size_t m) -> const LatencyRow* {
+  std::vector<ThroughputRow> throughput;
+  std::vector<MapRow> maps;
+  DeviceLimits limits;
+  double limits_others = 0;
+  int limits_attempts = 1;
+  std::vector<RoofRow> roof;
+  nlohmann::json split = nlohmann::json::array();
+  nlohmann::json targets;
+
+  Bench(const Args& a, const snapfit::FftLibrary& f, const snapfit::ComputeContext& c, const snapfit::Scene& s,
+        const snapfit::PairSpectra& sp)
+      : args(a),
+        plan(plan_for(a)),
+        fft(f),
+        ctx(c),
+        scene(s),
+        spectra(sp),
+        radii(sorted_mode_radii(sp)),
+        specs(selected_specs(a)) {}
+  std::size_t total_modes() const { return spectra.dims[0] * spectra.dims[1] * spectra.dims[2]; }
+  const LatencyRow* find_lat(const std::string& key, std::size_t m) const {
     for (const auto& r : latency)
       if (r.key == key && r.modes == m) return &r;
     return nullptr;
-  };
+  }
+};
 
-  // ---- 2. throughput
+// ---------------------------------------------------------------- 1. latency
+
+void print_latency_row(const LatencyRow& r) {
+  std::cout << "    m' " << pad(std::to_string(r.modes_used), 7) << "  p50 " << pad(fixed(r.p50), 9) << " us  p99 "
+            << pad(fixed(r.p99), 9) << " us  max " << pad(fixed(r.max), 9) << " us  [p10 " << pad(fixed(r.p10), 8)
+            << " p90 " << pad(fixed(r.p90), 8) << " mean " << pad(fixed(r.mean), 8) << "]  (load "
+            << fixed(r.load_before, 2) << " -> " << fixed(r.load_after, 2) << ", others " << fixed(r.other_cores, 2)
+            << " cores; set_modes from 1: " << fixed(r.set_modes_us, 0) << " us"
+            << (r.attempts > 1 ? ", attempt " + std::to_string(r.attempts) : "")
+            << (r.flagged ? ", FLAGGED " + std::to_string(r.flagged) : "") << ")\n"
+            << std::flush;
+}
+
+// One variant's engine, its usable poses and its latency at every m' of the sweep.
+void measure_variant_latency(Bench& b, const VariantSpec& spec, std::size_t pose_count) {
+  auto engine = make_query_engine(b.ctx, b.spectra, spec.variant);
+  engine->set_modes(1024);
+  const auto all = make_poses(b.scene, b.spectra.spacing, pose_count, !spec.variant.translation_only, 12345u);
+  std::size_t rejected = 0;
+  const std::vector<Pose>& poses = b.poses_of[spec.key] = usable_poses(*engine, all, rejected);
+  b.rejected_of[spec.key] = rejected;
+  if (poses.empty()) throw snapfit::Error("no usable pose for " + spec.label + " (all outside the grid?)");
+  std::cout << "  " << padr(spec.label, 24) << " " << poses.size() << " poses (" << rejected
+            << " outside the padded box dropped)\n";
+  std::size_t cursor = 0;
+  for (std::size_t m : b.plan.modes_list) {
+    double others = 0;
+    int attempts = 1;
+    LatencyRow r = b.guard.run(
+        spec.key + " m' " + std::to_string(m),
+        [&] { return measure_latency(*engine, spec, poses, m, b.plan.warmup, b.plan.repeats, cursor, b.sink); }, others,
+        attempts);
+    r.attempts = attempts;
+    r.cost = cost_model(spec.variant, double(r.terms) / double(std::max<std::size_t>(r.modes_used, 1)));
+    r.fp = footprint(b.spectra, b.radii, r.modes_used, r.terms, spec.variant);
+    print_latency_row(r);
+    b.latency.push_back(r);
+  }
+  b.engines[spec.key] = std::move(engine);
+}
+
+void measure_latencies(Bench& b) {
+  if (b.args.quick) b.guard.max_retries = 0;  // --quick only records the contention
+  std::cout << "\n[1] per-query latency: " << b.plan.repeats << " timed queries after " << b.plan.warmup
+            << " warm-up per point (wall clock around engine.query)\n";
+  const std::size_t pose_count = std::max<std::size_t>(4096, std::size_t(b.plan.repeats) + b.plan.warmup);
+  for (const auto& spec : b.specs) measure_variant_latency(b, spec, pose_count);
+}
+
+// ---------------------------------------------------------------- 2. throughput
+
+// Poses per second of query_batch with batches of `size` poses: at least 3 batches (2
+// when one is predicted over 5 s) and 0.2 s (--quick) or 1 s.
+ThroughputRow measure_batches(Bench& b, QueryEngine& engine, const std::vector<Pose>& poses, ThroughputRow t,
+                              double predicted) {
+  const std::size_t size = t.batch;
+  std::vector<Pose> batch(size);
+  std::size_t offset = 0;
+  auto fill = [&] {
+    for (std::size_t i = 0; i < size; ++i) batch[i] = poses[(offset + i) % poses.size()];
+    offset += 7919;
+  };
+  fill();
+  // Warm-up (buffer growth) with the whole batch unless that would take long.
+  if (predicted < 2.0)
+    for (const auto& q : engine.query_batch(batch)) b.sink += q.energy;
+  std::vector<double> rates;
+  const double min_time = b.args.quick ? 0.2 : 1.0;
+  const int min_batches = predicted > 5.0 ? 2 : 3, max_batches = size == 1 ? 2000 : 200;
+  double spent = 0;
+  while ((spent < min_time || int(rates.size()) < min_batches) && int(rates.size()) < max_batches) {
+    fill();
+    const auto tb = Clock::now();
+    const auto res = engine.query_batch(batch);
+    const double s = seconds_since(tb);
+    for (const auto& q : res) b.sink += q.energy;
+    spent += s;
+    rates.push_back(double(size) / s);
+    if (s > b.plan.batch_cap_s) break;
+  }
+  t.batches = int(rates.size());
+  t.seconds = spent;
+  t.poses_per_s = *std::max_element(rates.begin(), rates.end());
+  t.median_poses_per_s = median(rates);
+  return t;
+}
+
+// One point of the throughput table: skipped when its batch is predicted (from the
+// single-query p50 at m') to take longer than the cap.
+ThroughputRow throughput_point(Bench& b, const VariantSpec& spec, QueryEngine& engine, std::size_t m,
+                               std::size_t size) {
+  ThroughputRow t;
+  t.key = spec.key;
+  t.label = spec.label;
+  t.modes = engine.modes();
+  t.batch = size;
+  const LatencyRow* lr = b.find_lat(spec.key, m);
+  const double predicted = lr ? lr->p50 * 1e-6 * double(size) : 0.0;
+  if (predicted > b.plan.batch_cap_s) {
+    t.skipped = true;
+    t.note = "skipped: one batch predicted " + fixed(predicted, 0) + " s from the single-query p50";
+    std::cout << "  " << padr(spec.label, 24) << " m' " << pad(std::to_string(m), 6) << " batch "
+              << pad(std::to_string(size), 5) << "  " << t.note << "\n";
+    return t;
+  }
+  double others = 0;
+  int attempts = 1;
+  t = b.guard.run(
+      spec.key + " m' " + std::to_string(m) + " batch " + std::to_string(size),
+      [&] { return measure_batches(b, engine, b.poses_of[spec.key], t, predicted); }, others, attempts);
+  t.other_cores = others;
+  t.attempts = attempts;
+  std::cout << "  " << padr(spec.label, 24) << " m' " << pad(std::to_string(t.modes), 6) << " batch "
+            << pad(std::to_string(size), 5) << "  " << pad(fmt(t.median_poses_per_s, 4), 9) << " poses/s median, "
+            << pad(fmt(t.poses_per_s, 4), 9) << " best (" << t.batches << " batches, " << fixed(t.seconds, 2)
+            << " s; others " << fixed(t.other_cores, 2) << " cores"
+            << (t.attempts > 1 ? ", attempt " + std::to_string(t.attempts) : "") << ")\n"
+            << std::flush;
+  return t;
+}
+
+void measure_throughput(Bench& b) {
   std::cout << "\n[2] batched throughput (query_batch), poses per second\n";
-  std::vector<ThroughputRow> throughput;
-  for (const auto& spec : specs) {
-    QueryEngine& engine = *engines[spec.key];
-    const auto& poses = poses_of[spec.key];
-    for (std::size_t m : batch_modes) {
+  for (const auto& spec : b.specs) {
+    QueryEngine& engine = *b.engines[spec.key];
+    for (std::size_t m : b.plan.batch_modes) {
       engine.set_modes(m);
-      const LatencyRow* lr = find_lat(spec.key, m);
-      for (std::size_t b : batch_sizes) {
-        ThroughputRow t;
-        t.key = spec.key;
-        t.label = spec.label;
-        t.modes = engine.modes();
-        t.batch = b;
-        const double predicted = lr ? lr->p50 * 1e-6 * double(b) : 0.0;
-        if (predicted > batch_cap_s) {
-          t.skipped = true;
-          t.note = "skipped: one batch predicted " + fixed(predicted, 0) + " s from the single-query p50";
-          std::cout << "  " << padr(spec.label, 24) << " m' " << pad(std::to_string(m), 6) << " batch "
-                    << pad(std::to_string(b), 5) << "  " << t.note << "\n";
-          throughput.push_back(t);
-          continue;
-        }
-        auto measure_point = [&, t]() mutable {
-          std::vector<Pose> batch(b);
-          std::size_t offset = 0;
-          auto fill = [&] {
-            for (std::size_t i = 0; i < b; ++i) batch[i] = poses[(offset + i) % poses.size()];
-            offset += 7919;
-          };
-          fill();
-          // Warm-up (buffer growth) with the whole batch unless that would take long.
-          if (predicted < 2.0)
-            for (const auto& q : engine.query_batch(batch)) sink += q.energy;
-          std::vector<double> rates;
-          const double min_time = args.quick ? 0.2 : 1.0;
-          const int min_batches = predicted > 5.0 ? 2 : 3, max_batches = b == 1 ? 2000 : 200;
-          double spent = 0;
-          while ((spent < min_time || int(rates.size()) < min_batches) && int(rates.size()) < max_batches) {
-            fill();
-            const auto tb = Clock::now();
-            const auto res = engine.query_batch(batch);
-            const double s = seconds_since(tb);
-            for (const auto& q : res) sink += q.energy;
-            spent += s;
-            rates.push_back(double(b) / s);
-            if (s > batch_cap_s) break;
-          }
-          t.batches = int(rates.size());
-          t.seconds = spent;
-          t.poses_per_s = *std::max_element(rates.begin(), rates.end());
-          t.median_poses_per_s = median(rates);
-          return t;
-        };
-        double others = 0;
-        int attempts = 1;
-        t = guard.run(spec.key + " m' " + std::to_string(m) + " batch " + std::to_string(b), measure_point, others,
-                      attempts);
-        t.other_cores = others;
-        t.attempts = attempts;
-        const double spent = t.seconds;
-        std::cout << "  " << padr(spec.label, 24) << " m' " << pad(std::to_string(t.modes), 6) << " batch "
-                  << pad(std::to_string(b), 5) << "  " << pad(fmt(t.median_poses_per_s, 4), 9) << " poses/s median, "
-                  << pad(fmt(t.poses_per_s, 4), 9) << " best (" << t.batches << " batches, " << fixed(spent, 2)
-                  << " s; others " << fixed(t.other_cores, 2) << " cores"
-                  << (t.attempts > 1 ? ", attempt " + std::to_string(t.attempts) : "") << ")\n"
-                  << std::flush;
-        throughput.push_back(t);
-      }
+      for (std::size_t size : b.plan.batch_sizes) b.throughput.push_back(throughput_point(b, spec, engine, m, size));
     }
   }
-  engines.clear();
+}
 
-  // ---- 3. full maps
+// ---------------------------------------------------------------- 3. full maps
+
+// Cold (the first call: program load and FFT plan bake) and warm times of the full
+// translational map at the FFT grid; a repeated attempt is not cold, so the first
+// attempt's cold time is kept.
+MapRow measure_map(Bench& b, Interpolation interp, const std::vector<Pose>& rot_poses, std::size_t& next) {
+  const int warm_runs = 4;
+  MapRow row;
+  row.interpolation = interp == Interpolation::tricubic ? "tricubic" : "trilinear";
+  row.dims = b.spectra.dims;
+  double cold = -1;
+  auto measure_maps = [&] {
+    MapRow row_try = row;
+    for (int i = 0; i <= warm_runs; ++i) {
+      const Eigen::Matrix3d R = rot_poses[next++ % rot_poses.size()].rotation.toRotationMatrix();
+      const auto tm = Clock::now();
+      const snapfit::TranslationMap map = snapfit::translational_energy_map(b.fft, b.ctx, b.spectra, R, interp, 0);
+      const double s = seconds_since(tm);
+      b.sink +=
+          map.energy.empty() ? 0.0 : double(map.energy[map.energy.size() / 2] == map.energy[map.energy.size() / 2]);
+      if (i == 0)
+        row_try.cold_s = cold < 0 ? s : cold;
+      else
+        row_try.warm_s.push_back(s);
+    }
+    if (cold < 0) cold = row_try.cold_s;
+    return row_try;
+  };
+  double others = 0;
+  int attempts = 1;
+  row = b.guard.run(std::string("maps ") + row.interpolation, measure_maps, others, attempts);
+  row.other_cores = others;
+  row.attempts = attempts;
+  row.warm_median_s = median(row.warm_s);
+  row.rotations_per_s = 1.0 / row.warm_median_s;
+  return row;
+}
+
+void measure_maps(Bench& b) {
+  const auto& dims = b.spectra.dims;
   std::cout << "\n[3] full translational maps (translational_energy_map, all modes) at the FFT grid " << dims[0] << "x"
             << dims[1] << "x" << dims[2] << "\n";
-  std::vector<MapRow> maps;
-  if (args.quick)
+  if (b.args.quick)
     std::cout << "  skipped with --quick (a cold map bakes an FFT plan for the full grid: a minute on a CPU)\n";
-  if (!args.latency_only && !args.quick) {
-    const auto rot_poses = make_poses(scene, spectra.spacing, 16, true, 777u);
-    const int warm_runs = args.quick ? 1 : 4;
-    std::size_t next = 0;
-    for (Interpolation interp : {Interpolation::trilinear, Interpolation::tricubic}) {
-      MapRow row;
-      row.interpolation = interp == Interpolation::tricubic ? "tricubic" : "trilinear";
-      row.dims = dims;
-      double cold = -1;
-      auto measure_maps = [&] {
-        MapRow row_try = row;
-        for (int i = 0; i <= warm_runs; ++i) {
-          const Eigen::Matrix3d R = rot_poses[next++ % rot_poses.size()].rotation.toRotationMatrix();
-          const auto tm = Clock::now();
-          const snapfit::TranslationMap map = snapfit::translational_energy_map(fft, ctx, spectra, R, interp, 0);
-          const double s = seconds_since(tm);
-          sink +=
-              map.energy.empty() ? 0.0 : double(map.energy[map.energy.size() / 2] == map.energy[map.energy.size() / 2]);
-          if (i == 0)
-            row_try.cold_s = cold < 0 ? s : cold;  // a repeated attempt is not cold: keep the first
-          else
-            row_try.warm_s.push_back(s);
-        }
-        if (cold < 0) cold = row_try.cold_s;
-        return row_try;
-      };
-      double others = 0;
-      int attempts = 1;
-      row = guard.run(std::string("maps ") + row.interpolation, measure_maps, others, attempts);
-      row.other_cores = others;
-      row.attempts = attempts;
-      row.warm_median_s = median(row.warm_s);
-      row.rotations_per_s = 1.0 / row.warm_median_s;
-      std::cout << "  " << padr(row.interpolation, 10) << " cold " << fixed(row.cold_s, 3) << " s, warm median "
-                << fixed(row.warm_median_s, 3) << " s over " << row.warm_s.size() << " -> "
-                << fmt(row.rotations_per_s, 3) << " rotations/s ("
-                << fmt(double(total_modes) * row.rotations_per_s / 1e6, 3) << " M translations/s; others "
-                << fixed(row.other_cores, 2) << " cores)\n"
-                << std::flush;
-      maps.push_back(row);
-    }
+  if (b.args.latency_only || b.args.quick) return;
+  const auto rot_poses = make_poses(b.scene, b.spectra.spacing, 16, true, 777u);
+  std::size_t next = 0;
+  for (Interpolation interp : {Interpolation::trilinear, Interpolation::tricubic}) {
+    const MapRow row = measure_map(b, interp, rot_poses, next);
+    std::cout << "  " << padr(row.interpolation, 10) << " cold " << fixed(row.cold_s, 3) << " s, warm median "
+              << fixed(row.warm_median_s, 3) << " s over " << row.warm_s.size() << " -> " << fmt(row.rotations_per_s, 3)
+              << " rotations/s (" << fmt(double(b.total_modes()) * row.rotations_per_s / 1e6, 3)
+              << " M translations/s; others " << fixed(row.other_cores, 2) << " cores)\n"
+              << std::flush;
+    b.maps.push_back(row);
   }
+}
 
-  // ---- 4. roofline
-  std::cout << "\n[4] device limits (best of 5) and roofline\n";
-  double limits_others = 0;
-  int limits_attempts = 1;
-  const DeviceLimits limits =
-      args.latency_only
-          ? DeviceLimits{}
-          : guard.run(
-                "the device limits", [&] { return measure_limits(ctx, args.quick); }, limits_others, limits_attempts);
-  std::cout << "  (other processes used " << fixed(limits_others, 2) << " cores meanwhile"
-            << (limits_attempts > 1 ? ", attempt " + std::to_string(limits_attempts) : "") << ")\n";
+// ---------------------------------------------------------------- 4. roofline
+
+void print_limits(const Bench& b) {
+  const DeviceLimits& limits = b.limits;
+  std::cout << "  (other processes used " << fixed(b.limits_others, 2) << " cores meanwhile"
+            << (b.limits_attempts > 1 ? ", attempt " + std::to_string(b.limits_attempts) : "") << ")\n";
   for (const auto& r : limits.bandwidth)
     std::cout << "  " << padr(r.name, 13) << pad(fixed(r.best, 1), 8) << " GB/s   (" << r.detail
               << (r.name == "read_cached" ? std::string() : ", " + fixed(limits.buffer_mib, 0) + " MiB") << ")\n";
@@ -983,80 +760,91 @@ int run(const Args& args) {
   const double bw = limits.read_gbs, peak = limits.peak_gflops;
   std::cout << "  limits used below: read bandwidth " << fixed(bw, 1) << " GB/s (the query kernel only reads), peak "
             << fixed(peak, 1) << " GFLOP/s, ridge at " << fmt(peak / bw, 3) << " flop/B\n";
-  struct RoofRow {
-    std::string key, label;
-    std::size_t modes = 0;
-    Cost cost;
-    Footprint fp;
-    double p50_us = 0, single_gbs = 0, single_gflops = 0;
-    double batch = 0, batch_pps = 0, batch_gbs = 0, batch_gflops = 0;
-  };
-  std::vector<RoofRow> roof;
-  const std::size_t roof_m = 32768;
-  std::cout << "  per mode (counting in the header of perf/bench_queries.cpp), at m' = " << roof_m << ":\n";
+}
+
+// A variant's achieved GB/s and GFLOP/s from its single-query p50 and its largest batch.
+RoofRow roof_row(const Bench& b, const VariantSpec& spec, const LatencyRow& lr) {
+  RoofRow rr;
+  rr.key = spec.key;
+  rr.label = spec.label;
+  rr.modes = lr.modes_used;
+  rr.cost = lr.cost;
+  rr.fp = lr.fp;
+  rr.p50_us = lr.p50;
+  const double bytes = rr.cost.bytes * double(rr.modes), flops = rr.cost.flops * double(rr.modes);
+  rr.single_gbs = bytes / (lr.p50 * 1e-6) * 1e-9;
+  rr.single_gflops = flops / (lr.p50 * 1e-6) * 1e-9;
+  for (const auto& t : b.throughput)
+    if (t.key == spec.key && t.modes == lr.modes_used && !t.skipped && double(t.batch) > rr.batch) {
+      rr.batch = double(t.batch);
+      rr.batch_pps = t.median_poses_per_s;
+    }
+  rr.batch_gbs = bytes * rr.batch_pps * 1e-9;
+  rr.batch_gflops = flops * rr.batch_pps * 1e-9;
+  return rr;
+}
+
+void print_roof_row(const Bench& b, const RoofRow& rr) {
+  const double bw = b.limits.read_gbs, peak = b.limits.peak_gflops;
+  std::cout << "  " << padr(rr.label, 24) << pad(fmt(rr.cost.bytes, 5), 8) << pad(fmt(rr.cost.flops, 5), 10)
+            << pad(fmt(rr.cost.flops / rr.cost.bytes, 2), 8) << pad(fixed(rr.fp.cube_bytes / 1024, 0), 10) << " | "
+            << pad(fixed(rr.p50_us, 0), 9) << pad(fixed(rr.single_gbs, 2), 8)
+            << pad(fixed(100 * rr.single_gbs / bw, 1), 7) << pad(fixed(rr.single_gflops, 2), 9)
+            << pad(fixed(100 * rr.single_gflops / peak, 1), 7) << " | " << pad(fmt(rr.batch, 4), 6)
+            << pad(fixed(rr.batch_gbs, 2), 8) << pad(fixed(100 * rr.batch_gbs / bw, 1), 7)
+            << pad(fixed(rr.batch_gflops, 2), 9) << pad(fixed(100 * rr.batch_gflops / peak, 1), 7)
+            << "   (single query: " << fixed(100 * rr.single_gbs / b.limits.cached_gbs, 1)
+            << "% of cache-resident reads)\n";
+}
+
+constexpr std::size_t kRoofModes = 32768;
+
+void measure_roofline(Bench& b) {
+  std::cout << "\n[4] device limits (best of 5) and roofline\n";
+  if (!b.args.latency_only)
+    b.limits = b.guard.run(
+        "the device limits", [&] { return measure_limits(b.ctx, b.args.quick); }, b.limits_others, b.limits_attempts);
+  print_limits(b);
+  std::cout << "  per mode (counting in the header of perf/bench_queries.cpp), at m' = " << kRoofModes << ":\n";
   std::cout << "  " << padr("variant", 24) << pad("B/mode", 8) << pad("flop/mode", 10) << pad("flop/B", 8)
             << pad("cube KiB", 10) << " | " << pad("p50 us", 9) << pad("GB/s", 8) << pad("%BW", 7) << pad("GFLOP/s", 9)
             << pad("%peak", 7) << " | " << pad("batch", 6) << pad("GB/s", 8) << pad("%BW", 7) << pad("GFLOP/s", 9)
             << pad("%peak", 7) << "\n";
-  for (const auto& spec : specs) {
-    const LatencyRow* lr = find_lat(spec.key, roof_m);
+  for (const auto& spec : b.specs) {
+    const LatencyRow* lr = b.find_lat(spec.key, kRoofModes);
     if (!lr) continue;
-    RoofRow rr;
-    rr.key = spec.key;
-    rr.label = spec.label;
-    rr.modes = lr->modes_used;
-    rr.cost = lr->cost;
-    rr.fp = lr->fp;
-    rr.p50_us = lr->p50;
-    const double bytes = rr.cost.bytes * double(rr.modes), flops = rr.cost.flops * double(rr.modes);
-    rr.single_gbs = bytes / (lr->p50 * 1e-6) * 1e-9;
-    rr.single_gflops = flops / (lr->p50 * 1e-6) * 1e-9;
-    for (const auto& t : throughput)
-      if (t.key == spec.key && t.modes == lr->modes_used && !t.skipped && double(t.batch) > rr.batch) {
-        rr.batch = double(t.batch);
-        rr.batch_pps = t.median_poses_per_s;
-      }
-    rr.batch_gbs = bytes * rr.batch_pps * 1e-9;
-    rr.batch_gflops = flops * rr.batch_pps * 1e-9;
-    std::cout << "  " << padr(spec.label, 24) << pad(fmt(rr.cost.bytes, 5), 8) << pad(fmt(rr.cost.flops, 5), 10)
-              << pad(fmt(rr.cost.flops / rr.cost.bytes, 2), 8) << pad(fixed(rr.fp.cube_bytes / 1024, 0), 10) << " | "
-              << pad(fixed(rr.p50_us, 0), 9) << pad(fixed(rr.single_gbs, 2), 8)
-              << pad(fixed(100 * rr.single_gbs / bw, 1), 7) << pad(fixed(rr.single_gflops, 2), 9)
-              << pad(fixed(100 * rr.single_gflops / peak, 1), 7) << " | " << pad(fmt(rr.batch, 4), 6)
-              << pad(fixed(rr.batch_gbs, 2), 8) << pad(fixed(100 * rr.batch_gbs / bw, 1), 7)
-              << pad(fixed(rr.batch_gflops, 2), 9) << pad(fixed(100 * rr.batch_gflops / peak, 1), 7)
-              << "   (single query: " << fixed(100 * rr.single_gbs / limits.cached_gbs, 1)
-              << "% of cache-resident reads)\n";
-    roof.push_back(rr);
+    b.roof.push_back(roof_row(b, spec, *lr));
+    print_roof_row(b, b.roof.back());
   }
-  for (const auto& spec : specs) {
-    const LatencyRow* lr = find_lat(spec.key, roof_m);
+  for (const auto& spec : b.specs) {
+    const LatencyRow* lr = b.find_lat(spec.key, kRoofModes);
     if (!lr) continue;  // not measured at this m'
     const Cost& c = lr->cost;
     std::cout << "    " << padr(spec.label, 24) << " bytes: " << c.bytes_detail << "; flops: " << c.flops_detail
               << "\n";
   }
+}
 
-  // ---- where the time goes: p50 differences between the variants.
-  nlohmann::json split = nlohmann::json::array();
+// Where the time of a 6-DOF E+F+T query goes: p50 differences between the variants.
+void time_split(Bench& b) {
   std::cout << "\n  where the time of one 6-DOF E+F+T query goes (p50 differences between variants, us):\n  "
             << pad("m'", 7) << pad("fixed", 9) << pad("stream", 9) << pad("rot+2^3", 9) << pad("float8", 9)
             << pad("E+F+T tri", 11) << pad("4^3 taps", 10) << pad("E+F+T cub", 11) << "\n";
-  for (std::size_t m : modes_list) {
-    const LatencyRow *t1 = find_lat("translation_ef", 1), *t = find_lat("translation_ef", m),
-                     *ef = find_lat("6dof_ef_trilinear", m), *eft = find_lat("6dof_eft_trilinear", m),
-                     *cub = find_lat("6dof_eft_tricubic", m);
+  for (std::size_t m : b.plan.modes_list) {
+    const LatencyRow *t1 = b.find_lat("translation_ef", 1), *t = b.find_lat("translation_ef", m),
+                     *ef = b.find_lat("6dof_ef_trilinear", m), *eft = b.find_lat("6dof_eft_trilinear", m),
+                     *cub = b.find_lat("6dof_eft_tricubic", m);
     if (m < 1024 || !t1 || !t || !ef || !eft || !cub) continue;
     const double fixed_us = t1->p50, stream = t->p50 - t1->p50, rot = ef->p50 - t->p50, f8 = eft->p50 - ef->p50,
                  taps = cub->p50 - eft->p50;
-    split.push_back({{"modes", m},
-                     {"fixed_us", fixed_us},
-                     {"mode_stream_and_phase_us", stream},
-                     {"rotation_weights_trilinear_float2_gather_us", rot},
-                     {"torque_float8_instead_of_float2_us", f8},
-                     {"tricubic_64_taps_instead_of_8_us", taps},
-                     {"eft_trilinear_p50_us", eft->p50},
-                     {"eft_tricubic_p50_us", cub->p50}});
+    b.split.push_back({{"modes", m},
+                       {"fixed_us", fixed_us},
+                       {"mode_stream_and_phase_us", stream},
+                       {"rotation_weights_trilinear_float2_gather_us", rot},
+                       {"torque_float8_instead_of_float2_us", f8},
+                       {"tricubic_64_taps_instead_of_8_us", taps},
+                       {"eft_trilinear_p50_us", eft->p50},
+                       {"eft_tricubic_p50_us", cub->p50}});
     std::cout << "  " << pad(std::to_string(m), 7) << pad(fixed(fixed_us, 0), 9) << pad(fixed(stream, 0), 9)
               << pad(fixed(rot, 0), 9) << pad(fixed(f8, 0), 9) << pad(fixed(eft->p50, 0), 11) << pad(fixed(taps, 0), 10)
               << pad(fixed(cub->p50, 0), 11) << "\n";
@@ -1066,153 +854,111 @@ int run(const Args& args) {
          "   E+F above that - the per-mode arrays, table lookups and complex products; rot+2^3: 6-DOF E+F trilinear\n"
          "   above translation - rotation, weights and 8 float2 taps; float8: E+F+T above E+F; 4^3 taps: tricubic\n"
          "   above trilinear E+F+T)\n";
+}
 
-  // ---- 5. targets
-  std::cout << "\n[5] targets\n";
-  nlohmann::json targets;
-  {
-    // Largest m' per 6-DOF variant whose p99 stays within 1 ms.
-    nlohmann::json reach = nlohmann::json::object();
-    for (const auto& spec : specs) {
-      std::size_t best = 0;
-      bool all_below = true;
-      for (std::size_t m : modes_list) {
-        const LatencyRow* r = find_lat(spec.key, m);
-        if (!r || m < 1024) continue;
-        if (r->p99 <= 1000.0) {
-          if (all_below) best = r->modes_used;
-        } else {
-          all_below = false;
-        }
+// ---------------------------------------------------------------- 5. targets
+
+// Largest m' per variant whose p99 stays within 1 ms (contiguous from 1024).
+nlohmann::json reach_within_1ms(const Bench& b) {
+  nlohmann::json reach = nlohmann::json::object();
+  for (const auto& spec : b.specs) {
+    std::size_t best = 0;
+    bool all_below = true;
+    for (std::size_t m : b.plan.modes_list) {
+      const LatencyRow* r = b.find_lat(spec.key, m);
+      if (!r || m < 1024) continue;
+      if (r->p99 <= 1000.0) {
+        if (all_below) best = r->modes_used;
+      } else {
+        all_below = false;
       }
-      reach[spec.key] = best;
-      std::cout << "  " << padr(spec.label, 24)
-                << " largest m' (of those measured, contiguous from 1024) with p99 <= 1 ms: "
-                << (best ? std::to_string(best) : std::string("none")) << "\n";
     }
-    targets["largest_modes_within_1ms_p99"] = reach;
-    nlohmann::json six = nlohmann::json::object();
-    for (const std::string key :
-         {"6dof_eft_trilinear", "6dof_eft_tricubic", "6dof_eft_trilinear_half", "6dof_eft_tricubic_half"}) {
-      const LatencyRow* r = find_lat(key, 32768);
-      if (!r) continue;
-      const bool met = r && r->p99 <= 1000.0;
-      six[key] = {{"p99_us_at_32768", r ? num(r->p99) : nlohmann::json(nullptr)}, {"met", met}};
-      std::cout << "  target 6-DOF E+F+T m' >= 32768 at p99 <= 1 ms (" << key << "): "
-                << (r ? "p99 " + fixed(r->p99, 0) + " us -> " + (met ? "MET" : "NOT MET") : std::string("not measured"))
-                << "\n";
-    }
-    targets["six_dof_32768_p99_1ms"] = six;
-    nlohmann::json ratios = nlohmann::json::array();
-    std::cout << "  translation-only speed-up over 6-DOF E+F+T trilinear at the same m' (p50 ratio / p99 ratio; target "
-                 ">= 10x):\n";
-    for (std::size_t m : modes_list) {
-      const LatencyRow* a = find_lat("6dof_eft_trilinear", m);
-      const LatencyRow* b = find_lat("translation_ef", m);
-      const LatencyRow* c = find_lat("6dof_ef_trilinear", m);
-      if (!a || !b) continue;
-      const double rp50 = a->p50 / b->p50, rp99 = a->p99 / b->p99;
-      const double rc = c ? c->p50 / b->p50 : std::numeric_limits<double>::quiet_NaN();
-      // Kernel-only estimate: both minus the fixed cost of a query (m' = 1).
-      const LatencyRow* a1 = find_lat("6dof_eft_trilinear", 1);
-      const LatencyRow* b1 = find_lat("translation_ef", 1);
-      double rk = std::numeric_limits<double>::quiet_NaN();
-      if (a1 && b1 && m > 1 && b->p50 - b1->p50 > 0) rk = (a->p50 - a1->p50) / (b->p50 - b1->p50);
-      ratios.push_back({{"modes", m},
-                        {"p50_ratio", num(rp50)},
-                        {"p99_ratio", num(rp99)},
-                        {"p50_ratio_vs_6dof_ef", num(rc)},
-                        {"marginal_ratio_above_fixed_cost", num(rk)},
-                        {"met", rp50 >= 10.0 && rp99 >= 10.0}});
-      std::cout << "    m' " << pad(std::to_string(m), 7) << "  " << pad(fixed(rp50, 2), 7) << "x / "
-                << pad(fixed(rp99, 2), 7) << "x  " << ((rp50 >= 10.0 && rp99 >= 10.0) ? "MET" : "not met")
-                << "   (vs 6-DOF E+F: " << fixed(rc, 2)
-                << "x; above the m'=1 fixed cost: " << (std::isfinite(rk) ? fixed(rk, 2) + "x" : std::string("-"))
-                << ")\n";
-    }
-    targets["translation_speedup"] = ratios;
-    const LatencyRow* t4096 = find_lat("translation_ef", 4096);
-    std::cout
-        << "  seed 000 (published, not measured here): translation only, m' = 4096, 1 kHz (1000 us per frame) on a"
-           " NVIDIA Tesla K20c; here translation-only m' = 4096: "
-        << (t4096 ? "p50 " + fixed(t4096->p50, 1) + " us, p99 " + fixed(t4096->p99, 1) + " us" : std::string("-"))
-        << " on " << info.name << "\n";
-    targets["published_seed000"] = {{"variant", "translation only"},
+    reach[spec.key] = best;
+    std::cout << "  " << padr(spec.label, 24)
+              << " largest m' (of those measured, contiguous from 1024) with p99 <= 1 ms: "
+              << (best ? std::to_string(best) : std::string("none")) << "\n";
+  }
+  return reach;
+}
+
+// 6-DOF E+F+T at m' = 32768 within a p99 of 1 ms, per scheme.
+nlohmann::json six_dof_at_32768(const Bench& b) {
+  nlohmann::json six = nlohmann::json::object();
+  for (const std::string key :
+       {"6dof_eft_trilinear", "6dof_eft_tricubic", "6dof_eft_trilinear_half", "6dof_eft_tricubic_half"}) {
+    const LatencyRow* r = b.find_lat(key, 32768);
+    if (!r) continue;
+    const bool met = r->p99 <= 1000.0;
+    six[key] = {{"p99_us_at_32768", num(r->p99)}, {"met", met}};
+    std::cout << "  target 6-DOF E+F+T m' >= 32768 at p99 <= 1 ms (" << key << "): "
+              << "p99 " + fixed(r->p99, 0) + " us -> " + (met ? "MET" : "NOT MET") << "\n";
+  }
+  return six;
+}
+
+// Translation only against 6-DOF E+F+T trilinear at the same m' (target >= 10x).
+nlohmann::json translation_speedup(const Bench& b) {
+  nlohmann::json ratios = nlohmann::json::array();
+  std::cout << "  translation-only speed-up over 6-DOF E+F+T trilinear at the same m' (p50 ratio / p99 ratio; target "
+               ">= 10x):\n";
+  for (std::size_t m : b.plan.modes_list) {
+    const LatencyRow* a = b.find_lat("6dof_eft_trilinear", m);
+    const LatencyRow* t = b.find_lat("translation_ef", m);
+    const LatencyRow* c = b.find_lat("6dof_ef_trilinear", m);
+    if (!a || !t) continue;
+    const double rp50 = a->p50 / t->p50, rp99 = a->p99 / t->p99;
+    const double rc = c ? c->p50 / t->p50 : std::numeric_limits<double>::quiet_NaN();
+    // Kernel-only estimate: both minus the fixed cost of a query (m' = 1).
+    const LatencyRow* a1 = b.find_lat("6dof_eft_trilinear", 1);
+    const LatencyRow* t1 = b.find_lat("translation_ef", 1);
+    double rk = std::numeric_limits<double>::quiet_NaN();
+    if (a1 && t1 && m > 1 && t->p50 - t1->p50 > 0) rk = (a->p50 - a1->p50) / (t->p50 - t1->p50);
+    ratios.push_back({{"modes", m},
+                      {"p50_ratio", num(rp50)},
+                      {"p99_ratio", num(rp99)},
+                      {"p50_ratio_vs_6dof_ef", num(rc)},
+                      {"marginal_ratio_above_fixed_cost", num(rk)},
+                      {"met", rp50 >= 10.0 && rp99 >= 10.0}});
+    std::cout << "    m' " << pad(std::to_string(m), 7) << "  " << pad(fixed(rp50, 2), 7) << "x / "
+              << pad(fixed(rp99, 2), 7) << "x  " << ((rp50 >= 10.0 && rp99 >= 10.0) ? "MET" : "not met")
+              << "   (vs 6-DOF E+F: " << fixed(rc, 2)
+              << "x; above the m'=1 fixed cost: " << (std::isfinite(rk) ? fixed(rk, 2) + "x" : std::string("-"))
+              << ")\n";
+  }
+  return ratios;
+}
+
+void check_targets(Bench& b) {
+  std::cout << "\n[5] targets\n";
+  b.targets["largest_modes_within_1ms_p99"] = reach_within_1ms(b);
+  b.targets["six_dof_32768_p99_1ms"] = six_dof_at_32768(b);
+  b.targets["translation_speedup"] = translation_speedup(b);
+  const LatencyRow* t4096 = b.find_lat("translation_ef", 4096);
+  std::cout << "  seed 000 (published, not measured here): translation only, m' = 4096, 1 kHz (1000 us per frame) on a"
+               " NVIDIA Tesla K20c; here translation-only m' = 4096: "
+            << (t4096 ? "p50 " + fixed(t4096->p50, 1) + " us, p99 " + fixed(t4096->p99, 1) + " us" : std::string("-"))
+            << " on " << b.ctx.device.info.name << "\n";
+  b.targets["published_seed000"] = {{"variant", "translation only"},
                                     {"modes", 4096},
                                     {"rate_hz", 1000},
                                     {"frame_us", 1000},
                                     {"device", "NVIDIA Tesla K20c"},
                                     {"source", "published, not measured here"}};
-  }
+}
 
-  // ---- output
-  const std::string load_end = read_loadavg();
-  const double others_run = other_cores(cpu_start, cpu_sample());
-  double others_latency_max = 0;
-  for (const auto& r : latency) others_latency_max = std::max(others_latency_max, r.other_cores);
-  const double total_s = seconds_since(t_start);
-  std::cout << "\nload average at end: " << load_end << " (start: " << load_start << "), total " << fixed(total_s, 0)
-            << " s; other processes kept " << fixed(others_run, 2) << " cores busy on average (at most "
-            << fixed(others_latency_max, 2) << " during a latency point); " << guard.retries
-            << " points re-measured after waiting " << fixed(guard.waited_s, 0) << " s\n";
-  const std::filesystem::path dir(args.out);
-  std::filesystem::create_directories(dir);
-  const std::string device_desc = info.name + " (" + info.platform_name + ", driver " + info.driver_version + ")";
-  write_csvs(dir, latency, throughput, device_desc);
+// ---------------------------------------------------------------- output
 
-  nlohmann::json j;
-  j["benchmark"] = "bench_queries";
-  j["command_line"] = args.command_line;
-  j["date"] = date;
-  j["quick"] = args.quick;
-  j["total_seconds"] = total_s;
-  j["loadavg_start"] = load_start;
-  j["loadavg_end"] = load_end;
-  j["other_cores_run"] = others_run;
-  j["quiet_guard"] = {{"threshold_cores", guard.threshold},
-                      {"max_retries", guard.max_retries},
-                      {"retries", guard.retries},
-                      {"waited_s", guard.waited_s}};
-  j["other_cores_latency_max"] = others_latency_max;
-  j["load_note"] =
-      "/proc/loadavg; the benchmark itself keeps the device's worker threads busy, so the 1-minute load "
-      "rises toward the number of cores during the run: judge other activity by loadavg_start and by the "
-      "running/total process counts; other_cores = (machine busy CPU time - this process's CPU time) / wall "
-      "time, from /proc/stat and /proc/self/stat";
-  j["nproc"] = std::thread::hardware_concurrency();
-  j["device"] = {{"name", info.name},
-                 {"vendor", info.vendor},
-                 {"platform", info.platform_name},
-                 {"platform_version", info.platform_version},
-                 {"device_version", info.device_version},
-                 {"driver", info.driver_version},
-                 {"type", info.type},
-                 {"compute_units", info.compute_units},
-                 {"global_memory_bytes", info.global_memory_bytes}};
-  j["scene"] = {{"file", args.scene},
-                {"name", scene.name},
-                {"fft_dims", {dims[0], dims[1], dims[2]}},
-                {"max_modes", total_modes},
-                {"spacing", spectra.spacing},
-                {"units", scene.units},
-                {"length", {spectra.length.x(), spectra.length.y(), spectra.length.z()}},
-                {"fields_from_cache", pair.fields1.from_cache && pair.fields2.from_cache},
-                {"pair_seconds", pair_s}};
-  j["method"] = {
-      {"latency", "wall clock (steady_clock) around QueryEngine::query(pose); " + std::to_string(warmup) +
-                      " warm-up queries then " + std::to_string(repeats) +
-                      " timed per point; poses along the scene trajectory with +-0.5 spacing and up to 0.5 deg "
-                      "random perturbation (translation only: R = I); percentiles nearest-rank"},
-      {"throughput", "query_batch wall clock per batch; at least 3 batches and " +
-                         std::string(args.quick ? "0.2" : "1") + " s per point; median and best batch"},
-      {"maps",
-       "translational_energy_map(all modes) wall clock, includes program load, FFT plan bake, "
-       "uploads, inverse FFT, read-back and host re-ordering"},
-      {"roofline",
-       "bytes = global loads requested per mode (no cache reuse), flops = adds/muls (fma = 2) "
-       "per mode, from kernels/pose_query.cl; see perf/bench_queries.cpp cost_model"}};
+// The run as a whole: when, the load and contention around it, and the pair's set-up.
+struct RunRecord {
+  std::string date, load_start, load_end;
+  double total_s = 0, others_run = 0, others_latency_max = 0;
+  double pair_s = 0;
+  bool fields_from_cache = false;
+};
+
+nlohmann::json latency_json(const Bench& b) {
   nlohmann::json lj = nlohmann::json::array();
-  for (const auto& r : latency)
+  for (const auto& r : b.latency)
     lj.push_back({{"variant", r.key},
                   {"label", r.label},
                   {"modes", r.modes},
@@ -1245,11 +991,12 @@ int run(const Args& args) {
                 {"rate_hz", 1000},
                 {"frame_us", 1000},
                 {"source", "published, not measured here"}});
-  j["latency"] = lj;
-  j["poses"] = nlohmann::json::object();
-  for (const auto& [k, v] : poses_of) j["poses"][k] = {{"usable", v.size()}, {"dropped_outside_grid", rejected_of[k]}};
+  return lj;
+}
+
+nlohmann::json throughput_json(const Bench& b) {
   nlohmann::json tj = nlohmann::json::array();
-  for (const auto& t : throughput)
+  for (const auto& t : b.throughput)
     tj.push_back({{"variant", t.key},
                   {"modes", t.modes},
                   {"batch", t.batch},
@@ -1261,19 +1008,26 @@ int run(const Args& args) {
                   {"note", t.note},
                   {"other_cores", t.other_cores},
                   {"attempts", t.attempts}});
-  j["throughput"] = tj;
+  return tj;
+}
+
+nlohmann::json maps_json(const Bench& b) {
   nlohmann::json mj = nlohmann::json::array();
-  for (const auto& m : maps)
+  for (const auto& m : b.maps)
     mj.push_back({{"interpolation", m.interpolation},
                   {"fft_dims", m.dims},
                   {"cold_s", m.cold_s},
                   {"warm_s", m.warm_s},
                   {"warm_median_s", m.warm_median_s},
                   {"rotations_per_s", m.rotations_per_s},
-                  {"translations_per_s", double(total_modes) * m.rotations_per_s},
+                  {"translations_per_s", double(b.total_modes()) * m.rotations_per_s},
                   {"other_cores", m.other_cores},
                   {"attempts", m.attempts}});
-  j["maps"] = mj;
+  return mj;
+}
+
+nlohmann::json limits_json(const Bench& b) {
+  const DeviceLimits& limits = b.limits;
   nlohmann::json limj;
   for (const auto& r : limits.bandwidth)
     limj["bandwidth"].push_back({{"kernel", r.name}, {"best_gbs", r.best}, {"runs_gbs", r.runs}, {"detail", r.detail}});
@@ -1281,16 +1035,20 @@ int run(const Args& args) {
     limj["compute"].push_back(
         {{"kernel", r.name}, {"best_gflops", r.best}, {"runs_gflops", r.runs}, {"detail", r.detail}});
   limj["buffer_mib"] = limits.buffer_mib;
-  limj["other_cores"] = limits_others;
-  limj["attempts"] = limits_attempts;
+  limj["other_cores"] = b.limits_others;
+  limj["attempts"] = b.limits_attempts;
   limj["cached_read_gbs"] = limits.cached_gbs;
   limj["cached_buffer_mib"] = limits.cached_mib;
-  limj["read_gbs"] = bw;
+  limj["read_gbs"] = limits.read_gbs;
   limj["best_gbs"] = limits.bandwidth_gbs;
-  limj["peak_gflops"] = peak;
-  j["device_limits"] = limj;
+  limj["peak_gflops"] = limits.peak_gflops;
+  return limj;
+}
+
+nlohmann::json roofline_json(const Bench& b) {
+  const double bw = b.limits.read_gbs, peak = b.limits.peak_gflops;
   nlohmann::json rj = nlohmann::json::array();
-  for (const auto& r : roof)
+  for (const auto& r : b.roof)
     rj.push_back({{"variant", r.key},
                   {"modes", r.modes},
                   {"bytes_per_mode", r.cost.bytes},
@@ -1303,7 +1061,7 @@ int run(const Args& args) {
                   {"single_gbs", r.single_gbs},
                   {"single_gflops", r.single_gflops},
                   {"single_fraction_bw", r.single_gbs / bw},
-                  {"single_fraction_cached_bw", r.single_gbs / limits.cached_gbs},
+                  {"single_fraction_cached_bw", r.single_gbs / b.limits.cached_gbs},
                   {"single_fraction_peak", r.single_gflops / peak},
                   {"batch", r.batch},
                   {"batch_poses_per_s", r.batch_pps},
@@ -1311,20 +1069,81 @@ int run(const Args& args) {
                   {"batch_gflops", r.batch_gflops},
                   {"batch_fraction_bw", r.batch_gbs / bw},
                   {"batch_fraction_peak", r.batch_gflops / peak}});
-  j["roofline"] = rj;
-  j["time_split"] = split;
-  j["targets"] = targets;
-  j["sink"] = sink;  // keeps the results alive
-  {
-    std::ofstream f(dir / "queries.json");
-    f << j.dump(2) << "\n";
-    if (!f) throw snapfit::Error((dir / "queries.json").string() + ": cannot write");
-  }
+  return rj;
+}
 
-  // ---- charts
+// queries.json's header: the run, the machine, the device, the scene and the method.
+nlohmann::json run_json(const Bench& b, const RunRecord& run) {
+  const auto& args = b.args;
+  const auto& dims = b.spectra.dims;
+  nlohmann::json j;
+  j["benchmark"] = "bench_queries";
+  j["command_line"] = args.command_line;
+  j["date"] = run.date;
+  j["quick"] = args.quick;
+  j["total_seconds"] = run.total_s;
+  j["loadavg_start"] = run.load_start;
+  j["loadavg_end"] = run.load_end;
+  j["other_cores_run"] = run.others_run;
+  j["quiet_guard"] = {{"threshold_cores", b.guard.threshold},
+                      {"max_retries", b.guard.max_retries},
+                      {"retries", b.guard.retries},
+                      {"waited_s", b.guard.waited_s}};
+  j["other_cores_latency_max"] = run.others_latency_max;
+  j["load_note"] =
+      "/proc/loadavg; the benchmark itself keeps the device's worker threads busy, so the 1-minute load "
+      "rises toward the number of cores during the run: judge other activity by loadavg_start and by the "
+      "running/total process counts; other_cores = (machine busy CPU time - this process's CPU time) / wall "
+      "time, from /proc/stat and /proc/self/stat";
+  j["nproc"] = std::thread::hardware_concurrency();
+  j["device"] = snapfit::bench::device_record(b.ctx.device.info);
+  j["scene"] = {{"file", args.scene},
+                {"name", b.scene.name},
+                {"fft_dims", {dims[0], dims[1], dims[2]}},
+                {"max_modes", b.total_modes()},
+                {"spacing", b.spectra.spacing},
+                {"units", b.scene.units},
+                {"length", {b.spectra.length.x(), b.spectra.length.y(), b.spectra.length.z()}},
+                {"fields_from_cache", run.fields_from_cache},
+                {"pair_seconds", run.pair_s}};
+  j["method"] = {
+      {"latency", "wall clock (steady_clock) around QueryEngine::query(pose); " + std::to_string(b.plan.warmup) +
+                      " warm-up queries then " + std::to_string(b.plan.repeats) +
+                      " timed per point; poses along the scene trajectory with +-0.5 spacing and up to 0.5 deg "
+                      "random perturbation (translation only: R = I); percentiles nearest-rank"},
+      {"throughput", "query_batch wall clock per batch; at least 3 batches and " +
+                         std::string(args.quick ? "0.2" : "1") + " s per point; median and best batch"},
+      {"maps",
+       "translational_energy_map(all modes) wall clock, includes program load, FFT plan bake, "
+       "uploads, inverse FFT, read-back and host re-ordering"},
+      {"roofline",
+       "bytes = global loads requested per mode (no cache reuse), flops = adds/muls (fma = 2) "
+       "per mode, from kernels/pose_query.cl; see perf/bench_queries.cpp cost_model"}};
+  return j;
+}
+
+nlohmann::json report_json(const Bench& b, const RunRecord& run) {
+  nlohmann::json j = run_json(b, run);
+  j["latency"] = latency_json(b);
+  j["poses"] = nlohmann::json::object();
+  for (const auto& [k, v] : b.poses_of)
+    j["poses"][k] = {{"usable", v.size()}, {"dropped_outside_grid", b.rejected_of.at(k)}};
+  j["throughput"] = throughput_json(b);
+  j["maps"] = maps_json(b);
+  j["device_limits"] = limits_json(b);
+  j["roofline"] = roofline_json(b);
+  j["time_split"] = b.split;
+  j["targets"] = b.targets;
+  j["sink"] = b.sink;  // keeps the results alive
+  return j;
+}
+
+// ---------------------------------------------------------------- charts
+
+// Latency against m' per variant (p50, p99), then the p99 of all variants.
+std::vector<snapfit::Chart> latency_charts(const Bench& b, const std::string& dev_short) {
   std::vector<snapfit::Chart> charts;
-  const std::string dev_short = info.name.substr(0, 40);
-  for (const auto& spec : specs) {
+  for (const auto& spec : b.specs) {
     snapfit::Chart c;
     c.title = "query latency vs m': " + spec.label + " (" + dev_short + ")";
     c.x_label = "retained modes m'";
@@ -1333,7 +1152,7 @@ int run(const Args& args) {
     snapfit::Series p50, p99;
     p50.label = "p50";
     p99.label = "p99";
-    for (const auto& r : latency)
+    for (const auto& r : b.latency)
       if (r.key == spec.key) {
         p50.x.push_back(double(r.modes_used));
         p50.y.push_back(r.p50);
@@ -1345,70 +1164,159 @@ int run(const Args& args) {
     if (spec.variant.translation_only) c.markers.push_back({4096.0, 1000.0, "seed 000 K20c 1 kHz (published)"});
     charts.push_back(c);
   }
-  {
-    snapfit::Chart c;
-    c.title = "query latency p99 vs m', all variants (" + dev_short + ")";
-    c.x_label = "retained modes m'";
-    c.y_label = "p99 latency per query (us)";
-    c.log_x = c.log_y = true;
-    for (const auto& spec : specs) {
+  snapfit::Chart c;
+  c.title = "query latency p99 vs m', all variants (" + dev_short + ")";
+  c.x_label = "retained modes m'";
+  c.y_label = "p99 latency per query (us)";
+  c.log_x = c.log_y = true;
+  for (const auto& spec : b.specs) {
+    snapfit::Series s;
+    s.label = spec.label;
+    for (const auto& r : b.latency)
+      if (r.key == spec.key) s.x.push_back(double(r.modes_used)), s.y.push_back(r.p99);
+    c.series.push_back(s);
+  }
+  c.hlines.push_back({1000.0, "1 ms"});
+  c.markers.push_back({4096.0, 1000.0, "seed 000 K20c (published)"});
+  charts.push_back(c);
+  return charts;
+}
+
+snapfit::Chart throughput_chart(const Bench& b, const std::string& dev_short) {
+  snapfit::Chart c;
+  c.title = "batched throughput vs batch size (" + dev_short + ")";
+  c.x_label = "poses per batch";
+  c.y_label = "poses per second (median batch)";
+  c.log_x = c.log_y = true;
+  for (const auto& spec : b.specs)
+    for (std::size_t m : b.plan.batch_modes) {
       snapfit::Series s;
-      s.label = spec.label;
-      for (const auto& r : latency)
-        if (r.key == spec.key) s.x.push_back(double(r.modes_used)), s.y.push_back(r.p99);
-      c.series.push_back(s);
+      s.label = spec.label + ", m' " + std::to_string(m);
+      for (const auto& t : b.throughput)
+        if (t.key == spec.key && t.modes == std::min(m, b.total_modes()) && !t.skipped)
+          s.x.push_back(double(t.batch)), s.y.push_back(t.median_poses_per_s);
+      if (!s.x.empty()) c.series.push_back(s);
     }
-    c.hlines.push_back({1000.0, "1 ms"});
-    c.markers.push_back({4096.0, 1000.0, "seed 000 K20c (published)"});
-    charts.push_back(c);
+  c.hlines.push_back({1000.0, "1 kHz"});
+  return c;
+}
+
+snapfit::Chart roofline_chart(const Bench& b) {
+  const double bw = b.limits.read_gbs, peak = b.limits.peak_gflops;
+  snapfit::Chart c;
+  c.title = "roofline at m' = 32768 (measured limits; requested bytes)";
+  c.x_label = "arithmetic intensity (flop / byte requested)";
+  c.y_label = "GFLOP/s";
+  c.log_x = c.log_y = true;
+  snapfit::Series roofline;
+  roofline.label = "roof: min(" + fixed(peak, 0) + " GFLOP/s, " + fixed(bw, 1) + " GB/s x I)";
+  roofline.style = snapfit::Series::Style::line;
+  for (double x = 0.05; x <= 200.0; x *= 1.25) roofline.x.push_back(x), roofline.y.push_back(std::min(peak, bw * x));
+  c.series.push_back(roofline);
+  snapfit::Series single, batched;
+  single.label = "single query (p50)";
+  single.style = snapfit::Series::Style::points;
+  batched.label = "largest batch";
+  batched.style = snapfit::Series::Style::points;
+  for (const auto& r : b.roof) {
+    single.x.push_back(r.cost.flops / r.cost.bytes);
+    single.y.push_back(r.single_gflops);
+    if (r.batch_pps > 0) batched.x.push_back(r.cost.flops / r.cost.bytes), batched.y.push_back(r.batch_gflops);
+    c.markers.push_back({r.cost.flops / r.cost.bytes, std::max(r.single_gflops, r.batch_gflops), r.key});
   }
-  if (!args.latency_only) {
-    snapfit::Chart c;
-    c.title = "batched throughput vs batch size (" + dev_short + ")";
-    c.x_label = "poses per batch";
-    c.y_label = "poses per second (median batch)";
-    c.log_x = c.log_y = true;
-    for (const auto& spec : specs)
-      for (std::size_t m : batch_modes) {
-        snapfit::Series s;
-        s.label = spec.label + ", m' " + std::to_string(m);
-        for (const auto& t : throughput)
-          if (t.key == spec.key && t.modes == std::min(m, total_modes) && !t.skipped)
-            s.x.push_back(double(t.batch)), s.y.push_back(t.median_poses_per_s);
-        if (!s.x.empty()) c.series.push_back(s);
-      }
-    c.hlines.push_back({1000.0, "1 kHz"});
-    charts.push_back(c);
+  c.series.push_back(single);
+  c.series.push_back(batched);
+  return c;
+}
+
+std::vector<snapfit::Chart> charts(const Bench& b) {
+  const std::string dev_short = b.ctx.device.info.name.substr(0, 40);
+  std::vector<snapfit::Chart> out = latency_charts(b, dev_short);
+  if (!b.args.latency_only) {
+    out.push_back(throughput_chart(b, dev_short));
+    out.push_back(roofline_chart(b));
   }
-  if (!args.latency_only) {
-    snapfit::Chart c;
-    c.title = "roofline at m' = 32768 (measured limits; requested bytes)";
-    c.x_label = "arithmetic intensity (flop / byte requested)";
-    c.y_label = "GFLOP/s";
-    c.log_x = c.log_y = true;
-    snapfit::Series roofline;
-    roofline.label = "roof: min(" + fixed(peak, 0) + " GFLOP/s, " + fixed(bw, 1) + " GB/s x I)";
-    roofline.style = snapfit::Series::Style::line;
-    for (double x = 0.05; x <= 200.0; x *= 1.25) roofline.x.push_back(x), roofline.y.push_back(std::min(peak, bw * x));
-    c.series.push_back(roofline);
-    snapfit::Series single, batched;
-    single.label = "single query (p50)";
-    single.style = snapfit::Series::Style::points;
-    batched.label = "largest batch";
-    batched.style = snapfit::Series::Style::points;
-    for (const auto& r : roof) {
-      single.x.push_back(r.cost.flops / r.cost.bytes);
-      single.y.push_back(r.single_gflops);
-      if (r.batch_pps > 0) batched.x.push_back(r.cost.flops / r.cost.bytes), batched.y.push_back(r.batch_gflops);
-      c.markers.push_back({r.cost.flops / r.cost.bytes, std::max(r.single_gflops, r.batch_gflops), r.key});
-    }
-    c.series.push_back(single);
-    c.series.push_back(batched);
-    charts.push_back(c);
+  return out;
+}
+
+// ---------------------------------------------------------------- the run
+
+snapfit::ComputeContext open_device(const std::string& spec) {
+  snapfit::ComputeContext ctx = snapfit::make_compute_context(snapfit::select_device(snapfit::device_spec_from(spec)));
+  const auto& info = ctx.device.info;
+  std::cout << "  device: " << snapfit::describe_device(info) << "\n  driver " << info.driver_version << ", "
+            << info.compute_units << " compute units\n";
+  return ctx;
+}
+
+// The scene's pair (fields from the cache or computed, with progress bars), timed.
+snapfit::AssemblyPair build_pair(const Args& args, const snapfit::Scene& scene, const snapfit::ComputeContext& ctx,
+                                 const snapfit::FftLibrary& fft, double& seconds) {
+  snapfit::PairOptions popt;
+  popt.descriptors.progress = snapfit::pass_progress_bars(std::cerr);
+  const auto t0 = Clock::now();
+  snapfit::AssemblyPair pair = snapfit::build_assembly_pair(scene, ctx, fft, popt);
+  seconds = seconds_since(t0);
+  const auto& dims = pair.spectra.dims;
+  std::cout << "  pair ready in " << fixed(seconds, 1) << " s (fields "
+            << (pair.fields1.from_cache ? "cached" : "computed") << " / "
+            << (pair.fields2.from_cache ? "cached" : "computed") << "), FFT grid " << dims[0] << "x" << dims[1] << "x"
+            << dims[2] << " = " << dims[0] * dims[1] * dims[2] << " modes, spacing " << pair.spectra.spacing << " "
+            << scene.units << "\n";
+  if (!snapfit::query_variant_for(scene).torque)
+    throw snapfit::Error(args.scene + ": the scene asks for no torque; the benchmark needs a 6-DOF scene with torque");
+  return pair;
+}
+
+void write_outputs(const Bench& b, const RunRecord& run) {
+  const auto& info = b.ctx.device.info;
+  const std::filesystem::path dir(b.args.out);
+  std::filesystem::create_directories(dir);
+  const std::string device_desc = info.name + " (" + info.platform_name + ", driver " + info.driver_version + ")";
+  write_csvs(dir, b.latency, b.throughput, device_desc);
+  {
+    std::ofstream f(dir / "queries.json");
+    f << report_json(b, run).dump(2) << "\n";
+    if (!f) throw snapfit::Error((dir / "queries.json").string() + ": cannot write");
   }
   const std::string page =
-      snapfit::bench::write_charts(dir, "bench_queries: latency and throughput", args.command_line, charts);
+      snapfit::bench::write_charts(dir, "bench_queries: latency and throughput", b.args.command_line, charts(b));
   std::cout << "wrote " << (dir / "queries.csv").string() << ", throughput.csv, queries.json and " << page << "\n";
+}
+
+int run(const Args& args) {
+  RunRecord run;
+  run.load_start = read_loadavg();
+  const CpuSample cpu_start = cpu_sample();
+  run.date = now_iso();
+  const auto t_start = Clock::now();
+  std::cout << "bench_queries: " << args.command_line << "\n  date " << run.date
+            << ", load average at start: " << run.load_start << "\n";
+  const snapfit::FftLibrary fft;
+  const snapfit::ComputeContext ctx = open_device(args.device);
+  const snapfit::Scene scene = snapfit::load_scene(args.scene);
+  std::cout << "  scene " << args.scene << " (" << scene.name << ")\n";
+  const snapfit::AssemblyPair pair = build_pair(args, scene, ctx, fft, run.pair_s);
+  run.fields_from_cache = pair.fields1.from_cache && pair.fields2.from_cache;
+  Bench b(args, fft, ctx, scene, pair.spectra);
+
+  measure_latencies(b);
+  measure_throughput(b);
+  b.engines.clear();
+  measure_maps(b);
+  measure_roofline(b);
+  time_split(b);
+  check_targets(b);
+
+  run.load_end = read_loadavg();
+  run.others_run = other_cores(cpu_start, cpu_sample());
+  for (const auto& r : b.latency) run.others_latency_max = std::max(run.others_latency_max, r.other_cores);
+  run.total_s = seconds_since(t_start);
+  std::cout << "\nload average at end: " << run.load_end << " (start: " << run.load_start << "), total "
+            << fixed(run.total_s, 0) << " s; other processes kept " << fixed(run.others_run, 2)
+            << " cores busy on average (at most " << fixed(run.others_latency_max, 2) << " during a latency point); "
+            << b.guard.retries << " points re-measured after waiting " << fixed(b.guard.waited_s, 0) << " s\n";
+  write_outputs(b, run);
   return 0;
 }
 

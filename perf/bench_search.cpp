@@ -3,7 +3,7 @@
 // once, the inverse FFT plan baked once and two maps in flight, against the one-shot
 // path (engine/maps/full_map.h translational_energy_map: upload, bake, map, every call).
 //
-//   bench_search [--quick] [--device SPEC] [--out DIR] [--rotations N] [--scene FILE]
+//   bench_search --help lists its options.
 //
 // Sizes 64^3 and 128^3, spectra of two synthetic parts (perf/bench_spectra.h: a ball and a
 // box, E >= 0 wherever they overlap, so their maps hold no minima with E < 0), or with
@@ -23,8 +23,8 @@
 // with collect and map_minima, as scan_rotations ran before the device found minima);
 // the interval between consecutive finished maps is one rotation's cost; rotations/s =
 // 1 / median interval, and the whole scan's count over its wall time. The device FFTs
-// also map with their minima on the device in batches (engine/maps/full_map.h; batch "x8" or
-// what fits the device): there one rotation's cost is a batch's interval over its
+// also map with their minima on the device in batches (engine/maps/full_map.h; batch "x8"
+// or what fits the device): there one rotation's cost is a batch's interval over its
 // rotations, and the stages are not timed (they are the batch-1 row's). One-shot: 3 calls
 // (--quick 1), median.
 // Output in DIR (default results/bench_search): search.csv, search.json, charts.html.
@@ -36,12 +36,13 @@
 
 #include "core/quantile.h"
 #include "core/so3_grid.h"
-#include "engine/runtime/device.h"
 #include "engine/maps/full_map.h"
 #include "engine/maps/map_fft_choice.h"
 #include "engine/maps/map_minima.h"
 #include "engine/maps/rotation_search.h"
+#include "engine/runtime/device.h"
 #include "perf/bench_common.h"
+#include "perf/bench_options.h"
 #include "perf/bench_spectra.h"
 #include "pipeline/assembly_pair.h"
 
@@ -49,11 +50,6 @@ namespace {
 
 using namespace snapfit;
 using Clock = std::chrono::steady_clock;
-
-void usage(std::ostream& out) {
-  out << "bench_search [--quick] [--device SPEC] [--out DIR] [--rotations N] [--scene FILE]\n"
-         "  maps per second of snapfit search's loop at 64^3 and 128^3, or on a scene's pair (see the file's header)\n";
-}
 
 struct Row {
   std::string workload;                    // "synthetic" or the scene file
@@ -87,6 +83,198 @@ void scan_on_host(TranslationMapper& mapper, const std::vector<Eigen::Quaternion
   }
 }
 
+// The median over 3 maps of each stage (minima found on the device, or on the host from
+// the whole map read back).
+MapStageSeconds stage_medians(TranslationMapper& mapper, const So3Grid& grid, const ScanOptions& options,
+                              bool on_device) {
+  std::vector<MapStageSeconds> stages;
+  std::vector<float> energy;
+  MapMinimaResult map;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Eigen::Matrix3d R = grid.rotations[k].toRotationMatrix();
+    if (on_device) {
+      stages.push_back(mapper.time_minima_stages(R, options.minima_per_rotation, options.separation, map));
+    } else {
+      stages.push_back(mapper.time_stages(R, energy));
+      const auto t0 = Clock::now();
+      map_minima(mapper.grid(), energy, options.minima_per_rotation, options.separation, map);
+      stages.back().minima = bench::seconds_since(t0);
+    }
+  }
+  auto stage = [&](double MapStageSeconds::*field) {
+    std::vector<double> v;
+    for (const MapStageSeconds& s : stages) v.push_back(s.*field);
+    return median(v);
+  };
+  MapStageSeconds medians;
+  medians.product = stage(&MapStageSeconds::product);
+  medians.fft = stage(&MapStageSeconds::fft);
+  medians.reduce = stage(&MapStageSeconds::reduce);
+  medians.read = stage(&MapStageSeconds::read);
+  medians.host = stage(&MapStageSeconds::host);
+  medians.minima = stage(&MapStageSeconds::minima);
+  return medians;
+}
+
+// A batch's maps finish together: each batch's intervals as one per rotation, their mean.
+std::vector<double> per_rotation(const std::vector<double>& intervals, std::size_t batch) {
+  std::vector<double> out;
+  for (std::size_t i = 0; i < intervals.size(); i += batch) {
+    const std::size_t end = std::min(intervals.size(), i + batch);
+    double sum = 0;
+    for (std::size_t j = i; j < end; ++j) sum += intervals[j];
+    out.push_back(sum / double(end - i));
+  }
+  return out;
+}
+
+// One row: the mapper's set-up, the median of each stage over 3 maps (one rotation at a
+// time only), then a scan of the rotations (two batches in flight), and for clFFT on the
+// device one at a time the one-shot map.
+Row measure_row(const FftLibrary& fft, const ComputeContext& ctx, const PairSpectra& spectra,
+                Interpolation interpolation, MapFft kind, bool on_device, std::size_t batch, long rotations, bool quick,
+                std::size_t synthetic) {
+  Row row;
+  row.batch = batch;
+  row.n = spectra.dims[0];
+  row.interpolation = interpolation == Interpolation::tricubic ? "tricubic" : "trilinear";
+  row.fft = map_fft_name(kind);
+  row.minima = on_device ? "device" : "host";
+  row.rotations = rotations > 0 ? std::size_t(rotations)
+                  : quick       ? (synthetic == 64 ? 24 : 6)
+                                : (synthetic == 64 ? 200 : 40);
+  row.load_before = bench::load1();
+  auto t0 = Clock::now();
+  TranslationMapper mapper(fft, ctx, spectra, interpolation, 0, kind, default_program_cache(), batch);
+  row.setup_s = bench::seconds_since(t0);
+  const So3Grid grid = so3_grid_for_count(row.rotations);
+  std::vector<std::size_t> warm{1, 2}, all(grid.rotations.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  const ScanOptions options{4, 1.0};
+  auto scan = [&](const std::vector<std::size_t>& indices, const std::function<void()>& done) {
+    if (on_device || !map_fft_on_device(kind))
+      scan_rotations(mapper, grid.rotations, indices, options, done);
+    else
+      scan_on_host(mapper, grid.rotations, indices, options, done);
+  };
+  scan(warm, [] {});
+  const double nan = std::nan("");
+  row.stages =
+      batch > 1 ? MapStageSeconds{nan, nan, nan, nan, nan, nan} : stage_medians(mapper, grid, options, on_device);
+  std::vector<double> intervals;
+  t0 = Clock::now();
+  auto last = t0;
+  scan(all, [&] {
+    const auto now = Clock::now();
+    intervals.push_back(std::chrono::duration<double>(now - last).count());
+    last = now;
+  });
+  const double scan_s = bench::seconds_since(t0);
+  row.rotations = all.size();
+  row.scan_rate = double(all.size()) / scan_s;
+  if (batch > 1) intervals = per_rotation(intervals, batch);
+  row.median_s = median(intervals);
+  row.p90_s = quantile(intervals, 0.9);
+  row.counts = mapper.minima_counts();
+  if (kind == MapFft::clfft && on_device && batch == 1) {
+    std::vector<double> one_shot;
+    for (int k = 0; k < (quick ? 1 : 3); ++k) {
+      t0 = Clock::now();
+      translational_energy_map(fft, ctx, spectra, grid.rotations[std::size_t(k)].toRotationMatrix(), interpolation);
+      one_shot.push_back(bench::seconds_since(t0));
+    }
+    row.one_shot_s = median(one_shot);
+  }
+  row.load_after = bench::load1();
+  return row;
+}
+
+void print_row(const std::string& size, const Row& row, bool on_device) {
+  auto ms = [](double s) { return bench::fixed(1e3 * s, 1); };
+  std::cout << size << " " << row.interpolation << " " << row.fft
+            << (row.batch > 1 ? " x" + std::to_string(row.batch) : std::string()) << ", minima on the " << row.minima
+            << ": ";
+  if (row.batch > 1)
+    std::cout << "stages not timed (batched; longest list " << row.counts.longest << ", " << row.counts.fallbacks
+              << " whole maps read)";
+  else if (on_device)
+    std::cout << "stages product " << ms(row.stages.product) << " ms, inverse FFT " << ms(row.stages.fft)
+              << " ms, minima kernel " << ms(row.stages.reduce) << " ms, read-back of the list " << ms(row.stages.read)
+              << " ms, thinning " << ms(row.stages.minima) << " ms (longest list " << row.counts.longest << ", "
+              << row.counts.long_lists << " read twice, " << row.counts.fallbacks << " whole maps read)";
+  else
+    std::cout << "stages product " << ms(row.stages.product) << " ms, inverse FFT " << ms(row.stages.fft)
+              << " ms, read-back " << ms(row.stages.read) << " ms, host map " << ms(row.stages.host) << " ms, minima "
+              << ms(row.stages.minima) << " ms";
+  std::cout << "; " << row.rotations << " rotations, set-up " << bench::fixed(row.setup_s, 2) << " s, median "
+            << ms(row.median_s) << " ms per rotation (" << bench::fixed(1 / row.median_s, 1) << " rotations/s; p90 "
+            << ms(row.p90_s) << " ms), whole scan " << bench::fixed(row.scan_rate, 1) << " rotations/s";
+  if (row.one_shot_s > 0)
+    std::cout << "; one-shot translational_energy_map " << bench::fixed(1e3 * row.one_shot_s, 0) << " ms";
+  std::cout << "; load " << bench::fixed(row.load_before, 2) << " -> " << bench::fixed(row.load_after, 2) << "\n";
+}
+
+// Rotations per second against the grid size, per interpolation, FFT and where the
+// minima are found, and clFFT's one-shot map.
+Chart rate_chart(const std::vector<Row>& rows) {
+  Chart chart;
+  chart.title = "snapfit search: rotations per second (median interval)";
+  chart.x_label = "FFT grid points per axis";
+  chart.y_label = "rotations/s";
+  chart.log_y = true;
+  for (const char* name : {"trilinear", "tricubic"}) {
+    for (const MapFft kind : map_ffts_built())
+      for (const char* where : {"device", "host", "device, batched"}) {
+        const bool batched = std::string(where) == "device, batched";
+        Series s;
+        s.label = std::string(name) + ", " + map_fft_name(kind) + ", minima on the " + where + ", scan (pipelined)";
+        for (const Row& r : rows)
+          if (r.interpolation == name && r.fft == map_fft_name(kind) && (r.batch > 1) == batched &&
+              r.minima == (batched ? "device" : where)) {
+            s.x.push_back(double(r.n));
+            s.y.push_back(1 / r.median_s);
+          }
+        if (!s.x.empty()) chart.series.push_back(s);
+      }
+    Series one;
+    one.label = std::string(name) + ", clfft, one-shot map";
+    for (const Row& r : rows)
+      if (r.interpolation == name && r.one_shot_s > 0) {
+        one.x.push_back(double(r.n));
+        one.y.push_back(1 / r.one_shot_s);
+      }
+    if (!one.x.empty()) chart.series.push_back(one);
+  }
+  return chart;
+}
+
+nlohmann::json row_json(const Row& r) {
+  return nlohmann::json{{"workload", r.workload},
+                        {"n", r.n},
+                        {"interpolation", r.interpolation},
+                        {"fft", r.fft},
+                        {"batch", r.batch},
+                        {"minima_on", r.minima},
+                        {"product_s", r.stages.product},
+                        {"inverse_fft_s", r.stages.fft},
+                        {"reduce_s", r.stages.reduce},
+                        {"read_s", r.stages.read},
+                        {"host_map_s", r.stages.host},
+                        {"minima_s", r.stages.minima},
+                        {"longest_list", r.counts.longest},
+                        {"long_lists", r.counts.long_lists},
+                        {"whole_maps_read", r.counts.fallbacks},
+                        {"rotations", r.rotations},
+                        {"setup_s", r.setup_s},
+                        {"median_s", r.median_s},
+                        {"p90_s", r.p90_s},
+                        {"rotations_per_s_median", 1 / r.median_s},
+                        {"rotations_per_s_scan", r.scan_rate},
+                        {"one_shot_s", r.one_shot_s},
+                        {"load_before", r.load_before},
+                        {"load_after", r.load_after}};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -95,15 +283,16 @@ int main(int argc, char** argv) {
     std::string device, out = "results/bench_search";
     std::string scene_path;
     long rotations = 0;
-    bench::parse_options(argc, argv, quick, device, out, usage, [&](const std::string&, auto value, auto is) {
-      if (is("--scene")) {
-        scene_path = value("--scene");
-        return true;
-      }
-      if (!is("--rotations")) return false;
-      rotations = bench::integer_option("--rotations", value("--rotations"), 1, 1000000);
-      return true;
-    });
+    CLI::App app{
+        "Maps per second of snapfit search's loop at 64^3 and 128^3, or on a scene's pair (see the file's "
+        "header)",
+        "bench_search"};
+    bench::add_common_options(app, quick, device, out);
+    app.add_option("--rotations", rotations,
+                   "timed rotations per row (0: 200 at 64^3, 40 at 128^3 and on a scene; --quick 24 and 6)")
+        ->check(CLI::Range(1, 1000000));
+    app.add_option("--scene", scene_path, "a scene's pair instead of the synthetic sizes");
+    bench::parse(app, argc, argv);
     const FftLibrary fft;
     const ComputeContext ctx = make_compute_context(select_device(device_spec_from(device)));
     std::cout << "bench_search on " << ctx.device.info.name << (quick ? " (quick)" : "") << ", load "
@@ -137,117 +326,10 @@ int main(int argc, char** argv) {
             for (const bool on_device : {true, false}) {
               if (on_device && !map_fft_on_device(kind)) continue;  // FFTW's maps are on the host
               if (batch > 1 && !on_device) continue;                // batches: the search's way only
-              Row row;
-              row.batch = batch;
+              Row row =
+                  measure_row(fft, ctx, spectra, interpolation, kind, on_device, batch, rotations, quick, synthetic);
               row.workload = pair ? scene_path : "synthetic";
-              row.n = n;
-              row.interpolation = interpolation == Interpolation::tricubic ? "tricubic" : "trilinear";
-              row.fft = map_fft_name(kind);
-              row.minima = on_device ? "device" : "host";
-              row.rotations = rotations > 0 ? std::size_t(rotations)
-                              : quick       ? (synthetic == 64 ? 24 : 6)
-                                            : (synthetic == 64 ? 200 : 40);
-              row.load_before = bench::load1();
-              auto t0 = Clock::now();
-              TranslationMapper mapper(fft, ctx, spectra, interpolation, 0, kind, default_program_cache(), batch);
-              row.setup_s = bench::seconds_since(t0);
-              const So3Grid grid = so3_grid_for_count(row.rotations);
-              std::vector<std::size_t> warm{1, 2}, all(grid.rotations.size());
-              for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-              const ScanOptions options{4, 1.0};
-              auto scan = [&](const std::vector<std::size_t>& indices, const std::function<void()>& done) {
-                if (on_device || !map_fft_on_device(kind))
-                  scan_rotations(mapper, grid.rotations, indices, options, done);
-                else
-                  scan_on_host(mapper, grid.rotations, indices, options, done);
-              };
-              scan(warm, [] {});
-              std::vector<MapStageSeconds> stages;
-              std::vector<float> energy;
-              MapMinimaResult map;
-              for (std::size_t k = 0; k < (batch > 1 ? 0 : 3); ++k) {
-                const Eigen::Matrix3d R = grid.rotations[k].toRotationMatrix();
-                if (on_device) {
-                  stages.push_back(mapper.time_minima_stages(R, options.minima_per_rotation, options.separation, map));
-                } else {
-                  stages.push_back(mapper.time_stages(R, energy));
-                  t0 = Clock::now();
-                  map_minima(mapper.grid(), energy, options.minima_per_rotation, options.separation, map);
-                  stages.back().minima = bench::seconds_since(t0);
-                }
-              }
-              auto stage = [&](double MapStageSeconds::*field) {
-                std::vector<double> v;
-                for (const MapStageSeconds& s : stages) v.push_back(s.*field);
-                return v.empty() ? std::nan("") : median(v);
-              };
-              row.stages.product = stage(&MapStageSeconds::product);
-              row.stages.fft = stage(&MapStageSeconds::fft);
-              row.stages.reduce = stage(&MapStageSeconds::reduce);
-              row.stages.read = stage(&MapStageSeconds::read);
-              row.stages.host = stage(&MapStageSeconds::host);
-              row.stages.minima = stage(&MapStageSeconds::minima);
-              std::vector<double> intervals;
-              t0 = Clock::now();
-              auto last = t0;
-              scan(all, [&] {
-                const auto now = Clock::now();
-                intervals.push_back(std::chrono::duration<double>(now - last).count());
-                last = now;
-              });
-              const double scan_s = bench::seconds_since(t0);
-              if (batch > 1) {
-                // A batch's maps finish together: its interval over its rotations.
-                std::vector<double> per_rotation;
-                for (std::size_t i = 0; i < intervals.size(); i += batch) {
-                  const std::size_t end = std::min(intervals.size(), i + batch);
-                  double sum = 0;
-                  for (std::size_t j = i; j < end; ++j) sum += intervals[j];
-                  per_rotation.push_back(sum / double(end - i));
-                }
-                intervals = per_rotation;
-              }
-              row.rotations = all.size();
-              row.scan_rate = double(all.size()) / scan_s;
-              row.median_s = median(intervals);
-              row.p90_s = quantile(intervals, 0.9);
-              row.counts = mapper.minima_counts();
-              if (kind == MapFft::clfft && on_device && batch == 1) {
-                std::vector<double> one_shot;
-                for (int k = 0; k < (quick ? 1 : 3); ++k) {
-                  t0 = Clock::now();
-                  translational_energy_map(fft, ctx, spectra, grid.rotations[std::size_t(k)].toRotationMatrix(),
-                                           interpolation);
-                  one_shot.push_back(bench::seconds_since(t0));
-                }
-                row.one_shot_s = median(one_shot);
-              }
-              row.load_after = bench::load1();
-              auto ms = [](double s) { return bench::fixed(1e3 * s, 1); };
-              std::cout << size << " " << row.interpolation << " " << row.fft
-                        << (batch > 1 ? " x" + std::to_string(batch) : std::string()) << ", minima on the "
-                        << row.minima << ": ";
-              if (batch > 1)
-                std::cout << "stages not timed (batched; longest list " << row.counts.longest << ", "
-                          << row.counts.fallbacks << " whole maps read)";
-              else if (on_device)
-                std::cout << "stages product " << ms(row.stages.product) << " ms, inverse FFT " << ms(row.stages.fft)
-                          << " ms, minima kernel " << ms(row.stages.reduce) << " ms, read-back of the list "
-                          << ms(row.stages.read) << " ms, thinning " << ms(row.stages.minima) << " ms (longest list "
-                          << row.counts.longest << ", " << row.counts.long_lists << " read twice, "
-                          << row.counts.fallbacks << " whole maps read)";
-              else
-                std::cout << "stages product " << ms(row.stages.product) << " ms, inverse FFT " << ms(row.stages.fft)
-                          << " ms, read-back " << ms(row.stages.read) << " ms, host map " << ms(row.stages.host)
-                          << " ms, minima " << ms(row.stages.minima) << " ms";
-              std::cout << "; " << row.rotations << " rotations, set-up " << bench::fixed(row.setup_s, 2)
-                        << " s, median " << ms(row.median_s) << " ms per rotation ("
-                        << bench::fixed(1 / row.median_s, 1) << " rotations/s; p90 " << ms(row.p90_s)
-                        << " ms), whole scan " << bench::fixed(row.scan_rate, 1) << " rotations/s";
-              if (row.one_shot_s > 0)
-                std::cout << "; one-shot translational_energy_map " << bench::fixed(1e3 * row.one_shot_s, 0) << " ms";
-              std::cout << "; load " << bench::fixed(row.load_before, 2) << " -> " << bench::fixed(row.load_after, 2)
-                        << "\n";
+              print_row(size, row, on_device);
               rows.push_back(row);
             }
       }
@@ -262,64 +344,14 @@ int main(int argc, char** argv) {
                            {"device", ctx.device.info.name},
                            {"date", bench::now_iso()},
                            {"rows", nlohmann::json::array()}};
-    Chart chart;
-    chart.title = "snapfit search: rotations per second (median interval)";
-    chart.x_label = "FFT grid points per axis";
-    chart.y_label = "rotations/s";
-    chart.log_y = true;
-    for (const char* name : {"trilinear", "tricubic"}) {
-      for (const MapFft kind : map_ffts_built())
-        for (const char* where : {"device", "host", "device, batched"}) {
-          const bool batched = std::string(where) == "device, batched";
-          Series s;
-          s.label = std::string(name) + ", " + map_fft_name(kind) + ", minima on the " + where + ", scan (pipelined)";
-          for (const Row& r : rows)
-            if (r.interpolation == name && r.fft == map_fft_name(kind) && (r.batch > 1) == batched &&
-                r.minima == (batched ? "device" : where)) {
-              s.x.push_back(double(r.n));
-              s.y.push_back(1 / r.median_s);
-            }
-          if (!s.x.empty()) chart.series.push_back(s);
-        }
-      Series one;
-      one.label = std::string(name) + ", clfft, one-shot map";
-      for (const Row& r : rows)
-        if (r.interpolation == name && r.one_shot_s > 0) {
-          one.x.push_back(double(r.n));
-          one.y.push_back(1 / r.one_shot_s);
-        }
-      if (!one.x.empty()) chart.series.push_back(one);
-    }
+    const Chart chart = rate_chart(rows);
     for (const Row& r : rows) {
       csv << r.workload << "," << r.n << "," << r.interpolation << "," << r.fft << "," << r.batch << "," << r.minima
           << "," << r.stages.product << "," << r.stages.fft << "," << r.stages.reduce << "," << r.stages.read << ","
           << r.stages.host << "," << r.stages.minima << "," << r.rotations << "," << r.setup_s << "," << r.median_s
           << "," << r.p90_s << "," << 1 / r.median_s << "," << r.scan_rate << "," << r.one_shot_s << ","
           << r.counts.longest << "," << r.counts.fallbacks << "," << r.load_before << "," << r.load_after << "\n";
-      json["rows"].push_back({{"workload", r.workload},
-                              {"n", r.n},
-                              {"interpolation", r.interpolation},
-                              {"fft", r.fft},
-                              {"batch", r.batch},
-                              {"minima_on", r.minima},
-                              {"product_s", r.stages.product},
-                              {"inverse_fft_s", r.stages.fft},
-                              {"reduce_s", r.stages.reduce},
-                              {"read_s", r.stages.read},
-                              {"host_map_s", r.stages.host},
-                              {"minima_s", r.stages.minima},
-                              {"longest_list", r.counts.longest},
-                              {"long_lists", r.counts.long_lists},
-                              {"whole_maps_read", r.counts.fallbacks},
-                              {"rotations", r.rotations},
-                              {"setup_s", r.setup_s},
-                              {"median_s", r.median_s},
-                              {"p90_s", r.p90_s},
-                              {"rotations_per_s_median", 1 / r.median_s},
-                              {"rotations_per_s_scan", r.scan_rate},
-                              {"one_shot_s", r.one_shot_s},
-                              {"load_before", r.load_before},
-                              {"load_after", r.load_after}});
+      json["rows"].push_back(row_json(r));
     }
     std::ofstream(std::filesystem::path(out) / "search.json") << json.dump(2) << "\n";
     std::cout << bench::write_charts(out, "bench_search", bench::command_line(argc, argv), {chart}) << "\n";

@@ -8,6 +8,7 @@
 #include "core/quantile.h"
 #include "io/atomic_write.h"
 #include "report/chart_spec.h"
+#include "report/loop_json.h"
 
 namespace snapfit {
 namespace {
@@ -55,7 +56,7 @@ std::string tuning_table(const TuningResult& t) {
 }
 
 Chart tuning_chart(const TuningResult& t, const std::string& device_name) {
-  Series p50{"p50", {}, {}, Series::Style::line_points}, p99{"p99", {}, {}, Series::Style::line_points},
+  Series p50{"p50", {}, {}, Series::Style::line_points, ""}, p99{"p99", {}, {}, Series::Style::line_points, ""},
       model{"cost model (p99 fit)", {}, {}, Series::Style::line, ""};
   for (const TimingPoint& p : t.points) {
     p50.x.push_back(p.modes), p50.y.push_back(p.p50_ms);
@@ -108,9 +109,6 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
   const LoopReport& loop = run.loop;
   write_text_file((out / "loop.csv").string(), loop_csv(loop));
 
-  nlohmann::json changes = nlohmann::json::array();
-  for (const ModeChange& c : loop.mode_changes)
-    changes.push_back({{"time_s", c.time_s}, {"frame", c.frame}, {"from", c.from}, {"to", c.to}, {"reason", c.reason}});
   // The engine's per-frame error estimate of the geometric wrench (include/snapfit/query.h).
   std::vector<double> force_error, torque_error;
   for (const FrameRecord& f : loop.log)
@@ -143,68 +141,51 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
                {"deepest", deepest}};
   }
   const nlohmann::json fit_stiffness = run.fit_stiffness ? stiffness_json(*run.fit_stiffness) : nullptr;
-  return {{"rate_hz", loop.rate_hz},
-          {"measured_rate_hz", loop.measured_rate_hz},
-          {"elapsed_s", loop.elapsed_s},
-          {"frames", loop.frames},
-          {"ticks", loop.ticks},
-          {"misses", loop.misses},
-          {"skipped_ticks", loop.skipped_ticks},
-          {"late_wakeup_misses", loop.late_wakeup_misses},
-          {"stall_misses", loop.stall_misses},
-          {"wake_late_ms",
-           {{"p50", quantile(loop.wake_late_ms, 0.5)},
-            {"p99", quantile(loop.wake_late_ms, 0.99)},
-            {"max", quantile(loop.wake_late_ms, 1.0)}}},
-          {"miss_rate", loop.miss_rate()},
-          {"flagged_frames", loop.flagged_frames},
-          {"force_rate_bound",
-           {{"max_n_per_s", run.max_force_rate_n_per_s},
-            {"frames", loop.rate_limited_frames},
-            {"dissipated_j", loop.rate_limit_dissipated_j},
-            {"slewed_frames", loop.rate_slewed_frames},
-            {"slew_work_j", loop.rate_slew_work_j}}},
-          {"frame_ms",
-           {{"p50", quantile(loop.frame_ms, 0.5)},
-            {"p99", quantile(loop.frame_ms, 0.99)},
-            {"max", quantile(loop.frame_ms, 1.0)}}},
-          {"modes",
-           {{"tuned", tuning.chosen_modes},
-            {"start", run.start_modes},
-            {"final", loop.final_modes},
-            {"changes", changes}}},
-          {"geometric_error_estimate", {{"force_n", spread(force_error)}, {"torque_nm", spread(torque_error)}}},
-          {"geometry_gain", run.geometry_gain},
-          {"rigid_contact", contact},
-          {"stiffness_at_fit", fit_stiffness},
-          {"force_scale", run.force_scale},
-          {"coupling",
-           {{"stiffness_n_per_m", run.coupling.stiffness},
-            {"rot_stiffness_nm_per_rad", run.coupling.rot_stiffness},
-            {"damping", run.coupling.damping},
-            {"rot_damping", run.coupling.rot_damping},
-            {"mass_kg", run.coupling.mass_kg},
-            {"inertia_kg_m2", run.coupling.inertia_kg_m2}}},
-          {"final_pose",
-           {{"position", {fp.translation.x(), fp.translation.y(), fp.translation.z()}},
-            {"quaternion_wxyz", {fp.rotation.w(), fp.rotation.x(), fp.rotation.y(), fp.rotation.z()}}}},
-          {"final_error",
-           {{"position", run.final_error.position},
-            {"angle_deg", run.final_error.angle_deg},
-            {"axial", run.axial_error},
-            {"lateral", run.lateral_error},
-            {"insertion_direction",
-             {run.insertion_direction.x(), run.insertion_direction.y(), run.insertion_direction.z()}}}},
-          {"final_force_n", {run.final_force.x(), run.final_force.y(), run.final_force.z()}},
-          {"tolerance", {{"position", run.position_tolerance}, {"angle_deg", run.angle_tolerance_deg}}},
-          {"assembled", run.evaluated ? nlohmann::json(run.assembled) : nlohmann::json(nullptr)},
-          {"verdict", session_verdict(run)},
-          {"wait", loop_wait_name(run.wait)},
-          {"priority",
-           {{"threads_raised", run.priority.threads},
-            {"realtime", run.priority.realtime},
-            {"failed", run.priority.failed},
-            {"reason", run.priority.reason}}}};
+  nlohmann::json summary = loop_json(loop);
+  summary.update({{"force_rate_bound",
+                   {{"max_n_per_s", run.max_force_rate_n_per_s},
+                    {"frames", loop.rate_limited_frames},
+                    {"dissipated_j", loop.rate_limit_dissipated_j},
+                    {"slewed_frames", loop.rate_slewed_frames},
+                    {"slew_work_j", loop.rate_slew_work_j}}},
+                  {"modes",
+                   {{"tuned", tuning.chosen_modes},
+                    {"start", run.start_modes},
+                    {"final", loop.final_modes},
+                    {"changes", mode_changes_json(loop.mode_changes)}}},
+                  {"geometric_error_estimate", {{"force_n", spread(force_error)}, {"torque_nm", spread(torque_error)}}},
+                  {"geometry_gain", run.geometry_gain},
+                  {"rigid_contact", contact},
+                  {"stiffness_at_fit", fit_stiffness},
+                  {"force_scale", run.force_scale},
+                  {"coupling",
+                   {{"stiffness_n_per_m", run.coupling.stiffness},
+                    {"rot_stiffness_nm_per_rad", run.coupling.rot_stiffness},
+                    {"damping", run.coupling.damping},
+                    {"rot_damping", run.coupling.rot_damping},
+                    {"mass_kg", run.coupling.mass_kg},
+                    {"inertia_kg_m2", run.coupling.inertia_kg_m2}}},
+                  {"final_pose",
+                   {{"position", {fp.translation.x(), fp.translation.y(), fp.translation.z()}},
+                    {"quaternion_wxyz", {fp.rotation.w(), fp.rotation.x(), fp.rotation.y(), fp.rotation.z()}}}},
+                  {"final_error",
+                   {{"position", run.final_error.position},
+                    {"angle_deg", run.final_error.angle_deg},
+                    {"axial", run.axial_error},
+                    {"lateral", run.lateral_error},
+                    {"insertion_direction",
+                     {run.insertion_direction.x(), run.insertion_direction.y(), run.insertion_direction.z()}}}},
+                  {"final_force_n", {run.final_force.x(), run.final_force.y(), run.final_force.z()}},
+                  {"tolerance", {{"position", run.position_tolerance}, {"angle_deg", run.angle_tolerance_deg}}},
+                  {"assembled", run.evaluated ? nlohmann::json(run.assembled) : nlohmann::json(nullptr)},
+                  {"verdict", session_verdict(run)},
+                  {"wait", loop_wait_name(run.wait)},
+                  {"priority",
+                   {{"threads_raised", run.priority.threads},
+                    {"realtime", run.priority.realtime},
+                    {"failed", run.priority.failed},
+                    {"reason", run.priority.reason}}}});
+  return summary;
 }
 
 }  // namespace snapfit
