@@ -409,10 +409,7 @@ int main(int argc, char** argv) {
           coupling = coupling_for(scene, m2);
           vps = vps_model_for(scene, m1, m2, spacing, coupling);
           if (method.kind == BenchMethod::vps_hybrid) {
-            const auto faces_of = [](const PartSpec& p) {
-              return p.procedural ? procedural_part_faces(*p.procedural) : std::vector<AnalyticFace>{};
-            };
-            std::vector<AnalyticFace> f1 = faces_of(scene.part1), f2 = faces_of(scene.part2);
+            std::vector<AnalyticFace> f1 = parts.part(1).faces, f2 = parts.part(2).faces;
             if (f1.empty() || f2.empty())
               std::cout << "  (" << cell.pair << ": no analytic faces, " << method.name << " runs as plain VPS)\n";
             else
