@@ -6,7 +6,7 @@
 // released outside, with bounded steps of the blend weights between frames; `snapfit run`
 // with a vps_hybrid scene (constraint per frame in loop.csv and summary.json; it assembles
 // below the voxel size; in the loop the weight steps little and the force sent no more
-// than plain VPS's) and with a part without analytic faces (plain VPS, said so).
+// than plain VPS's) and on the three-peg pair (its planes and cylinders).
 #include <doctest/doctest.h>
 #include <Eigen/Geometry>
 #include <array>
@@ -209,7 +209,7 @@ TEST_CASE("vps hybrid: a scripted insertion engages concentric, then planar at t
   CHECK(instant_step >= 0.75);
 }
 
-TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint per frame, and without faces plain VPS") {
+TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint per frame, and the three-peg pair with its faces") {
   // The shipped peg scene at 0.1 mm clearance (below the voxel: the peg touches the wall)
   // as "method": "vps_hybrid" at a quarter-millimetre voxel.
   nlohmann::json scene;
@@ -257,19 +257,20 @@ TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint 
   MESSAGE("largest sent force step: hybrid " << hybrid_step << " N, plain VPS " << vps_step << " N; weight step " << max_dx);
   CHECK(hybrid_step <= 1.5 * vps_step);
 
-  // The three-peg pair has no analytic faces: plain VPS, said so.
+  // The three-peg pair has faces now (planes and cylinders; its fillets unlabelled): the
+  // hybrid runs on it. A part without faces (a mesh file): tests/test_cad_faces.cpp.
   nlohmann::json three;
   std::ifstream(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/three_pegs.json") >> three;
   three["method"] = "vps_hybrid";
   three["vps"] = {{"voxel_size", 1.0}};
   three.erase("trajectory");
   test::write_text(dir.file("three.json"), three.dump());
-  const test::Command plain = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("three.json") +
-                                                " --simulated-time --out " + dir.file("three"));
-  INFO(plain.output);
-  REQUIRE(plain.status == 0);
-  CHECK(plain.output.find("has no analytic faces: running as plain Voxmap PointShell") != std::string::npos);
+  const test::Command pegs = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("three.json") +
+                                               " --simulated-time --out " + dir.file("three"));
+  INFO(pegs.output);
+  REQUIRE(pegs.status == 0);
+  CHECK(pegs.output.find("vps_hybrid: 15 + 15 analytic faces") != std::string::npos);
   nlohmann::json s3;
   std::ifstream(dir.file("three/summary.json")) >> s3;
-  CHECK(s3["vps"]["hybrid"]["engaged"] == false);
+  CHECK(s3["vps"]["hybrid"]["engaged"] == true);
 }
