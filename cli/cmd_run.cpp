@@ -167,7 +167,7 @@ void run_vps_job(const RunOptions& opt, const AssemblyPair& pair, std::chrono::s
     } else {
       facts.faces1 = f1.size();
       facts.faces2 = f2.size();
-      hybrid = hybrid_model(model, std::move(f1), std::move(f2), coupling);
+      hybrid = hybrid_model(model, std::move(f1), std::move(f2), coupling, hybrid_params_for(scene));
       hybrid_state = hybrid_state_for(*hybrid);
       facts.hybrid = true;
       facts.labelled_voxels = std::count_if(hybrid->voxel_face.begin(), hybrid->voxel_face.end(),

@@ -26,12 +26,14 @@
 //       [--clearances 0,0.02,0.05,0.1,0.25,0.5,1] [--voxels 0.1,0.25,0.5]
 //       [--methods snapfit,translation,vps,vps_hybrid] [--no-three-pegs] [--penetration-stride 10]
 //       [--geometry-strength G] [--lambda-in P] [--contact-stiffness K] [--no-contact] [--device SPEC]
-//       [--out results/bench_assembly]
+//       [--hybrid JSON] [--out results/bench_assembly]
 // --geometry-strength and --lambda-in override the scenes' haptics.geometry_strength and
 // descriptor.lambda_in (the penalty factor with lambda_out 1) for snapfit's methods;
 // --contact-stiffness overrides haptics.contact_stiffness_n_per_mm3 (N/mm^3; must be > 0);
 // --no-contact renders seed 000's energy alone, without the rigid contact
 // (scheduler/rigid_contact.h).
+// --hybrid '{"x_full": 0.9}' sets the scenes' vps.hybrid section (docs/scenes.md), checked
+// as a scene file's is, for vps_hybrid.
 // --quick: clearance 0.5 only (the shipped scene), no three-peg pair, 2 trials, VPS at 0.25 mm, m' 4096.
 // Writes trials.csv (one row per trial), summary.csv and summary.md (per cell),
 // wrench_vs_depth.csv (one trial per method), summary.json and charts.html.
@@ -67,7 +69,7 @@ void usage(std::ostream& os) {
   os << "bench_assembly [--quick] [--trials N] [--seed S] [--modes M] [--clearances LIST] [--voxels LIST]\n"
         "               [--methods snapfit,translation,vps] [--no-three-pegs] [--penetration-stride K]\n"
         "               [--geometry-strength G] [--lambda-in P] [--contact-stiffness K] [--no-contact]\n"
-        "               [--device SPEC] [--out DIR]\n"
+        "               [--device SPEC] [--hybrid JSON] [--out DIR]\n"
         "Scripted imprecise-user insertions: success, errors and true interpenetration against clearance,\n"
         "for snapfit (6-DOF, translation-only) and Voxmap PointShell (see perf/bench_assembly.cpp).\n";
 }
@@ -278,6 +280,7 @@ int main(int argc, char** argv) {
     std::optional<long> trials_set, modes_set;
     std::optional<std::vector<double>> clearances_set, voxels_set;
     std::optional<double> geometry_strength, lambda_in, contact_stiffness;  // overrides of the scenes' values
+    std::string hybrid_json;  // the scenes' vps.hybrid section
     bench::parse_options(
         argc, argv, quick, device_spec, out_dir, usage, [&](const std::string& s, auto value, auto is) {
           if (is("--trials")) return trials_set = bench::integer_option("--trials", value("--trials"), 1, 100000), true;
@@ -294,6 +297,7 @@ int main(int argc, char** argv) {
           if (is("--lambda-in")) return lambda_in = number_list("--lambda-in", value("--lambda-in")).at(0), true;
           if (is("--contact-stiffness"))
             return contact_stiffness = number_list("--contact-stiffness", value("--contact-stiffness")).at(0), true;
+          if (is("--hybrid")) return hybrid_json = value("--hybrid"), true;
           if (s == "--no-three-pegs") return three_pegs = false, true;
           if (s == "--no-contact") return contact = false, true;
           return false;
@@ -329,13 +333,24 @@ int main(int argc, char** argv) {
     const bool need_device =
         std::any_of(methods.begin(), methods.end(), [](const BenchMethod& m) { return !m.voxel_based(); });
 
+    // --hybrid: the section as a scene file would give it, read by the scene reader.
+    const auto with_hybrid = [&](Scene scene) {
+      if (hybrid_json.empty()) return scene;
+      nlohmann::json j = nlohmann::json::parse(scene_to_json(scene));
+      try {
+        j["vps"]["hybrid"] = nlohmann::json::parse(hybrid_json);
+      } catch (const nlohmann::json::exception& e) {
+        throw Error("--hybrid: not JSON: " + std::string(e.what()));
+      }
+      return parse_scene(j.dump(), "--hybrid");
+    };
     // Cells: the peg at each clearance, then the three-peg pair.
     std::vector<Cell> cells;
     for (double c : clearances) {
       Cell cell;
       cell.pair = "peg-in-hole";
       cell.clearance = c;
-      cell.scene = load_scene("scenes/peg_hole_clearance_0p5.json");
+      cell.scene = with_hybrid(load_scene("scenes/peg_hole_clearance_0p5.json"));
       cell.scene.part1.procedural->numbers["clearance"] = c;
       cell.scene.name = "peg in hole, clearance " + bench::fixed(c, 2) + " mm";
       cell.scene.part2.pose = Pose{};
@@ -346,7 +361,7 @@ int main(int argc, char** argv) {
     if (three_pegs) {
       Cell cell;
       cell.pair = "three-pegs";
-      cell.scene = load_scene("scenes/three_pegs.json");
+      cell.scene = with_hybrid(load_scene("scenes/three_pegs.json"));
       cell.scene.part2.pose = Pose{};
       cell.entry = 14;   // above the tallest peg (12 mm) and its fillet
       cell.engaged = 8;  // the shortest peg's height
@@ -413,7 +428,7 @@ int main(int argc, char** argv) {
             if (f1.empty() || f2.empty())
               std::cout << "  (" << cell.pair << ": no analytic faces, " << method.name << " runs as plain VPS)\n";
             else
-              hybrid = hybrid_model(*vps, std::move(f1), std::move(f2), coupling);
+              hybrid = hybrid_model(*vps, std::move(f1), std::move(f2), coupling, hybrid_params_for(scene));
           }
         } else {
           PairOptions options;

@@ -154,6 +154,65 @@ TEST_CASE("vps hybrid: bad parameters are refused") {
   CHECK_THROWS_WITH(hybrid_model(vps, {}, {}, CouplingParams{}, p), doctest::Contains("release < engage"));
 }
 
+TEST_CASE("vps hybrid: the scene's vps.hybrid section sets the parameters, x_full saturates the weight, the face region") {
+  nlohmann::json j;
+  std::ifstream(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/peg_hole_clearance_0p5.json") >> j;
+  j["method"] = "vps_hybrid";
+  j["vps"]["hybrid"] = {{"rotation_fraction", 0.8}, {"x_full", 0.8},       {"angle_tolerance_deg", 5},
+                        {"region", "face"},         {"ramp_s", 0},          {"offset_tolerance", 0.3}};
+  const Scene scene = parse_scene(j.dump(), "hybrid.json");
+  const HybridParams p = hybrid_params_for(scene);
+  CHECK(p.rotation_fraction == 0.8);
+  CHECK(p.alignment_fraction == 0.5);
+  CHECK(p.x_full == 0.8);
+  CHECK(p.region == HybridRegion::face);
+  CHECK(p.tolerance.angle == doctest::Approx(5 * 3.14159265358979323846 / 180));
+  CHECK(p.tolerance.offset == 0.3);
+  CHECK(p.tolerance.radius == 0);  // left to the voxel size
+  CouplingParams coupling;
+  coupling.stiffness = 1000;
+  coupling.rot_stiffness = 2;
+  VpsModel vps;
+  vps.voxmap = build_voxmap(make_procedural_part(kHole), kVoxel, 2);
+  vps.shell = build_point_shell(make_procedural_part(kPeg), kVoxel);
+  vps.stiffness = 800;
+  vps.metres_per_unit = 1e-3;
+  vps.period_s = 1e-3;
+  const HybridModel m = hybrid_model(vps, procedural_part_faces(kHole), procedural_part_faces(kPeg), coupling, p);
+  CHECK(m.k_a_n_per_m == 500);
+  CHECK(m.k_r_nm_per_rad == doctest::Approx(1.6));
+  CHECK(m.params.tolerance.radius == 2 * kVoxel);
+
+  // A peg tilted in its hole so that x ~ 0.9 (the theta term of eq. 15 below 1): with the
+  // paper's weight (x_full 1) the blend weight is x; with x_full 0.8 it is 1.
+  const auto weight_at = [&](double x_full, HybridRegion region, QueryWrench* region_force) {
+    HybridParams q;
+    q.ramp_s = 0;
+    q.x_full = x_full;
+    q.region = region;
+    const HybridModel model = hybrid_model(vps, procedural_part_faces(kHole), procedural_part_faces(kPeg), coupling, q);
+    HybridState state = hybrid_state_for(model);
+    BodyState b;
+    b.pose = at(0.35, -6);  // beyond the 0.2 play: in contact with the wall
+    b.pose.rotation = Eigen::AngleAxisd(0.004, Eigen::Vector3d::UnitY());
+    HybridResult r;
+    for (int i = 0; i < 3; ++i) r = hybrid_wrench(model, state, b);  // recognise, then engage
+    if (region_force) *region_force = state.region[0];
+    return std::pair<double, double>(r.x, state.active[0].x);
+  };
+  QueryWrench pair_region, face_region;
+  const auto [w_paper, x] = weight_at(1.0, HybridRegion::pair, &pair_region);
+  MESSAGE("tilted peg: x " << x);
+  REQUIRE(x > 0.75);
+  REQUIRE(x < 0.999);
+  CHECK(w_paper == doctest::Approx(x));
+  CHECK(weight_at(0.8, HybridRegion::pair, nullptr).first == doctest::Approx(std::min(1.0, x / 0.8)));
+  CHECK(weight_at(x, HybridRegion::pair, nullptr).first == doctest::Approx(1.0));
+  // The face region holds at least the pair region's contacts: every contact on the wall.
+  weight_at(1.0, HybridRegion::face, &face_region);
+  CHECK(face_region.force.norm() >= pair_region.force.norm() - 1e-12);
+}
+
 TEST_CASE("vps hybrid: a scripted insertion engages concentric, then planar at the floor, and releases both") {
   // Part 2 goes down the hole 0.3 off its axis (beyond the clearance: it touches the wall),
   // is pressed 0.1 into the floor, pulled onto the axis, held, then pulled out and away.
