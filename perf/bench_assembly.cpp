@@ -1,8 +1,7 @@
 // The assembly benchmark: scripted insertions by an imprecise user, so that the geometry
 // has to do the aligning, for snapfit (6-DOF and translation-only), Voxmap PointShell
-// (scheduler/vps_method.h) and its constraint hybrid (scheduler/vps_hybrid.h; plain VPS
-// for the three-peg pair, which has no analytic faces) at several voxel sizes, in the
-// same haptic loop.
+// (scheduler/vps_method.h) and its constraint hybrid (scheduler/vps_hybrid.h, with the
+// parts' analytic faces) at several voxel sizes, in the same haptic loop.
 //
 // Cells: the peg in its blind hole (scenes/peg_hole_clearance_0p5.json with the hole's
 // clearance set to each of --clearances) and the three-peg pair (scenes/three_pegs.json,

@@ -19,7 +19,9 @@ struct FrameContext {
 // constraint's face of part 1 and its point on the constraint's face of part 2, or one
 // of them on an edge (the rim of a face in contact lies on an edge: a peg's bottom rim
 // inside the wall's voxels is the constraint's contact, not a collision to render); with
-// HybridRegion::face, also any other point in a voxel of the constraint's face of part 1.
+// HybridRegion::face, every contact with its voxel on the constraint's face of part 1 or
+// its point on the constraint's face of part 2 (a peg's side point in the wall's interior
+// voxels, a bottom point in the wall's surface voxels).
 void on_contact(void* context, std::size_t voxel, std::size_t point, const Eigen::Vector3d& force,
                 const Eigen::Vector3d& torque) {
   auto& c = *static_cast<FrameContext*>(context);
@@ -28,8 +30,9 @@ void on_contact(void* context, std::size_t voxel, std::size_t point, const Eigen
   for (int k = 0; k < kMaxConstraints; ++k) {
     const ActiveConstraint& a = c.state->active[k];
     if (a.kind == ConstraintKind::none) continue;
-    const bool in_region = (f1 == a.face1 && (f2 == a.face2 || f2 == kEdge || c.model->params.region == HybridRegion::face)) ||
-                           (f1 == kEdge && f2 == a.face2);
+    const bool in_region = c.model->params.region == HybridRegion::face
+                               ? f1 == a.face1 || f2 == a.face2
+                               : (f1 == a.face1 && (f2 == a.face2 || f2 == kEdge)) || (f1 == kEdge && f2 == a.face2);
     if (in_region) {
       c.state->region[k].force += force;
       c.state->region[k].torque += torque;

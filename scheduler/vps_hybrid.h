@@ -30,17 +30,19 @@ namespace snapfit {
 
 struct HybridParams {
   RecognitionTolerance tolerance;   // set from the voxel size by hybrid_model unless > 0
+  // Defaults as the scene's (VpsHybridParams): the paper's is rotation_fraction 0.5,
+  // x_full 1, region pair; these insert at zero clearance (docs/haptics.md).
   double alignment_fraction = 0.5;  // k_A as this fraction of the coupling's k_T
-  double rotation_fraction = 0.5;   // k_R as this fraction of the coupling's k_R
+  double rotation_fraction = 0.9;   // k_R as this fraction of the coupling's k_R
   double x_engage = 0.75;           // engage at x >= this (theta = 0: |d| <= s ln 2)
   double x_release = 0.6;           // release at x < this (theta = 0: |d| > s ln 5)
-  // The blend weight is min(1, x / x_full) (times the ramp): 1, the default, is eq. 13's
-  // x itself; below 1 the weight saturates once x reaches x_full, so a constraint that is
-  // nearly met (x ~ 0.9 deep in a hole, where theta_0 = s / l is small) blends the
+  // The blend weight is min(1, x / x_full) (times the ramp): 1 is eq. 13's x itself;
+  // below 1 the weight saturates once x reaches x_full, so a constraint that is nearly
+  // met (x ~ 0.9 deep in a hole, where theta_0 = s / l of eq. 16 is small) blends the
   // region's collision force out entirely.
-  double x_full = 1.0;
+  double x_full = 0.8;
   double ramp_s = 0.05;             // seconds to phase a constraint fully in or out
-  HybridRegion region = HybridRegion::pair;  // which contacts a constraint's region holds
+  HybridRegion region = HybridRegion::face;  // which contacts a constraint's region holds
 };
 
 // The scene's `vps.hybrid` section as HybridParams (tolerances left to the voxel size

@@ -226,8 +226,9 @@ TEST_CASE("scene: method and vps fields round-trip, and bad ones are named") {
 TEST_CASE("scene: vps.hybrid fields round-trip, and bad ones are named") {
   const Scene d = parse_scene(base_scene().dump(), "test.json");
   CHECK(d.vps.hybrid.alignment_fraction == 0.5);  // docs/scenes.md's defaults
-  CHECK(d.vps.hybrid.x_full == 1);
-  CHECK(d.vps.hybrid.region == HybridRegion::pair);
+  CHECK(d.vps.hybrid.rotation_fraction == 0.9);
+  CHECK(d.vps.hybrid.x_full == 0.8);
+  CHECK(d.vps.hybrid.region == HybridRegion::face);
   CHECK(!d.vps.hybrid.radius_tolerance);
   json j = base_scene();
   j["method"] = "vps_hybrid";
@@ -242,7 +243,7 @@ TEST_CASE("scene: vps.hybrid fields round-trip, and bad ones are named") {
                 {"radius_tolerance", 1.5},
                 {"offset_tolerance", 0.75},
                 {"angle_tolerance_deg", 5},
-                {"region", "face"}}}};
+                {"region", "pair"}}}};
   const Scene s = parse_scene(j.dump(), "test.json");
   const VpsHybridParams& h = s.vps.hybrid;
   CHECK(h.alignment_fraction == 0.4);
@@ -254,7 +255,7 @@ TEST_CASE("scene: vps.hybrid fields round-trip, and bad ones are named") {
   CHECK(h.radius_tolerance == 1.5);
   CHECK(h.offset_tolerance == 0.75);
   CHECK(h.angle_tolerance_deg == 5);
-  CHECK(h.region == HybridRegion::face);
+  CHECK(h.region == HybridRegion::pair);
   check_same_scene(s, parse_scene(scene_to_json(s), "copy.json"));
 
   const auto with = [&](const std::string& field, const json& value) {

@@ -3,10 +3,11 @@
 // (concentric, planar; none for a cylinder against a plane, cylinders of different radii,
 // two pegs, tilted axes), engagement (eq. 15-17), and a scripted insertion down to the
 // floor and back out: concentric while inserting, then planar at the floor, both
-// released outside, with bounded steps of the blend weights between frames; `snapfit run`
-// with a vps_hybrid scene (constraint per frame in loop.csv and summary.json; it assembles
-// below the voxel size; in the loop the weight steps little and the force sent no more
-// than plain VPS's) and on the three-peg pair (its planes and cylinders).
+// released outside, with bounded steps of the blend weights between frames; the scene's
+// vps.hybrid section, x_full and the face region; `snapfit run` with a vps_hybrid scene
+// (constraint per frame in loop.csv and summary.json; with the paper's blend it assembles
+// below the voxel size, the weight steps little and the force sent no more than 1.5x plain
+// VPS's; with the default blend it assembles at zero clearance) and on the three-peg pair.
 #include <doctest/doctest.h>
 #include <Eigen/Geometry>
 #include <array>
@@ -270,12 +271,14 @@ TEST_CASE("vps hybrid: a scripted insertion engages concentric, then planar at t
 
 TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint per frame, and the three-peg pair with its faces") {
   // The shipped peg scene at 0.1 mm clearance (below the voxel: the peg touches the wall)
-  // as "method": "vps_hybrid" at a quarter-millimetre voxel.
+  // as "method": "vps_hybrid" at a quarter-millimetre voxel, with the paper's blend (eq.
+  // 13's x, the pair region, k_R half the coupling's).
   nlohmann::json scene;
   std::ifstream(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/peg_hole_clearance_0p5.json") >> scene;
   scene["part1"]["procedural"]["clearance"] = 0.1;
   scene["method"] = "vps_hybrid";
-  scene["vps"] = {{"voxel_size", 0.25}};
+  scene["vps"] = {{"voxel_size", 0.25},
+                  {"hybrid", {{"x_full", 1}, {"region", "pair"}, {"rotation_fraction", 0.5}}}};
   const test::TempDir dir;
   test::write_text(dir.file("hybrid.json"), scene.dump());
   const test::Command run = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("hybrid.json") +
@@ -315,6 +318,39 @@ TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint 
   const double hybrid_step = hybrid_loop.max_sent_step(), vps_step = read_loop(dir.file("vps_out/loop.csv")).max_sent_step();
   MESSAGE("largest sent force step: hybrid " << hybrid_step << " N, plain VPS " << vps_step << " N; weight step " << max_dx);
   CHECK(hybrid_step <= 1.5 * vps_step);
+
+  // At zero clearance with the default blend (x_full 0.8, the face region, k_R 0.9 of the
+  // coupling's): it assembles where plain VPS stops short, the weight still steps by at
+  // most the ramp's 1/50 plus what x / x_full changes in a frame, and the force sent
+  // steps less than plain VPS's.
+  scene["part1"]["procedural"]["clearance"] = 0;
+  scene["method"] = "vps_hybrid";
+  scene["vps"] = {{"voxel_size", 0.25}};
+  test::write_text(dir.file("zero.json"), scene.dump());
+  const test::Command zero = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("zero.json") +
+                                               " --simulated-time --out " + dir.file("zero"));
+  INFO(zero.output);
+  REQUIRE(zero.status == 0);
+  nlohmann::json zs;
+  std::ifstream(dir.file("zero/summary.json")) >> zs;
+  CHECK(zs["haptic_loop"]["assembled"] == true);
+  const LoopColumns zero_loop = read_loop(dir.file("zero/loop.csv"));
+  double zero_dx = 0;
+  for (std::size_t i = 1; i < zero_loop.frames(); ++i)
+    zero_dx = std::max(zero_dx, std::abs(zero_loop.weight[i] - zero_loop.weight[i - 1]));
+  CHECK(zero_dx <= 0.05);
+  scene["method"] = "vps";
+  test::write_text(dir.file("zero_vps.json"), scene.dump());
+  const test::Command zero_vps = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("zero_vps.json") +
+                                                   " --simulated-time --out " + dir.file("zero_vps"));
+  REQUIRE(zero_vps.status == 0);
+  nlohmann::json zv;
+  std::ifstream(dir.file("zero_vps/summary.json")) >> zv;
+  CHECK(zv["haptic_loop"]["assembled"] == false);
+  const double zero_step = zero_loop.max_sent_step(), zero_vps_step = read_loop(dir.file("zero_vps/loop.csv")).max_sent_step();
+  MESSAGE("zero clearance: largest sent force step hybrid " << zero_step << " N, plain VPS " << zero_vps_step
+                                                            << " N; weight step " << zero_dx);
+  CHECK(zero_step <= zero_vps_step);
 
   // The three-peg pair has faces now (planes and cylinders; its fillets unlabelled): the
   // hybrid runs on it. A part without faces (a mesh file): tests/test_cad_faces.cpp.
