@@ -153,21 +153,21 @@ void run_vps_job(const RunOptions& opt, const AssemblyPair& pair, std::chrono::s
   std::optional<HybridModel> hybrid;
   std::optional<HybridState> hybrid_state;
   if (scene.method == Method::vps_hybrid) {
-    const auto faces_of = [](const PartSpec& p) {
-      return p.procedural ? procedural_part_faces(*p.procedural) : std::vector<AnalyticFace>{};
-    };
-    std::vector<AnalyticFace> f1 = faces_of(scene.part1), f2 = faces_of(scene.part2);
+    std::vector<AnalyticFace> f1 = pair.part(1).faces, f2 = pair.part(2).faces;
     for (const PartSpec* p : {&scene.part1, &scene.part2})
       if ((p == &scene.part1 ? f1 : f2).empty())
         facts.plain_reason += std::string(facts.plain_reason.empty() ? "" : "; ") + "part '" + p->name + "' " +
-                              (p->procedural ? "(procedural " + p->procedural->type + ")" : std::string("(a mesh file)")) +
+                              (p->procedural ? "(procedural " + p->procedural->type + ")"
+                               : (p == &scene.part1 ? pair.part(1) : pair.part(2)).cad
+                                   ? std::string("(a CAD file with no plane, cylinder or cone)")
+                                   : std::string("(a mesh file)")) +
                               " has no analytic faces";
     if (!facts.plain_reason.empty()) {
       std::cout << "    vps_hybrid: " << facts.plain_reason << ": running as plain Voxmap PointShell\n";
     } else {
       facts.faces1 = f1.size();
       facts.faces2 = f2.size();
-      hybrid = hybrid_model(model, std::move(f1), std::move(f2), coupling);
+      hybrid = hybrid_model(model, std::move(f1), std::move(f2), coupling, hybrid_params_for(scene));
       hybrid_state = hybrid_state_for(*hybrid);
       facts.hybrid = true;
       facts.labelled_voxels = std::count_if(hybrid->voxel_face.begin(), hybrid->voxel_face.end(),

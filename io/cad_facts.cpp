@@ -17,6 +17,8 @@ std::string format_cad_facts(const CadFacts& f) {
   for (std::size_t i = 0; i < f.solids.size(); ++i) s << (i ? ", " : "") << "'" << f.solids[i] << "'";
   s << ")\n";
   s << "cad solid tessellated: '" << f.solid << "', " << f.faces << " faces\n";
+  s << "cad analytic faces: " << f.planes << " planes, " << f.cylinders << " cylinders, " << f.cones << " cones, " << f.tori << " tori; "
+    << f.other_faces << " on other surfaces\n";
   s << "cad linear deflection: " << f.linear_deflection << " (" << f.deflection_source << ")\n";
   s << "cad angular deflection: " << f.angular_deflection_deg << " deg\n";
   s << "cad triangles produced: " << f.triangles << "\n";
@@ -31,6 +33,7 @@ std::string cad_facts_json(const CadFacts& f) {
       {"solids", f.solids},
       {"solid", f.solid},
       {"faces", f.faces},
+      {"analytic_faces", {{"planes", f.planes}, {"cylinders", f.cylinders}, {"cones", f.cones}, {"tori", f.tori}, {"other", f.other_faces}}},
       {"linear_deflection", f.linear_deflection},
       {"angular_deflection_deg", f.angular_deflection_deg},
       {"deflection_source", f.deflection_source},
@@ -50,6 +53,12 @@ CadFacts cad_facts_from_json(const std::string& text) {
     f.solids = j.at("solids").get<std::vector<std::string>>();
     f.solid = j.at("solid").get<std::string>();
     f.faces = j.at("faces").get<std::size_t>();
+    const nlohmann::json& a = j.at("analytic_faces");
+    f.planes = a.at("planes").get<std::size_t>();
+    f.cylinders = a.at("cylinders").get<std::size_t>();
+    f.cones = a.at("cones").get<std::size_t>();
+    f.tori = a.at("tori").get<std::size_t>();
+    f.other_faces = a.at("other").get<std::size_t>();
     f.linear_deflection = j.at("linear_deflection").get<double>();
     f.angular_deflection_deg = j.at("angular_deflection_deg").get<double>();
     f.deflection_source = j.at("deflection_source").get<std::string>();

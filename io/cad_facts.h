@@ -14,6 +14,10 @@ struct CadFacts {
   std::vector<std::string> solids;  // every solid in the file, by the names a part may give
   std::string solid;                // the one tessellated
   std::size_t faces = 0;            // B-rep faces of that solid
+  // Of those, the analytic faces the VPS - constraint hybrid reads (mesh/analytic_faces.h:
+  // tori only keep their points unlabelled), and the faces on other surfaces (spheres,
+  // B-splines), which give none.
+  std::size_t planes = 0, cylinders = 0, cones = 0, tori = 0, other_faces = 0;
   double linear_deflection = 0;     // used, in output units: largest distance of the mesh from the surface
   double angular_deflection_deg = 0;
   std::string deflection_source;  // where linear_deflection came from, e.g. "0.025 x grid spacing 0.6"

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/grid.h"
+#include "io/face_codec.h"
 #include "io/import_child.h"
 #include "io/occt_shapes.h"
 #include "io/step_units.h"
@@ -127,9 +128,16 @@ std::string import_cad(const std::string& path, const CadImportOptions& options)
     if (t.mesh.triangles.empty()) fail(path, "cannot read CAD file: the tessellation holds no triangles");
     facts.faces = t.faces;
     facts.triangles = t.mesh.triangles.size();
+    const occt::SolidFaces faces = occt::analytic_faces_of(chosen.solid, scale);
+    for (const AnalyticFace& f : faces.faces)
+      ++(f.kind == FaceKind::plane      ? facts.planes
+         : f.kind == FaceKind::cylinder ? facts.cylinders
+         : f.kind == FaceKind::cone     ? facts.cones
+                                        : facts.tori);
+    facts.other_faces = faces.other;
     facts.exact_volume = exact.volume * scale * scale * scale;
     facts.exact_area = exact.area * scale * scale;
-    return encode_mesh(t.mesh) + cad_facts_json(facts);
+    return encode_mesh(t.mesh) + encode_faces(faces.faces) + cad_facts_json(facts);
   });
 }
 
@@ -169,6 +177,9 @@ CadMesh load_cad_mesh(const std::string& path, const CadImportOptions& options) 
   CadMesh out;
   std::size_t used = 0;
   out.mesh = decode_mesh(path, bytes, &used);
+  std::size_t faces_used = 0;
+  out.faces = decode_faces(path, std::string_view(bytes).substr(used), faces_used);
+  used += faces_used;
   try {
     out.facts = cad_facts_from_json(bytes.substr(used));
   } catch (const Error& e) {

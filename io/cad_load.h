@@ -7,6 +7,7 @@
 
 #include "io/cad_facts.h"
 #include "io/cad_format.h"
+#include "mesh/analytic_faces.h"
 #include "mesh/mesh.h"
 #include "snapfit/scene.h"
 
@@ -38,12 +39,16 @@ struct CadImportOptions {
 
 struct CadMesh {
   Mesh mesh;  // output units, outward normals, vertices shared between faces
+  // The solid's planes, cylinders and cones in output units (io/occt_shapes.h
+  // analytic_faces_of), for the VPS - constraint hybrid; faces on other surfaces give none.
+  std::vector<AnalyticFace> faces;
   CadFacts facts;
 };
 
 // Reads the file, picks its solid (faces that are not in a solid are sewn into closed
 // shells first: IGES files usually hold faces only), tessellates it with OpenCASCADE's
-// BRepMesh (one thread) and welds the faces' meshes along their shared edges. Runs in the
+// BRepMesh (one thread) and welds the faces' meshes along their shared edges, and
+// classifies each B-rep face's surface (plane, cylinder, cone or other). Runs in the
 // import child with the limits of io/import_child.h. Throws snapfit::Error naming the file
 // for a missing, empty, truncated or malformed file, a file with no closed solid, one with
 // several and no `solid` (the message lists them), an unknown `solid`, or a bad option.

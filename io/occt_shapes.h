@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/analytic_faces.h"
 #include "mesh/mesh.h"
 #include "snapfit/error.h"
 
@@ -41,6 +42,18 @@ struct Tessellation {
 // `scale`. Throws snapfit::Error naming `path` when a face cannot be tessellated.
 Tessellation tessellate_solid(const TopoDS_Solid& solid, double deflection_mm, double angle_rad, double scale,
                               const std::string& path);
+
+// The solid's analytic faces (mesh/analytic_faces.h), each B-rep face classified by its
+// surface (BRepAdaptor_Surface, with the face's location): planes (outward normal from the
+// face's orientation; box, outer circle and circular holes), cylinders and cones (axis,
+// profile over the face's range, peg or hole from the orientation), and tori (fillets:
+// their points stay unlabelled). Faces on other surfaces (spheres, B-splines) give none
+// and are counted in `other`. Millimetres times `scale`, as the tessellation.
+struct SolidFaces {
+  std::vector<AnalyticFace> faces;
+  std::size_t other = 0;
+};
+SolidFaces analytic_faces_of(const TopoDS_Solid& solid, double scale);
 
 // The solid's axis-aligned box (min x, y, z, max x, y, z), volume and surface area from
 // its exact geometry, in millimetres.

@@ -462,10 +462,59 @@ HapticsParams read_haptics(const Ctx& c, const json& v, const std::string& path)
   return h;
 }
 
+// vps.hybrid: each number in its range, the thresholds ordered, the region by name.
+VpsHybridParams read_vps_hybrid(const Ctx& c, const json& v, const std::string& path) {
+  check_fields(c, v, path,
+               {"alignment_fraction", "rotation_fraction", "x_engage", "x_release", "x_full", "ramp_s",
+                "radius_tolerance", "offset_tolerance", "angle_tolerance_deg", "region"});
+  VpsHybridParams h;
+  const auto fraction = [&](const char* field, double& out) {
+    if (const json* x = find(v, field)) {
+      out = number(c, *x, join(path, field));
+      if (!(out > 0 && out < 1))
+        fail(c, join(path, field),
+             "must be in (0, 1): the user stays stronger than the constraint (got " + fmt(out) + ")");
+    }
+  };
+  fraction("alignment_fraction", h.alignment_fraction);
+  fraction("rotation_fraction", h.rotation_fraction);
+  const auto unit_interval = [&](const char* field, double& out) {
+    if (const json* x = find(v, field)) {
+      out = number(c, *x, join(path, field));
+      if (!(out > 0 && out <= 1)) fail(c, join(path, field), "must be in (0, 1] (got " + fmt(out) + ")");
+    }
+  };
+  unit_interval("x_engage", h.x_engage);
+  unit_interval("x_release", h.x_release);
+  unit_interval("x_full", h.x_full);
+  if (!(h.x_release < h.x_engage))
+    fail(c, join(path, "x_release"),
+         "must be below x_engage (got " + fmt(h.x_release) + " against " + fmt(h.x_engage) + ")");
+  if (const json* x = find(v, "ramp_s")) h.ramp_s = non_negative(c, *x, join(path, "ramp_s"));
+  if (const json* x = find(v, "radius_tolerance")) h.radius_tolerance = positive(c, *x, join(path, "radius_tolerance"));
+  if (const json* x = find(v, "offset_tolerance")) h.offset_tolerance = positive(c, *x, join(path, "offset_tolerance"));
+  if (const json* x = find(v, "angle_tolerance_deg")) {
+    h.angle_tolerance_deg = positive(c, *x, join(path, "angle_tolerance_deg"));
+    if (*h.angle_tolerance_deg > 90)
+      fail(c, join(path, "angle_tolerance_deg"), "must be in (0, 90] (got " + fmt(*h.angle_tolerance_deg) + ")");
+  }
+  if (const json* x = find(v, "region")) {
+    const std::string r = text(c, *x, join(path, "region"));
+    if (r == "pair")
+      h.region = HybridRegion::pair;
+    else if (r == "face")
+      h.region = HybridRegion::face;
+    else
+      fail(c, join(path, "region"), "unknown region '" + r + "' (expected pair or face)");
+  }
+  return h;
+}
+
 VpsParams read_vps(const Ctx& c, const json& v, const std::string& path) {
   check_fields(c, v, path,
-               {"voxel_size", "stiffness_n_per_m", "shell_density", "proximity_layers", "braking_n_s_per_m"});
+               {"voxel_size", "stiffness_n_per_m", "shell_density", "proximity_layers", "braking_n_s_per_m", "hybrid"});
   VpsParams p;
+  if (const json* x = find(v, "hybrid")) p.hybrid = read_vps_hybrid(c, *x, join(path, "hybrid"));
   if (const json* x = find(v, "voxel_size")) p.voxel_size = positive(c, *x, join(path, "voxel_size"));
   if (const json* x = find(v, "stiffness_n_per_m"))
     p.stiffness_n_per_m = positive(c, *x, join(path, "stiffness_n_per_m"));
@@ -775,6 +824,19 @@ std::string scene_to_json(const Scene& s) {
   vj["shell_density"] = s.vps.shell_density;
   vj["proximity_layers"] = s.vps.proximity_layers;
   if (s.vps.braking_n_s_per_m) vj["braking_n_s_per_m"] = *s.vps.braking_n_s_per_m;
+  const VpsHybridParams& hy = s.vps.hybrid;
+  ordered_json hj2;
+  hj2["alignment_fraction"] = hy.alignment_fraction;
+  hj2["rotation_fraction"] = hy.rotation_fraction;
+  hj2["x_engage"] = hy.x_engage;
+  hj2["x_release"] = hy.x_release;
+  hj2["x_full"] = hy.x_full;
+  hj2["ramp_s"] = hy.ramp_s;
+  if (hy.radius_tolerance) hj2["radius_tolerance"] = *hy.radius_tolerance;
+  if (hy.offset_tolerance) hj2["offset_tolerance"] = *hy.offset_tolerance;
+  if (hy.angle_tolerance_deg) hj2["angle_tolerance_deg"] = *hy.angle_tolerance_deg;
+  hj2["region"] = hy.region == HybridRegion::face ? "face" : "pair";
+  vj["hybrid"] = hj2;
   j["vps"] = vj;
   std::string out;
   write_value(out, j, 0, "");

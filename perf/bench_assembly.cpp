@@ -1,8 +1,7 @@
 // The assembly benchmark: scripted insertions by an imprecise user, so that the geometry
 // has to do the aligning, for snapfit (6-DOF and translation-only), Voxmap PointShell
-// (scheduler/vps_method.h) and its constraint hybrid (scheduler/vps_hybrid.h; plain VPS
-// for the three-peg pair, which has no analytic faces) at several voxel sizes, in the
-// same haptic loop.
+// (scheduler/vps_method.h) and its constraint hybrid (scheduler/vps_hybrid.h, with the
+// parts' analytic faces) at several voxel sizes, in the same haptic loop.
 //
 // Cells: the peg in its blind hole (scenes/peg_hole_clearance_0p5.json with the hole's
 // clearance set to each of --clearances) and the three-peg pair (scenes/three_pegs.json,
@@ -36,8 +35,8 @@
 #include <time.h>
 
 #include "core/quantile.h"
-#include "engine/runtime/device.h"
 #include "engine/query/query_engine.h"
+#include "engine/runtime/device.h"
 #include "mesh/mesh_distance.h"
 #include "mesh/procedural/procedural_parts.h"
 #include "perf/bench_common.h"
@@ -236,6 +235,7 @@ struct Options {
   std::vector<double> clearances = {0, 0.02, 0.05, 0.1, 0.25, 0.5, 1}, voxels = {0.1, 0.25, 0.5};
   std::vector<std::string> methods = {"snapfit", "translation", "vps"};
   std::optional<double> geometry_strength, lambda_in, contact_stiffness;  // overrides of the scenes' values
+  std::string hybrid_json;  // the scenes' vps.hybrid section, as a scene file gives it
 };
 
 Options parse_options(int argc, char** argv) {
@@ -272,6 +272,8 @@ Options parse_options(int argc, char** argv) {
   const auto* stiffness =
       app.add_option("--contact-stiffness", contact_stiffness, "overrides haptics.contact_stiffness_n_per_mm3 (N/mm^3)")
           ->check(CLI::NonNegativeNumber);
+  app.add_option("--hybrid", o.hybrid_json,
+                 "the scenes' vps.hybrid section for vps_hybrid, as JSON (e.g. '{\"x_full\": 0.9}'; docs/scenes.md)");
   app.add_flag("--no-three-pegs", no_three_pegs, "the peg in the hole only");
   app.add_flag("--no-contact", no_contact,
                "seed 000's energy alone, without the rigid contact (scheduler/rigid_contact.h)");
@@ -308,6 +310,18 @@ std::vector<BenchMethod> methods_from(const std::vector<std::string>& names, con
   return methods;
 }
 
+// The scene with --hybrid's vps.hybrid section, read by the scene reader as a file's is.
+Scene with_hybrid(Scene scene, const std::string& hybrid_json) {
+  if (hybrid_json.empty()) return scene;
+  nlohmann::json j = nlohmann::json::parse(scene_to_json(scene));
+  try {
+    j["vps"]["hybrid"] = nlohmann::json::parse(hybrid_json);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error("--hybrid: not JSON: " + std::string(e.what()));
+  }
+  return parse_scene(j.dump(), "--hybrid");
+}
+
 // The pairs the users assemble: the peg at each clearance, then the three-peg pair.
 std::vector<Cell> make_cells(const Options& o) {
   std::vector<Cell> cells;
@@ -315,7 +329,7 @@ std::vector<Cell> make_cells(const Options& o) {
     Cell cell;
     cell.pair = "peg-in-hole";
     cell.clearance = c;
-    cell.scene = load_scene("scenes/peg_hole_clearance_0p5.json");
+    cell.scene = with_hybrid(load_scene("scenes/peg_hole_clearance_0p5.json"), o.hybrid_json);
     cell.scene.part1.procedural->numbers["clearance"] = c;
     cell.scene.name = "peg in hole, clearance " + bench::fixed(c, 2) + " mm";
     cell.scene.part2.pose = Pose{};
@@ -326,7 +340,7 @@ std::vector<Cell> make_cells(const Options& o) {
   if (o.three_pegs) {
     Cell cell;
     cell.pair = "three-pegs";
-    cell.scene = load_scene("scenes/three_pegs.json");
+    cell.scene = with_hybrid(load_scene("scenes/three_pegs.json"), o.hybrid_json);
     cell.scene.part2.pose = Pose{};
     cell.entry = 14;   // above the tallest peg (12 mm) and its fillet
     cell.engaged = 8;  // the shortest peg's height
@@ -346,23 +360,22 @@ struct Model {
   CouplingParams coupling;
 };
 
-Model build_model(Scene& scene, const BenchMethod& method, const Cell& cell, const Mesh& m1, const Mesh& m2,
-                  double spacing, const std::optional<ComputeContext>& ctx, const std::optional<FftLibrary>& fft,
-                  bool contact) {
+Model build_model(Scene& scene, const BenchMethod& method, const Cell& cell, const AssemblyPair& parts,
+                  const std::optional<ComputeContext>& ctx, const std::optional<FftLibrary>& fft, bool contact) {
+  const Mesh& m1 = parts.part(1).mesh;
+  const Mesh& m2 = parts.part(2).mesh;
+  const double spacing = parts.grids.spacing;
   Model model;
   if (method.voxel_based()) {
     scene.vps.voxel_size = method.voxel;
     model.coupling = coupling_for(scene, m2);
     model.vps = vps_model_for(scene, m1, m2, spacing, model.coupling);
     if (method.kind == BenchMethod::vps_hybrid) {
-      const auto faces_of = [](const PartSpec& p) {
-        return p.procedural ? procedural_part_faces(*p.procedural) : std::vector<AnalyticFace>{};
-      };
-      std::vector<AnalyticFace> f1 = faces_of(scene.part1), f2 = faces_of(scene.part2);
+      std::vector<AnalyticFace> f1 = parts.part(1).faces, f2 = parts.part(2).faces;
       if (f1.empty() || f2.empty())
         std::cout << "  (" << cell.pair << ": no analytic faces, " << method.name << " runs as plain VPS)\n";
       else
-        model.hybrid = hybrid_model(*model.vps, std::move(f1), std::move(f2), model.coupling);
+        model.hybrid = hybrid_model(*model.vps, std::move(f1), std::move(f2), model.coupling, hybrid_params_for(scene));
     }
   } else {
     PairOptions options;
@@ -448,7 +461,7 @@ Summary run_method(const Options& o, TrialFiles& out, const Cell& cell, const Be
   if (o.lambda_in) scene.descriptor.lambda_in = *o.lambda_in;
   if (o.contact_stiffness) scene.haptics.contact_stiffness_n_per_mm3 = *o.contact_stiffness;
   const auto build_start = std::chrono::steady_clock::now();
-  Model model = build_model(scene, method, cell, m1, m2, spacing, ctx, fft, o.contact);
+  Model model = build_model(scene, method, cell, parts, ctx, fft, o.contact);
   std::cout << "  " << bench::padr(method.name, 20) << " built in "
             << bench::fixed(bench::seconds_since(build_start), 1) << " s" << std::flush;
   Summary summary{cell.pair, method.name, cell.clearance, {}};

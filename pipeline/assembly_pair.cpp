@@ -25,6 +25,8 @@ AssemblyPair prepare_assembly_pair(const Scene& scene) {
   pair.parts = prepare_parts(scene);
   if (scene.motion == Motion::translation && !scene.part2.pose.rotation.toRotationMatrix().isIdentity(1e-12)) {
     for (Eigen::Vector3d& v : pair.parts.part2.mesh.vertices) v = scene.part2.pose.rotation * v;
+    const Eigen::Matrix3d turn = scene.part2.pose.rotation.toRotationMatrix();
+    for (AnalyticFace& f : pair.parts.part2.faces) f = rotated_face(f, turn);
   }
   try {
     pair.grids = scene_part_grids(scene.grid, pair.parts.part1.mesh, pair.parts.part2.mesh);

@@ -62,7 +62,10 @@ ComputePlan vps_plan(const Scene& scene, double grid_spacing) {
   if (scene.method == Method::vps_hybrid)
     plan.lines.push_back("hybrid (seed 002 chapter 5): voxels and shell points carry their analytic faces; "
                          "concentric and planar constraints between contacting faces are phased in, "
-                         "F = F_C (1 - x) + F_A x (eq. 13-19); a part without analytic faces runs as plain VPS");
+                         "F = F_C (1 - w) + F_A w with w = min(1, x / " +
+                         number(scene.vps.hybrid.x_full) + ") (eq. 13-19), region '" +
+                         (scene.vps.hybrid.region == HybridRegion::face ? "face" : "pair") +
+                         "'; a part without analytic faces runs as plain VPS");
   plan.lines.push_back(std::string("outputs per frame: force") + (plan.torque ? ", torque" : "") +
                        " (and the points' penalty energy)" +
                        (scene.method == Method::vps_hybrid ? "; the engaged constraint and its weight x" : ""));

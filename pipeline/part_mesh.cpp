@@ -21,6 +21,7 @@ PartMesh build_part_mesh(const PartSpec& part, const Scene& scene) {
       options.grid = scene.grid;
       CadMesh cad = load_cad_mesh(*part.mesh_path, options);
       out.mesh = std::move(cad.mesh);
+      out.faces = std::move(cad.faces);
       out.cad = std::move(cad.facts);
       return out;
     }
@@ -30,6 +31,7 @@ PartMesh build_part_mesh(const PartSpec& part, const Scene& scene) {
     }
     if (part.procedural) {
       out.mesh = make_procedural_part(*part.procedural);
+      out.faces = procedural_part_faces(*part.procedural);
       return out;
     }
   } catch (const Error& e) {

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "io/cad_facts.h"
+#include "mesh/analytic_faces.h"
 #include "mesh/mesh.h"
 #include "snapfit/scene.h"
 
@@ -11,6 +12,9 @@ namespace snapfit {
 
 struct PartMesh {
   Mesh mesh;
+  // The analytic faces the mesh tessellates (the VPS - constraint hybrid's): a STEP or
+  // IGES part's planes, cylinders and cones, a procedural part's own; none for a mesh file.
+  std::vector<AnalyticFace> faces;
   std::optional<CadFacts> cad;  // what the CAD import did, for STEP and IGES parts
 };
 

@@ -32,6 +32,7 @@ PreparedPart prepare(const PartSpec& spec, const Scene& scene) {
   PreparedPart part;
   PartMesh built = build_part_mesh(spec, scene);
   part.mesh = std::move(built.mesh);
+  part.faces = std::move(built.faces);
   part.cad = std::move(built.cad);
   part.report = validate_mesh(part.mesh);
   check_encloses_volume(spec, scene, part.report);

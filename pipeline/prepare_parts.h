@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "io/cad_facts.h"
+#include "mesh/analytic_faces.h"
 #include "mesh/mesh.h"
 #include "mesh/mesh_report.h"
 #include "snapfit/scene.h"
@@ -11,6 +12,7 @@ namespace snapfit {
 
 struct PreparedPart {
   Mesh mesh;  // in the part's own frame, scene units
+  std::vector<AnalyticFace> faces;  // in the mesh's frame (pipeline/part_mesh.h); none for a mesh file
   MeshReport report;
   std::optional<CadFacts> cad;  // STEP and IGES parts: what the import did
   double seconds = 0;           // wall time to load or generate and validate

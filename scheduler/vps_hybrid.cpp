@@ -18,7 +18,10 @@ struct FrameContext {
 // adds it to the region of the first engaged constraint it belongs to: its voxel on the
 // constraint's face of part 1 and its point on the constraint's face of part 2, or one
 // of them on an edge (the rim of a face in contact lies on an edge: a peg's bottom rim
-// inside the wall's voxels is the constraint's contact, not a collision to render).
+// inside the wall's voxels is the constraint's contact, not a collision to render); with
+// HybridRegion::face, every contact with its voxel on the constraint's face of part 1 or
+// its point on the constraint's face of part 2 (a peg's side point in the wall's interior
+// voxels, a bottom point in the wall's surface voxels).
 void on_contact(void* context, std::size_t voxel, std::size_t point, const Eigen::Vector3d& force,
                 const Eigen::Vector3d& torque) {
   auto& c = *static_cast<FrameContext*>(context);
@@ -27,7 +30,9 @@ void on_contact(void* context, std::size_t voxel, std::size_t point, const Eigen
   for (int k = 0; k < kMaxConstraints; ++k) {
     const ActiveConstraint& a = c.state->active[k];
     if (a.kind == ConstraintKind::none) continue;
-    const bool in_region = (f1 == a.face1 && (f2 == a.face2 || f2 == kEdge)) || (f1 == kEdge && f2 == a.face2);
+    const bool in_region = c.model->params.region == HybridRegion::face
+                               ? f1 == a.face1 || f2 == a.face2
+                               : (f1 == a.face1 && (f2 == a.face2 || f2 == kEdge)) || (f1 == kEdge && f2 == a.face2);
     if (in_region) {
       c.state->region[k].force += force;
       c.state->region[k].torque += torque;
@@ -46,6 +51,11 @@ HybridModel hybrid_model(VpsModel vps, std::vector<AnalyticFace> faces1, std::ve
   if (!(params.x_release > 0 && params.x_release < params.x_engage && params.x_engage <= 1))
     throw Error("vps_hybrid: the engagement thresholds must satisfy 0 < release < engage <= 1 (got release " +
                 std::to_string(params.x_release) + ", engage " + std::to_string(params.x_engage) + ")");
+  if (!(params.rotation_fraction > 0 && params.rotation_fraction < 1))
+    throw Error("vps_hybrid: the rotation fraction must lie in (0, 1): the user stays stronger than the constraint (got " +
+                std::to_string(params.rotation_fraction) + ")");
+  if (!(params.x_full > 0 && params.x_full <= 1))
+    throw Error("vps_hybrid: x_full must lie in (0, 1] (got " + std::to_string(params.x_full) + ")");
   if (!(params.ramp_s >= 0)) throw Error("vps_hybrid: the ramp time must be >= 0 (got " + std::to_string(params.ramp_s) + ")");
   const double s = vps.voxmap.voxel_size;
   RecognitionTolerance& t = params.tolerance;
@@ -60,8 +70,25 @@ HybridModel hybrid_model(VpsModel vps, std::vector<AnalyticFace> faces1, std::ve
   m.faces2 = std::move(faces2);
   m.params = params;
   m.k_a_n_per_m = params.alignment_fraction * coupling.stiffness;
-  m.k_r_nm_per_rad = params.alignment_fraction * coupling.rot_stiffness;
+  m.k_r_nm_per_rad = params.rotation_fraction * coupling.rot_stiffness;
   return m;
+}
+
+HybridParams hybrid_params_for(const Scene& scene) {
+  constexpr double kPi = 3.14159265358979323846;
+  const VpsHybridParams& h = scene.vps.hybrid;
+  HybridParams p;
+  p.alignment_fraction = h.alignment_fraction;
+  p.rotation_fraction = h.rotation_fraction;
+  p.x_engage = h.x_engage;
+  p.x_release = h.x_release;
+  p.x_full = h.x_full;
+  p.ramp_s = h.ramp_s;
+  p.region = h.region;
+  if (h.radius_tolerance) p.tolerance.radius = *h.radius_tolerance;
+  if (h.offset_tolerance) p.tolerance.offset = *h.offset_tolerance;
+  if (h.angle_tolerance_deg) p.tolerance.angle = *h.angle_tolerance_deg * kPi / 180;
+  return p;
 }
 
 HybridState hybrid_state_for(const HybridModel& model) {
@@ -101,7 +128,7 @@ HybridResult hybrid_wrench(const HybridModel& model, HybridState& state, const B
       a = ActiveConstraint{};
       continue;
     }
-    const double w = a.phase * a.x;
+    const double w = a.phase * std::min(1.0, a.x / p.x_full);
     const QueryWrench align = alignment_wrench(o, part.pose, model.k_a_n_per_m, model.k_r_nm_per_rad, u);
     out.vps.query.force += w * (align.force - state.region[k].force);
     out.vps.query.torque += w * (align.torque - state.region[k].torque);

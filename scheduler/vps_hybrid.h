@@ -5,6 +5,7 @@
 // face pair; a compatible pair (scheduler/constraint_recognition.h) is recognised as a
 // constraint and phased in. Per engaged constraint k with engagement x_k (eq. 15-17):
 //     F = F_other + sum_k [ F_C,k (1 - x_k) + F_A,k x_k ]          (eq. 13, 19)
+// (x_k in the blend is min(1, x_k / x_full), HybridParams: x_full = 1 is the paper's)
 // and the same for the torque (eq. 14), with F_C,k the collision force of the contacts
 // between the constraint's two faces (its region), F_other that of all other contacts
 // (edges, unlabelled voxels and points, other pairs: they stay, seed 002 Fig. 25) and
@@ -23,16 +24,30 @@
 #include "mesh/analytic_faces.h"
 #include "scheduler/constraint_recognition.h"
 #include "scheduler/vps_method.h"
+#include "snapfit/scene.h"
 
 namespace snapfit {
 
 struct HybridParams {
-  RecognitionTolerance tolerance;   // set from the voxel size by hybrid_model_for
-  double alignment_fraction = 0.5;  // k_A, k_R as this fraction of the coupling's k_T, k_R
+  RecognitionTolerance tolerance;   // set from the voxel size by hybrid_model unless > 0
+  // Defaults as the scene's (VpsHybridParams): the paper's is rotation_fraction 0.5,
+  // x_full 1, region pair; these insert at zero clearance (docs/haptics.md).
+  double alignment_fraction = 0.5;  // k_A as this fraction of the coupling's k_T
+  double rotation_fraction = 0.9;   // k_R as this fraction of the coupling's k_R
   double x_engage = 0.75;           // engage at x >= this (theta = 0: |d| <= s ln 2)
   double x_release = 0.6;           // release at x < this (theta = 0: |d| > s ln 5)
+  // The blend weight is min(1, x / x_full) (times the ramp): 1 is eq. 13's x itself;
+  // below 1 the weight saturates once x reaches x_full, so a constraint that is nearly
+  // met (x ~ 0.9 deep in a hole, where theta_0 = s / l of eq. 16 is small) blends the
+  // region's collision force out entirely.
+  double x_full = 0.8;
   double ramp_s = 0.05;             // seconds to phase a constraint fully in or out
+  HybridRegion region = HybridRegion::face;  // which contacts a constraint's region holds
 };
+
+// The scene's `vps.hybrid` section as HybridParams (tolerances left to the voxel size
+// where the scene gives none).
+HybridParams hybrid_params_for(const Scene& scene);
 
 struct HybridModel {
   VpsModel vps;
@@ -46,9 +61,9 @@ struct HybridModel {
 
 // The hybrid over a VPS model: labels part 1's surface voxels and part 2's shell points
 // with their faces; recognition tolerances from the voxel size s (radius and offset 2 s,
-// angle 0.2 rad) unless `params` sets them (> 0); k_A, k_R the fraction of the coupling's.
+// angle 0.2 rad) unless `params` sets them (> 0); k_A, k_R the fractions of the coupling's.
 // Throws snapfit::Error for a fraction outside (0, 1), thresholds not 0 < x_release <
-// x_engage <= 1, or a negative ramp.
+// x_engage <= 1, x_full outside (0, 1], or a negative ramp.
 HybridModel hybrid_model(VpsModel vps, std::vector<AnalyticFace> faces1, std::vector<AnalyticFace> faces2,
                          const CouplingParams& coupling, HybridParams params = {});
 

@@ -1,8 +1,10 @@
 // Analytic faces of the procedural parts (mesh/analytic_faces.h, procedural_parts.h):
 // every shell point of a chamfered peg maps to the face its position says, or to an edge
 // within the edge band of a profile corner; every surface voxel of a hole block maps to a
-// face, the wall's voxels to the wall; radii differ by the clearance; bad input.
+// face, the wall's voxels to the wall; radii differ by the clearance; the three-peg pair's
+// planes, cylinders and fillets; excluded discs, turned faces; bad input.
 #include <doctest/doctest.h>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstring>
 
@@ -125,11 +127,107 @@ TEST_CASE("analytic faces: every surface voxel of a hole block maps to a face, t
   CHECK(r - peg[find_face(peg, "peg side")].radius() == doctest::Approx(clearance).epsilon(1e-3));
 }
 
-TEST_CASE("analytic faces: the three-peg pair has none, and bad input is refused") {
-  const ProceduralPartSpec base{"three_peg_base",
-                                {{"cell", 20}, {"base_thickness", 5}, {"cover_thickness", 5}},
-                                {{"peg_radii", {3, 4, 5}}, {"peg_heights", {6, 8, 10}}, {"fillet_radii", {1, 1, 1}}}};
-  CHECK(procedural_part_faces(base).empty());
+TEST_CASE("analytic faces: the three-peg pair's planes and cylinders label its points, its fillets' stay unlabelled") {
+  // Pegs at the cell centres (-20, -10), (0, 10), (20, -10) (procedural_parts.h), radii
+  // 3, 4.5, 6, heights 8, 10, 12, fillets 1, 1.5, 2 (scenes/three_pegs.json).
+  const double cell = 20, s = 0.5;
+  const double radii[3] = {3, 4.5, 6}, heights[3] = {8, 10, 12}, fillets[3] = {1, 1.5, 2};
+  const Eigen::Vector2d centres[3] = {{-20, -10}, {0, 10}, {20, -10}};
+  ProceduralPartSpec spec{"three_peg_cover",
+                          {{"cell", cell}, {"base_thickness", 8}, {"cover_thickness", 6}},
+                          {{"peg_radii", {3, 4.5, 6}}, {"peg_heights", {8, 10, 12}}, {"fillet_radii", {1, 1.5, 2}}}};
+  const std::vector<AnalyticFace> cover = procedural_part_faces(spec);
+  REQUIRE(cover.size() == 1 + 3 * 3 + 5);  // flat, 3 x (hole, ceiling, fillet), 4 sides, top
+  const int flat = find_face(cover, "cover flat");
+  REQUIRE(flat >= 0);
+  CHECK(cover[flat].axis.isApprox(-Eigen::Vector3d::UnitZ()));  // out of the cover's material
+  REQUIRE(cover[flat].holes.size() == 3);
+  const char* holes[3] = {"cover hole 1", "cover hole 2", "cover hole 3"};
+  const char* ceilings[3] = {"cover ceiling 1", "cover ceiling 2", "cover ceiling 3"};
+  for (int k = 0; k < 3; ++k) {
+    const int hole = find_face(cover, holes[k]);
+    REQUIRE(hole >= 0);
+    CHECK(cover[hole].kind == FaceKind::cylinder);
+    CHECK_FALSE(cover[hole].material_inside);
+    CHECK(cover[hole].radius() == doctest::Approx(radii[k]).epsilon(1e-3));
+    CHECK(cover[flat].holes[k].radius == doctest::Approx(radii[k] + fillets[k]).epsilon(1e-3));
+  }
+
+  // Every shell point of the cover by where it lies (an independent classification from
+  // the parameters): on the flat face a voxel away from every fillet, the flat face; on a
+  // hole's wall a voxel from its ends, that hole; on a ceiling inside r - s, the ceiling;
+  // on a fillet's arc farther than the band from its ends, no face.
+  const Mesh mesh = make_procedural_part(spec);
+  const PointShell shell = build_point_shell(mesh, s);
+  const std::vector<std::int16_t> labels = label_point_shell(shell, cover);
+  int on_flat = 0, on_wall = 0, on_fillet = 0;
+  for (std::size_t i = 0; i < shell.points.size(); ++i) {
+    const Eigen::Vector3d& x = shell.points[i];
+    CAPTURE(x.transpose());
+    const bool inside_footprint = std::abs(x.x()) < 1.5 * cell - s && std::abs(x.y()) < cell - s;
+    for (int k = 0; k < 3; ++k) {
+      const double rho = (x.head<2>() - centres[k]).norm(), r = radii[k], f = fillets[k], h = heights[k];
+      if (std::abs(x.z()) < 1e-6 && rho > r + f + s && inside_footprint) {
+        bool far = true;
+        for (int m = 0; m < 3; ++m) far &= (x.head<2>() - centres[m]).norm() > radii[m] + fillets[m] + s;
+        if (far && k == 0) {
+          CHECK(labels[i] == flat);
+          ++on_flat;
+        }
+      }
+      if (std::abs(rho - r) < 0.05 && x.z() > f + s && x.z() < h - s) {
+        CHECK(labels[i] == find_face(cover, holes[k]));
+        ++on_wall;
+      }
+      if (std::abs(x.z() - h) < 1e-6 && rho < r - s) CHECK(labels[i] == find_face(cover, ceilings[k]));
+      // On the fillet: distance f from the arc's centre (rho, z) = (r + f, f), between its ends.
+      const Eigen::Vector2d q(rho - (r + f), x.z() - f);
+      if (std::abs(q.norm() - f) < 0.05 && q.x() < 0 && q.y() < 0 && (Eigen::Vector2d(rho, x.z()) - Eigen::Vector2d(r, f)).norm() > s &&
+          (Eigen::Vector2d(rho, x.z()) - Eigen::Vector2d(r + f, 0)).norm() > s) {
+        CHECK(labels[i] == kNoFace);
+        ++on_fillet;
+      }
+    }
+  }
+  CHECK(on_flat > 100);
+  CHECK(on_wall > 100);
+  CHECK(on_fillet > 10);
+
+  // The base has the same faces with its own normals: pegs, tops up, the flat face up.
+  spec.type = "three_peg_base";
+  const std::vector<AnalyticFace> base = procedural_part_faces(spec);
+  REQUIRE(base.size() == cover.size());
+  CHECK(base[find_face(base, "base flat")].axis.isApprox(Eigen::Vector3d::UnitZ()));
+  CHECK(base[find_face(base, "base peg 3")].material_inside);
+  CHECK(base[find_face(base, "base peg top 3")].origin.isApprox(Eigen::Vector3d(20, -10, 12)));
+  // The torus's distance against its closed form: from the arc's centre, f; from a point
+  // beyond the arc's end on the flat side, the distance to that end.
+  const AnalyticFace& fillet = base[find_face(base, "base peg 3") + 2];
+  REQUIRE(fillet.kind == FaceKind::torus);
+  const double r3 = base[find_face(base, "base peg 3")].radius();
+  CHECK(face_distance(fillet, Eigen::Vector3d(20 + r3 + 2, -10, 2)) == doctest::Approx(2));
+  CHECK(face_distance(fillet, Eigen::Vector3d(20 + r3 + 5, -10, 0)) == doctest::Approx(3));
+  CHECK(face_distance(fillet, Eigen::Vector3d(20, -10 - r3 - 2 + 2 * std::cos(0.3), 2 - 2 * std::sin(0.3))) ==
+        doctest::Approx(0).epsilon(1e-9));
+}
+
+TEST_CASE("analytic faces: excluded discs, turned faces, and bad input is refused") {
+  // A plate with two holes: over a hole the distance is to the hole's rim.
+  AnalyticFace plate;
+  plate.lo = Eigen::Vector3d(-10, -10, 0);
+  plate.hi = Eigen::Vector3d(10, 10, 0);
+  plate.holes = {{Eigen::Vector3d(-5, 0, 0), 2}, {Eigen::Vector3d(5, 0, 0), 1}};
+  CHECK(face_distance(plate, Eigen::Vector3d(-5, 0, 0)) == doctest::Approx(2));
+  CHECK(face_distance(plate, Eigen::Vector3d(5, 0.5, 0)) == doctest::Approx(0.5));
+  CHECK(face_distance(plate, Eigen::Vector3d(0, 0, 0.3)) == doctest::Approx(0.3));
+  CHECK(face_distance(plate, Eigen::Vector3d(-5, 0, 1.5)) == doctest::Approx(2.5));  // 2 sideways, 1.5 up
+  // Turned a quarter about x: the normal becomes -y, the box and holes follow.
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.5 * 3.14159265358979323846, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const AnalyticFace turned = rotated_face(plate, turn);
+  CHECK(turned.axis.isApprox(-Eigen::Vector3d::UnitY()));
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(-5, 0, 0), Eigen::Vector3d(5, 0.5, 0), Eigen::Vector3d(0, 3, 0.3)})
+    CHECK(face_distance(turned, turn * p) == doctest::Approx(face_distance(plate, p)));
+
   CHECK_THROWS_WITH(procedural_part_faces({"peg", {{"radius", -1}, {"length", 3}}, {}}), doctest::Contains("radius"));
   const std::vector<AnalyticFace> peg = procedural_part_faces({"peg", {{"radius", 1}, {"length", 3}}, {}});
   CHECK_THROWS_WITH(face_at(peg, Eigen::Vector3d::Zero(), 0.0, 0.1), doctest::Contains("must be > 0"));

@@ -140,6 +140,17 @@ void check_same_scene(const Scene& a, const Scene& b) {
   CHECK(a.vps.shell_density == b.vps.shell_density);
   CHECK(a.vps.proximity_layers == b.vps.proximity_layers);
   CHECK(a.vps.braking_n_s_per_m == b.vps.braking_n_s_per_m);
+  const VpsHybridParams &ya = a.vps.hybrid, &yb = b.vps.hybrid;
+  CHECK(ya.alignment_fraction == yb.alignment_fraction);
+  CHECK(ya.rotation_fraction == yb.rotation_fraction);
+  CHECK(ya.x_engage == yb.x_engage);
+  CHECK(ya.x_release == yb.x_release);
+  CHECK(ya.x_full == yb.x_full);
+  CHECK(ya.ramp_s == yb.ramp_s);
+  CHECK(ya.radius_tolerance == yb.radius_tolerance);
+  CHECK(ya.offset_tolerance == yb.offset_tolerance);
+  CHECK(ya.angle_tolerance_deg == yb.angle_tolerance_deg);
+  CHECK(ya.region == yb.region);
 }
 
 std::vector<fs::path> shipped_scenes() {
@@ -210,6 +221,64 @@ TEST_CASE("scene: method and vps fields round-trip, and bad ones are named") {
   CHECK_ERROR(with("proximity_layers", 1.5), "vps.proximity_layers: must be an integer in [0, 16] (got 1.5)");
   CHECK_ERROR(with("braking_n_s_per_m", -2), "vps.braking_n_s_per_m: must be >= 0");
   CHECK_ERROR(with("density", 2), "vps.density: unknown field");
+}
+
+TEST_CASE("scene: vps.hybrid fields round-trip, and bad ones are named") {
+  const Scene d = parse_scene(base_scene().dump(), "test.json");
+  CHECK(d.vps.hybrid.alignment_fraction == 0.5);  // docs/scenes.md's defaults
+  CHECK(d.vps.hybrid.rotation_fraction == 0.9);
+  CHECK(d.vps.hybrid.x_full == 0.8);
+  CHECK(d.vps.hybrid.region == HybridRegion::face);
+  CHECK(!d.vps.hybrid.radius_tolerance);
+  json j = base_scene();
+  j["method"] = "vps_hybrid";
+  j["vps"] = {{"voxel_size", 0.5},
+              {"hybrid",
+               {{"alignment_fraction", 0.4},
+                {"rotation_fraction", 0.8},
+                {"x_engage", 0.7},
+                {"x_release", 0.5},
+                {"x_full", 0.9},
+                {"ramp_s", 0.02},
+                {"radius_tolerance", 1.5},
+                {"offset_tolerance", 0.75},
+                {"angle_tolerance_deg", 5},
+                {"region", "pair"}}}};
+  const Scene s = parse_scene(j.dump(), "test.json");
+  const VpsHybridParams& h = s.vps.hybrid;
+  CHECK(h.alignment_fraction == 0.4);
+  CHECK(h.rotation_fraction == 0.8);
+  CHECK(h.x_engage == 0.7);
+  CHECK(h.x_release == 0.5);
+  CHECK(h.x_full == 0.9);
+  CHECK(h.ramp_s == 0.02);
+  CHECK(h.radius_tolerance == 1.5);
+  CHECK(h.offset_tolerance == 0.75);
+  CHECK(h.angle_tolerance_deg == 5);
+  CHECK(h.region == HybridRegion::pair);
+  check_same_scene(s, parse_scene(scene_to_json(s), "copy.json"));
+
+  const auto with = [&](const std::string& field, const json& value) {
+    json k = j;
+    k["vps"]["hybrid"][field] = value;
+    return k;
+  };
+  CHECK_ERROR(with("alignment_fraction", 1),
+              "test.json: vps.hybrid.alignment_fraction: must be in (0, 1): the user stays stronger than the "
+              "constraint (got 1)");
+  CHECK_ERROR(with("rotation_fraction", 0), "vps.hybrid.rotation_fraction: must be in (0, 1)");
+  CHECK_ERROR(with("x_engage", 1.2), "vps.hybrid.x_engage: must be in (0, 1] (got 1.2)");
+  CHECK_ERROR(with("x_full", 0), "vps.hybrid.x_full: must be in (0, 1] (got 0)");
+  CHECK_ERROR(with("x_release", 0.8), "vps.hybrid.x_release: must be below x_engage (got 0.8 against 0.7)");
+  CHECK_ERROR(with("ramp_s", -1), "vps.hybrid.ramp_s: must be >= 0 (got -1)");
+  CHECK_ERROR(with("radius_tolerance", 0), "vps.hybrid.radius_tolerance: must be > 0 (got 0)");
+  CHECK_ERROR(with("offset_tolerance", "wide"), "vps.hybrid.offset_tolerance: expected a number, got string");
+  CHECK_ERROR(with("angle_tolerance_deg", 120), "vps.hybrid.angle_tolerance_deg: must be in (0, 90] (got 120)");
+  CHECK_ERROR(with("region", "all"), "vps.hybrid.region: unknown region 'all' (expected pair or face)");
+  CHECK_ERROR(with("x_ful", 1), "vps.hybrid.x_ful: unknown field");
+  json not_object = j;
+  not_object["vps"]["hybrid"] = 3;
+  CHECK_ERROR(not_object, "vps.hybrid");
 }
 
 TEST_CASE("scene: every shipped scene parses and round-trips") {

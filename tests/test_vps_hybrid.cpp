@@ -3,10 +3,11 @@
 // (concentric, planar; none for a cylinder against a plane, cylinders of different radii,
 // two pegs, tilted axes), engagement (eq. 15-17), and a scripted insertion down to the
 // floor and back out: concentric while inserting, then planar at the floor, both
-// released outside, with bounded steps of the blend weights between frames; `snapfit run`
-// with a vps_hybrid scene (constraint per frame in loop.csv and summary.json; it assembles
-// below the voxel size; in the loop the weight steps little and the force sent no more
-// than plain VPS's) and with a part without analytic faces (plain VPS, said so).
+// released outside, with bounded steps of the blend weights between frames; the scene's
+// vps.hybrid section, x_full and the face region; `snapfit run` with a vps_hybrid scene
+// (constraint per frame in loop.csv and summary.json; with the paper's blend it assembles
+// below the voxel size, the weight steps little and the force sent no more than 1.5x plain
+// VPS's; with the default blend it assembles at zero clearance) and on the three-peg pair.
 #include <doctest/doctest.h>
 #include <Eigen/Geometry>
 #include <array>
@@ -154,6 +155,65 @@ TEST_CASE("vps hybrid: bad parameters are refused") {
   CHECK_THROWS_WITH(hybrid_model(vps, {}, {}, CouplingParams{}, p), doctest::Contains("release < engage"));
 }
 
+TEST_CASE("vps hybrid: the scene's vps.hybrid section sets the parameters, x_full saturates the weight, the face region") {
+  nlohmann::json j;
+  std::ifstream(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/peg_hole_clearance_0p5.json") >> j;
+  j["method"] = "vps_hybrid";
+  j["vps"]["hybrid"] = {{"rotation_fraction", 0.8}, {"x_full", 0.8},       {"angle_tolerance_deg", 5},
+                        {"region", "face"},         {"ramp_s", 0},          {"offset_tolerance", 0.3}};
+  const Scene scene = parse_scene(j.dump(), "hybrid.json");
+  const HybridParams p = hybrid_params_for(scene);
+  CHECK(p.rotation_fraction == 0.8);
+  CHECK(p.alignment_fraction == 0.5);
+  CHECK(p.x_full == 0.8);
+  CHECK(p.region == HybridRegion::face);
+  CHECK(p.tolerance.angle == doctest::Approx(5 * 3.14159265358979323846 / 180));
+  CHECK(p.tolerance.offset == 0.3);
+  CHECK(p.tolerance.radius == 0);  // left to the voxel size
+  CouplingParams coupling;
+  coupling.stiffness = 1000;
+  coupling.rot_stiffness = 2;
+  VpsModel vps;
+  vps.voxmap = build_voxmap(make_procedural_part(kHole), kVoxel, 2);
+  vps.shell = build_point_shell(make_procedural_part(kPeg), kVoxel);
+  vps.stiffness = 800;
+  vps.metres_per_unit = 1e-3;
+  vps.period_s = 1e-3;
+  const HybridModel m = hybrid_model(vps, procedural_part_faces(kHole), procedural_part_faces(kPeg), coupling, p);
+  CHECK(m.k_a_n_per_m == 500);
+  CHECK(m.k_r_nm_per_rad == doctest::Approx(1.6));
+  CHECK(m.params.tolerance.radius == 2 * kVoxel);
+
+  // A peg tilted in its hole so that x ~ 0.9 (the theta term of eq. 15 below 1): with the
+  // paper's weight (x_full 1) the blend weight is x; with x_full 0.8 it is 1.
+  const auto weight_at = [&](double x_full, HybridRegion region, QueryWrench* region_force) {
+    HybridParams q;
+    q.ramp_s = 0;
+    q.x_full = x_full;
+    q.region = region;
+    const HybridModel model = hybrid_model(vps, procedural_part_faces(kHole), procedural_part_faces(kPeg), coupling, q);
+    HybridState state = hybrid_state_for(model);
+    BodyState b;
+    b.pose = at(0.35, -6);  // beyond the 0.2 play: in contact with the wall
+    b.pose.rotation = Eigen::AngleAxisd(0.004, Eigen::Vector3d::UnitY());
+    HybridResult r;
+    for (int i = 0; i < 3; ++i) r = hybrid_wrench(model, state, b);  // recognise, then engage
+    if (region_force) *region_force = state.region[0];
+    return std::pair<double, double>(r.x, state.active[0].x);
+  };
+  QueryWrench pair_region, face_region;
+  const auto [w_paper, x] = weight_at(1.0, HybridRegion::pair, &pair_region);
+  MESSAGE("tilted peg: x " << x);
+  REQUIRE(x > 0.75);
+  REQUIRE(x < 0.999);
+  CHECK(w_paper == doctest::Approx(x));
+  CHECK(weight_at(0.8, HybridRegion::pair, nullptr).first == doctest::Approx(std::min(1.0, x / 0.8)));
+  CHECK(weight_at(x, HybridRegion::pair, nullptr).first == doctest::Approx(1.0));
+  // The face region holds at least the pair region's contacts: every contact on the wall.
+  weight_at(1.0, HybridRegion::face, &face_region);
+  CHECK(face_region.force.norm() >= pair_region.force.norm() - 1e-12);
+}
+
 TEST_CASE("vps hybrid: a scripted insertion engages concentric, then planar at the floor, and releases both") {
   // Part 2 goes down the hole 0.3 off its axis (beyond the clearance: it touches the wall),
   // is pressed 0.1 into the floor, pulled onto the axis, held, then pulled out and away.
@@ -209,14 +269,16 @@ TEST_CASE("vps hybrid: a scripted insertion engages concentric, then planar at t
   CHECK(instant_step >= 0.75);
 }
 
-TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint per frame, and without faces plain VPS") {
+TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint per frame, and the three-peg pair with its faces") {
   // The shipped peg scene at 0.1 mm clearance (below the voxel: the peg touches the wall)
-  // as "method": "vps_hybrid" at a quarter-millimetre voxel.
+  // as "method": "vps_hybrid" at a quarter-millimetre voxel, with the paper's blend (eq.
+  // 13's x, the pair region, k_R half the coupling's).
   nlohmann::json scene;
   std::ifstream(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/peg_hole_clearance_0p5.json") >> scene;
   scene["part1"]["procedural"]["clearance"] = 0.1;
   scene["method"] = "vps_hybrid";
-  scene["vps"] = {{"voxel_size", 0.25}};
+  scene["vps"] = {{"voxel_size", 0.25},
+                  {"hybrid", {{"x_full", 1}, {"region", "pair"}, {"rotation_fraction", 0.5}}}};
   const test::TempDir dir;
   test::write_text(dir.file("hybrid.json"), scene.dump());
   const test::Command run = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("hybrid.json") +
@@ -257,19 +319,53 @@ TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint 
   MESSAGE("largest sent force step: hybrid " << hybrid_step << " N, plain VPS " << vps_step << " N; weight step " << max_dx);
   CHECK(hybrid_step <= 1.5 * vps_step);
 
-  // The three-peg pair has no analytic faces: plain VPS, said so.
+  // At zero clearance with the default blend (x_full 0.8, the face region, k_R 0.9 of the
+  // coupling's): it assembles where plain VPS stops short, the weight still steps by at
+  // most the ramp's 1/50 plus what x / x_full changes in a frame, and the force sent
+  // steps less than plain VPS's.
+  scene["part1"]["procedural"]["clearance"] = 0;
+  scene["method"] = "vps_hybrid";
+  scene["vps"] = {{"voxel_size", 0.25}};
+  test::write_text(dir.file("zero.json"), scene.dump());
+  const test::Command zero = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("zero.json") +
+                                               " --simulated-time --out " + dir.file("zero"));
+  INFO(zero.output);
+  REQUIRE(zero.status == 0);
+  nlohmann::json zs;
+  std::ifstream(dir.file("zero/summary.json")) >> zs;
+  CHECK(zs["haptic_loop"]["assembled"] == true);
+  const LoopColumns zero_loop = read_loop(dir.file("zero/loop.csv"));
+  double zero_dx = 0;
+  for (std::size_t i = 1; i < zero_loop.frames(); ++i)
+    zero_dx = std::max(zero_dx, std::abs(zero_loop.weight[i] - zero_loop.weight[i - 1]));
+  CHECK(zero_dx <= 0.05);
+  scene["method"] = "vps";
+  test::write_text(dir.file("zero_vps.json"), scene.dump());
+  const test::Command zero_vps = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("zero_vps.json") +
+                                                   " --simulated-time --out " + dir.file("zero_vps"));
+  REQUIRE(zero_vps.status == 0);
+  nlohmann::json zv;
+  std::ifstream(dir.file("zero_vps/summary.json")) >> zv;
+  CHECK(zv["haptic_loop"]["assembled"] == false);
+  const double zero_step = zero_loop.max_sent_step(), zero_vps_step = read_loop(dir.file("zero_vps/loop.csv")).max_sent_step();
+  MESSAGE("zero clearance: largest sent force step hybrid " << zero_step << " N, plain VPS " << zero_vps_step
+                                                            << " N; weight step " << zero_dx);
+  CHECK(zero_step <= zero_vps_step);
+
+  // The three-peg pair has faces now (planes and cylinders; its fillets unlabelled): the
+  // hybrid runs on it. A part without faces (a mesh file): tests/test_cad_faces.cpp.
   nlohmann::json three;
   std::ifstream(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/three_pegs.json") >> three;
   three["method"] = "vps_hybrid";
   three["vps"] = {{"voxel_size", 1.0}};
   three.erase("trajectory");
   test::write_text(dir.file("three.json"), three.dump());
-  const test::Command plain = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("three.json") +
-                                                " --simulated-time --out " + dir.file("three"));
-  INFO(plain.output);
-  REQUIRE(plain.status == 0);
-  CHECK(plain.output.find("has no analytic faces: running as plain Voxmap PointShell") != std::string::npos);
+  const test::Command pegs = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("three.json") +
+                                               " --simulated-time --out " + dir.file("three"));
+  INFO(pegs.output);
+  REQUIRE(pegs.status == 0);
+  CHECK(pegs.output.find("vps_hybrid: 15 + 15 analytic faces") != std::string::npos);
   nlohmann::json s3;
   std::ifstream(dir.file("three/summary.json")) >> s3;
-  CHECK(s3["vps"]["hybrid"]["engaged"] == false);
+  CHECK(s3["vps"]["hybrid"]["engaged"] == true);
 }

@@ -91,4 +91,77 @@ std::vector<AnalyticFace> hole_block_faces(const HoleBlockParams& p) {
   return faces;
 }
 
+namespace {
+
+// The fillet at a peg's foot: the quarter circle of three_peg_pair.cpp, from the wall's
+// foot (z = f, on the cylinder) to the flat face (z = 0, at r + f), about (z, rho) = (f, r + f).
+AnalyticFace fillet(const char* name, const Eigen::Vector3d& centre, double r, double f) {
+  AnalyticFace t;
+  t.kind = FaceKind::torus;
+  t.name = name;
+  t.origin = centre;
+  t.axis = Eigen::Vector3d::UnitZ();
+  t.a0 = f, t.r0 = r;
+  t.a1 = 0, t.r1 = r + f;
+  t.ac = f, t.rc = r + f;
+  return t;
+}
+
+// The faces the base and the cover share along the mating surface, with the normals of
+// the base (`base`) or the cover: the flat face z = 0 less the three fillets' discs, and
+// per peg its wall, its top (the cover's hole ceiling) and its fillet; then the outer box
+// (sides and the bottom at -base_thickness, or the top at top()).
+std::vector<AnalyticFace> three_peg_faces(const ThreePegParams& p, bool base) {
+  const double sign = base ? 1.0 : -1.0;  // the base's mating normals point up
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  const double hx = 1.5 * p.cell, hy = p.cell;
+  const double z0 = base ? -p.base_thickness : 0.0, z1 = base ? 0.0 : p.top();
+  std::vector<AnalyticFace> faces;
+  AnalyticFace flat = plane(base ? "base flat" : "cover flat", Eigen::Vector3d::Zero(), sign * up);
+  flat.lo = Eigen::Vector3d(-hx, -hy, 0);
+  flat.hi = Eigen::Vector3d(hx, hy, 0);
+  static const char* const kWall[2][3] = {{"cover hole 1", "cover hole 2", "cover hole 3"},
+                                          {"base peg 1", "base peg 2", "base peg 3"}};
+  static const char* const kTop[2][3] = {{"cover ceiling 1", "cover ceiling 2", "cover ceiling 3"},
+                                         {"base peg top 1", "base peg top 2", "base peg top 3"}};
+  static const char* const kFillet[2] = {"cover fillet", "base fillet"};
+  std::vector<AnalyticFace> pegs;
+  for (int k = 0; k < 3; ++k) {
+    const double r = mean_radius(p.peg_radii[k], p.segments), h = p.peg_heights[k], f = p.fillet_radii[k];
+    const Eigen::Vector3d centre((kPegCells[k][0] - 1) * p.cell, (kPegCells[k][1] - 0.5) * p.cell, 0);
+    flat.holes.push_back({centre, r + f});
+    AnalyticFace wall = revolution(kWall[base][k], f, r, h, r, base);
+    wall.origin = centre;
+    pegs.push_back(wall);
+    AnalyticFace top = plane(kTop[base][k], centre + h * up, sign * up);
+    top.r_out = r;
+    pegs.push_back(top);
+    if (f > 0) pegs.push_back(fillet(kFillet[base], centre, r, f));
+  }
+  faces.push_back(flat);
+  faces.insert(faces.end(), pegs.begin(), pegs.end());
+  const Eigen::Vector3d lo(-hx, -hy, z0), hi(hx, hy, z1);
+  auto boxed = [&](AnalyticFace f) {
+    f.lo = lo;
+    f.hi = hi;
+    return f;
+  };
+  faces.push_back(boxed(plane("side +x", Eigen::Vector3d(hx, 0, 0), Eigen::Vector3d::UnitX())));
+  faces.push_back(boxed(plane("side -x", Eigen::Vector3d(-hx, 0, 0), -Eigen::Vector3d::UnitX())));
+  faces.push_back(boxed(plane("side +y", Eigen::Vector3d(0, hy, 0), Eigen::Vector3d::UnitY())));
+  faces.push_back(boxed(plane("side -y", Eigen::Vector3d(0, -hy, 0), -Eigen::Vector3d::UnitY())));
+  faces.push_back(base ? boxed(plane("base bottom", Eigen::Vector3d(0, 0, z0), -up))
+                       : boxed(plane("cover top", Eigen::Vector3d(0, 0, z1), up)));
+  return faces;
+}
+
+}  // namespace
+
+// The base: the flat mating face, each peg's wall, top and fillet, the sides and bottom.
+std::vector<AnalyticFace> three_peg_base_faces(const ThreePegParams& p) { return three_peg_faces(p, true); }
+
+// The cover: the same mating faces with the normals reversed (each peg's wall a hole,
+// its top the hole's ceiling, its fillet the hole's rounded entry), the sides and top.
+std::vector<AnalyticFace> three_peg_cover_faces(const ThreePegParams& p) { return three_peg_faces(p, false); }
+
 }  // namespace snapfit::procedural

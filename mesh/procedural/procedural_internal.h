@@ -66,9 +66,13 @@ Mesh make_hole_block(const HoleBlockParams& p);
 Mesh make_three_peg_base(const ThreePegParams& p);
 Mesh make_three_peg_cover(const ThreePegParams& p);
 
-// The analytic faces the peg and the hole block are tessellations of (procedural_faces.cpp).
+// The analytic faces the parts are tessellations of (procedural_faces.cpp).
 std::vector<AnalyticFace> peg_faces(const PegParams& p);
 std::vector<AnalyticFace> hole_block_faces(const HoleBlockParams& p);
+// The three-peg pair's planes and cylinders, and its fillets as tori (their points stay
+// unlabelled): procedural_faces.cpp.
+std::vector<AnalyticFace> three_peg_base_faces(const ThreePegParams& p);
+std::vector<AnalyticFace> three_peg_cover_faces(const ThreePegParams& p);
 
 // ---- mesh-building helpers
 

@@ -225,7 +225,8 @@ std::vector<AnalyticFace> procedural_part_faces(const ProceduralPartSpec& spec) 
   const Params in{spec};
   if (spec.type == "peg") return procedural::peg_faces(read_peg(in));
   if (spec.type == "hole_block") return procedural::hole_block_faces(read_hole_block(in));
-  return {};
+  if (spec.type == "three_peg_base") return procedural::three_peg_base_faces(read_three_peg(in));
+  return procedural::three_peg_cover_faces(read_three_peg(in));
 }
 
 }  // namespace snapfit

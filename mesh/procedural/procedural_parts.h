@@ -34,9 +34,9 @@ void check_procedural_spec(const ProceduralPartSpec& spec);
 Mesh make_procedural_part(const ProceduralPartSpec& spec);
 
 // The analytic faces the part's mesh tessellates (mesh/analytic_faces.h), in the part's
-// frame: planes, cylinders and cones of the peg and the hole block. Empty for a type
-// without a face description (the three-peg pair: its fillets are toroidal). Checks the
-// spec first.
+// frame: planes, cylinders and cones of the peg and the hole block; planes (the flat
+// mating face with the three fillets' discs cut out), cylinders and tori (the fillets,
+// whose points stay unlabelled) of the three-peg pair. Checks the spec first.
 std::vector<AnalyticFace> procedural_part_faces(const ProceduralPartSpec& spec);
 
 }  // namespace snapfit
