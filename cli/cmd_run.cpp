@@ -15,8 +15,9 @@
 #include "cli/parse_options.h"
 #include "core/progress.h"
 #include "core/quantile.h"
-#include "engine/runtime/device_check.h"
 #include "engine/query/query_engine.h"
+#include "engine/runtime/device_check.h"
+#include "mesh/procedural/procedural_parts.h"
 #include "pipeline/assembly_pair.h"
 #include "report/haptic_report.h"
 #include "report/run_report.h"
@@ -26,9 +27,8 @@
 #include "scheduler/assembly_session.h"
 #include "scheduler/loop_devices.h"
 #include "scheduler/query_strategy.h"
-#include "mesh/procedural/procedural_parts.h"
-#include "scheduler/vps_hybrid.h"
-#include "scheduler/vps_method.h"
+#include "scheduler/vps/vps_hybrid.h"
+#include "scheduler/vps/vps_method.h"
 #include "snapfit/error.h"
 
 namespace snapfit::cli {
@@ -97,8 +97,9 @@ void print_loop(const Scene& scene, const SessionResult& session) {
   std::cout << "    final pose error " << session.final_error.position << " " << scene.units << ", "
             << session.final_error.angle_deg << " deg (tolerance " << session.position_tolerance << " " << scene.units
             << ", " << session.angle_tolerance_deg << " deg): "
-            << (!session.evaluated ? "not evaluated (the scene has no assembled pose)"
-                                   : session.assembled ? "ASSEMBLED" : "NOT assembled")
+            << (!session.evaluated  ? "not evaluated (the scene has no assembled pose)"
+                : session.assembled ? "ASSEMBLED"
+                                    : "NOT assembled")
             << "\n      " << final_error_text(session, scene.units) << "\n";
 }
 
@@ -170,10 +171,10 @@ void run_vps_job(const RunOptions& opt, const AssemblyPair& pair, std::chrono::s
       hybrid = hybrid_model(model, std::move(f1), std::move(f2), coupling, hybrid_params_for(scene));
       hybrid_state = hybrid_state_for(*hybrid);
       facts.hybrid = true;
-      facts.labelled_voxels = std::count_if(hybrid->voxel_face.begin(), hybrid->voxel_face.end(),
-                                            [](std::int16_t f) { return f >= 0; });
-      facts.labelled_points = std::count_if(hybrid->point_face.begin(), hybrid->point_face.end(),
-                                            [](std::int16_t f) { return f >= 0; });
+      facts.labelled_voxels =
+          std::count_if(hybrid->voxel_face.begin(), hybrid->voxel_face.end(), [](std::int16_t f) { return f >= 0; });
+      facts.labelled_points =
+          std::count_if(hybrid->point_face.begin(), hybrid->point_face.end(), [](std::int16_t f) { return f >= 0; });
       facts.alignment_k_n_per_m = hybrid->k_a_n_per_m;
       std::cout << "    vps_hybrid: " << facts.faces1 << " + " << facts.faces2 << " analytic faces; "
                 << facts.labelled_voxels << " surface voxels and " << facts.labelled_points
@@ -184,13 +185,14 @@ void run_vps_job(const RunOptions& opt, const AssemblyPair& pair, std::chrono::s
     const Trajectory& t = scene.trajectory;
     const double seconds = t.keyframes.back().time_s - t.keyframes.front().time_s + scene.haptics.settle_s;
     std::cout << "[7/7] haptic loop at " << scene.loop_rate_hz << " Hz playing the scripted trajectory (" << seconds
-              << " s of " << (opt.simulated_time ? "simulated" : "real") << " time, " << (hybrid ? "VPS - constraint hybrid" : "Voxmap PointShell") << ")\n";
+              << " s of " << (opt.simulated_time ? "simulated" : "real") << " time, "
+              << (hybrid ? "VPS - constraint hybrid" : "Voxmap PointShell") << ")\n";
     SessionOptions session;
     session.simulated_time = opt.simulated_time;
     session.wait = parse_loop_wait(opt.loop_wait);
-    record.session = run_scripted_session(scene, pair.grids.spacing, vps_loop_config(scene, model, coupling),
-                                          hybrid ? hybrid_evaluator(*hybrid, *hybrid_state) : vps_evaluator(model),
-                                          session);
+    record.session =
+        run_scripted_session(scene, pair.grids.spacing, vps_loop_config(scene, model, coupling),
+                             hybrid ? hybrid_evaluator(*hybrid, *hybrid_state) : vps_evaluator(model), session);
     print_loop(scene, *record.session);
   } else {
     std::cout << "[7/7] the scene has no trajectory: no scripted assembly to run\n";
@@ -240,7 +242,8 @@ void run_main_job(const RunOptions& opt) {
   const QueryVariant variant = named_strategy(scene, opt.strategy);
   const auto& dims = pair.spectra.dims;
   std::cout << "    FFT grid " << dims[0] << " x " << dims[1] << " x " << dims[2]
-            << (pair.spectra_from_cache ? " (cached)" : "") << ", query variant tuned first: " << variant_name(variant) << "\n";
+            << (pair.spectra_from_cache ? " (cached)" : "") << ", query variant tuned first: " << variant_name(variant)
+            << "\n";
 
   // m' for this device: the tuning file, else a measured sweep; with several devices the
   // loop goes to the one scheduler/device_choice.h picks.
@@ -320,8 +323,8 @@ void run_main_job(const RunOptions& opt) {
     SessionOptions session;
     session.simulated_time = opt.simulated_time;
     session.wait = parse_loop_wait(opt.loop_wait);
-    record.session =
-        run_scripted_assembly(scene, pair.part(1).mesh, pair.part(2).mesh, pair.spectra.spacing, *loop_engine, record.tuning, session);
+    record.session = run_scripted_assembly(scene, pair.part(1).mesh, pair.part(2).mesh, pair.spectra.spacing,
+                                           *loop_engine, record.tuning, session);
     if (record.session->priority.failed)
       note("could not raise the priority of " + std::to_string(record.session->priority.failed) +
            " threads for the loop (" + record.session->priority.reason + "); frames may be late on a busy machine");

@@ -76,7 +76,8 @@ AnalyticFace rotated_face(const AnalyticFace& face, const Eigen::Matrix3d& rotat
 
 std::int16_t face_at(const std::vector<AnalyticFace>& faces, const Eigen::Vector3d& p, double tolerance,
                      double edge_band) {
-  if (faces.size() > 32767) throw Error("analytic faces: at most 32767 faces (got " + std::to_string(faces.size()) + ")");
+  if (faces.size() > 32767)
+    throw Error("analytic faces: at most 32767 faces (got " + std::to_string(faces.size()) + ")");
   if (!(tolerance > 0) || !(edge_band > 0))
     throw Error("analytic faces: the tolerance and edge band must be > 0 (got " + std::to_string(tolerance) + ", " +
                 std::to_string(edge_band) + ")");
@@ -96,26 +97,6 @@ std::int16_t face_at(const std::vector<AnalyticFace>& faces, const Eigen::Vector
   if (faces[id].kind == FaceKind::torus) return kNoFace;  // a fillet: no constraint reads it
   if (second <= edge_band) return kEdge;
   return id;
-}
-
-std::vector<std::int16_t> label_voxmap(const Voxmap& map, const std::vector<AnalyticFace>& faces) {
-  std::vector<std::int16_t> out(map.state.size(), kNoFace);
-  const double s = map.voxel_size;
-  for (int k = 0; k < map.dims.z(); ++k)
-    for (int j = 0; j < map.dims.y(); ++j)
-      for (int i = 0; i < map.dims.x(); ++i) {
-        const std::size_t id = map.index(i, j, k);
-        if (map.state[id] != VoxelState::surface) continue;
-        out[id] = face_at(faces, map.centre(i, j, k), s, 0.5 * s);
-      }
-  return out;
-}
-
-std::vector<std::int16_t> label_point_shell(const PointShell& shell, const std::vector<AnalyticFace>& faces) {
-  std::vector<std::int16_t> out(shell.points.size(), kNoFace);
-  for (std::size_t i = 0; i < shell.points.size(); ++i)
-    out[i] = face_at(faces, shell.points[i], shell.spacing, 0.5 * shell.spacing);
-  return out;
 }
 
 }  // namespace snapfit

@@ -1,9 +1,8 @@
 #pragma once
-// Analytic (B-rep-like) faces of a part and the face each voxel of a voxmap or each point
-// of a point shell lies on: the "voxel data expansion" of the Voxmap PointShell -
-// constraint hybrid (seed 002 section 5.2, Figs. 20-21), so that colliding voxel / point
-// pairs name the faces in contact and a geometric constraint can be recognised between
-// them (seed 002 section 5.3).
+// Analytic (B-rep-like) faces of a part and the face a point lies on (face_at), so that
+// the Voxmap PointShell - constraint hybrid can name the faces in contact and recognise a
+// geometric constraint between them (seed 002 sections 5.2-5.3; the voxels' and shell
+// points' labels are in scheduler/vps/face_labels.h).
 //
 // A face is plain data in the part's own frame:
 //   plane     a point on it, its unit normal pointing out of the material, and its
@@ -23,8 +22,6 @@
 #include <limits>
 #include <vector>
 
-#include "mesh/voxmap.h"
-
 namespace snapfit {
 
 enum class FaceKind : std::uint8_t { plane, cylinder, cone, torus };
@@ -37,9 +34,9 @@ struct ExcludedDisc {
 
 struct AnalyticFace {
   FaceKind kind = FaceKind::plane;
-  const char* name = "";                              // static text: "side", "hole wall", ...
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();   // plane: a point on it; others: on the axis
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();    // plane: outward unit normal; others: unit axis
+  const char* name = "";                             // static text: "side", "hole wall", ...
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // plane: a point on it; others: on the axis
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();   // plane: outward unit normal; others: unit axis
   // plane: the in-plane box and the radial range about `origin`
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
@@ -47,7 +44,7 @@ struct AnalyticFace {
   std::vector<ExcludedDisc> holes;  // plane: discs not on the face (the holes of a plate)
   // cylinder, cone: the profile segment (a0, r0) - (a1, r1), a along `axis` from `origin`
   double a0 = 0, a1 = 0, r0 = 0, r1 = 0;
-  double ac = 0, rc = 0;  // torus: the centre of the profile arc
+  double ac = 0, rc = 0;        // torus: the centre of the profile arc
   bool material_inside = true;  // cylinder, cone: a peg (true) or a hole (false)
 
   double radius() const { return 0.5 * (r0 + r1); }
@@ -73,15 +70,5 @@ AnalyticFace rotated_face(const AnalyticFace& face, const Eigen::Matrix3d& rotat
 // tolerance or band that is not > 0.
 std::int16_t face_at(const std::vector<AnalyticFace>& faces, const Eigen::Vector3d& p, double tolerance,
                      double edge_band);
-
-// Labels of the surface layer of a voxmap (kNoFace for every other voxel), one per voxel
-// in the map's order, from the voxel centres: tolerance one voxel, edge band half a voxel
-// (a face that passes within half a voxel of the centre crosses the voxel's core).
-std::vector<std::int16_t> label_voxmap(const Voxmap& map, const std::vector<AnalyticFace>& faces);
-
-// Labels of the points of a point shell, which lie on the surface: tolerance one
-// spacing, edge band half the spacing (as for voxels: a rim point that can sit inside the
-// other part's surface voxels along the adjacent face is on the edge).
-std::vector<std::int16_t> label_point_shell(const PointShell& shell, const std::vector<AnalyticFace>& faces);
 
 }  // namespace snapfit

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "mesh/mesh.h"
-#include "mesh/voxmap.h"
+#include "mesh/shell_chunk.h"
 
 namespace snapfit {
 
@@ -28,7 +28,6 @@ struct ContactSamples {
 
 // Face points (unless `features_only`) and feature points of `mesh`. Throws
 // snapfit::Error for an empty mesh or a spacing that is not positive.
-ContactSamples build_contact_samples(const Mesh& mesh, double spacing, bool features_only,
-                                     double sharp_angle_deg = 30);
+ContactSamples build_contact_samples(const Mesh& mesh, double spacing, bool features_only, double sharp_angle_deg = 30);
 
 }  // namespace snapfit

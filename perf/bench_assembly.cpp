@@ -1,6 +1,6 @@
 // The assembly benchmark: scripted insertions by an imprecise user, so that the geometry
 // has to do the aligning, for snapfit (6-DOF and translation-only), Voxmap PointShell
-// (scheduler/vps_method.h) and its constraint hybrid (scheduler/vps_hybrid.h, with the
+// (scheduler/vps/vps_method.h) and its constraint hybrid (scheduler/vps/vps_hybrid.h, with the
 // parts' analytic faces) at several voxel sizes, in the same haptic loop.
 //
 // Cells: the peg in its blind hole (scenes/peg_hole_clearance_0p5.json with the hole's
@@ -45,8 +45,8 @@
 #include "scheduler/assembly_session.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/rigid_contact.h"
-#include "scheduler/vps_hybrid.h"
-#include "scheduler/vps_method.h"
+#include "scheduler/vps/vps_hybrid.h"
+#include "scheduler/vps/vps_method.h"
 
 using namespace snapfit;
 namespace fs = std::filesystem;

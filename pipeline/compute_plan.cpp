@@ -40,32 +40,34 @@ void add_spectrum_source(ComputePlan& plan, const Scene& scene) {
         "over seed 001's balls");
 }
 
-// Voxmap PointShell's plan (scheduler/vps_method.h): no fields, spectra or modes.
+// Voxmap PointShell's plan (scheduler/vps/vps_method.h): no fields, spectra or modes.
 ComputePlan vps_plan(const Scene& scene, double grid_spacing) {
   ComputePlan plan;
   plan.rotation = scene.motion == Motion::six_dof;
   plan.force = true;
   plan.torque = plan.rotation;
   const VpsParams& v = scene.vps;
-  const std::string voxel = v.voxel_size      ? number(*v.voxel_size) + " " + scene.units
+  const std::string voxel = v.voxel_size       ? number(*v.voxel_size) + " " + scene.units
                             : grid_spacing > 0 ? number(grid_spacing) + " " + scene.units + " (the grid spacing)"
                                                : std::string("the grid spacing");
-  plan.lines.push_back("method: Voxmap PointShell (seed 002 section 4.1): no descriptor fields, spectra or Fourier modes");
+  plan.lines.push_back(
+      "method: Voxmap PointShell (seed 002 section 4.1): no descriptor fields, spectra or Fourier modes");
   plan.lines.push_back("part 1: a voxmap, voxel " + voxel + ", with surface, interior and " +
                        std::to_string(v.proximity_layers) + " proximity layers");
   plan.lines.push_back("part 2: a point shell with inward normals, " + number(v.shell_density) +
                        " points per voxel along its surface");
-  plan.lines.push_back("per frame: each shell point in a surface or interior voxel pushes part 2 along its normal "
-                       "(tangent-plane force, k_ff " +
-                       number(v.stiffness_n_per_m) +
-                       " N/m a point); points approaching through proximity voxels are braked");
+  plan.lines.push_back(
+      "per frame: each shell point in a surface or interior voxel pushes part 2 along its normal "
+      "(tangent-plane force, k_ff " +
+      number(v.stiffness_n_per_m) + " N/m a point); points approaching through proximity voxels are braked");
   if (scene.method == Method::vps_hybrid)
-    plan.lines.push_back("hybrid (seed 002 chapter 5): voxels and shell points carry their analytic faces; "
-                         "concentric and planar constraints between contacting faces are phased in, "
-                         "F = F_C (1 - w) + F_A w with w = min(1, x / " +
-                         number(scene.vps.hybrid.x_full) + ") (eq. 13-19), region '" +
-                         (scene.vps.hybrid.region == HybridRegion::face ? "face" : "pair") +
-                         "'; a part without analytic faces runs as plain VPS");
+    plan.lines.push_back(
+        "hybrid (seed 002 chapter 5): voxels and shell points carry their analytic faces; "
+        "concentric and planar constraints between contacting faces are phased in, "
+        "F = F_C (1 - w) + F_A w with w = min(1, x / " +
+        number(scene.vps.hybrid.x_full) + ") (eq. 13-19), region '" +
+        (scene.vps.hybrid.region == HybridRegion::face ? "face" : "pair") +
+        "'; a part without analytic faces runs as plain VPS");
   plan.lines.push_back(std::string("outputs per frame: force") + (plan.torque ? ", torque" : "") +
                        " (and the points' penalty energy)" +
                        (scene.method == Method::vps_hybrid ? "; the engaged constraint and its weight x" : ""));

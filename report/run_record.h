@@ -12,7 +12,7 @@
 
 namespace snapfit {
 
-// What a Voxmap PointShell run built (scheduler/vps_method.h).
+// What a Voxmap PointShell run built (scheduler/vps/vps_method.h).
 struct VpsFacts {
   double voxel_size = 0, shell_spacing = 0;  // scene units
   std::size_t surface_voxels = 0, interior_voxels = 0, proximity_voxels = 0, shell_points = 0;
@@ -21,7 +21,7 @@ struct VpsFacts {
   // "method": "vps_hybrid": whether it ran as the hybrid, or why it ran as plain VPS.
   bool hybrid = false;
   std::string plain_reason;
-  std::size_t faces1 = 0, faces2 = 0;           // analytic faces of each part
+  std::size_t faces1 = 0, faces2 = 0;                    // analytic faces of each part
   std::size_t labelled_voxels = 0, labelled_points = 0;  // on one face (not an edge, not none)
   double alignment_k_n_per_m = 0;
 };
@@ -32,16 +32,17 @@ struct RunRecord {
   DeviceInfo loop_device;              // where the loop ran (or would run)
   DeviceCheckResult check;
   TuningResult tuning;
-  std::string tuning_key;                // "" when m' was fixed by the user
+  std::string tuning_key;  // "" when m' was fixed by the user
   // The query strategy the loop renders and why (scheduler/query_strategy.h): the
   // measured candidates when it was chosen by error, else none.
-  std::string strategy;                     // variant_name() of the loop's engine
-  std::string strategy_chosen_by;           // "lowest error that fits (measured)", "... (strategy file)", "--strategy", "--modes"
+  std::string strategy;  // variant_name() of the loop's engine
+  std::string
+      strategy_chosen_by;  // "lowest error that fits (measured)", "... (strategy file)", "--strategy", "--modes"
   std::optional<AccuracyReport> strategies;  // the candidates, when chosen by error
-  std::string strategy_file;                // where the choice is kept
-  std::optional<SessionResult> session;  // the scripted assembly, when the scene has a trajectory
-  double seconds = 0;                    // the whole job so far
-  std::optional<VpsFacts> vps;           // set for a scene whose method is "vps" (no fields, spectra or tuning)
+  std::string strategy_file;                 // where the choice is kept
+  std::optional<SessionResult> session;      // the scripted assembly, when the scene has a trajectory
+  double seconds = 0;                        // the whole job so far
+  std::optional<VpsFacts> vps;               // set for a scene whose method is "vps" (no fields, spectra or tuning)
 };
 
 }  // namespace snapfit

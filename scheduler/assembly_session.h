@@ -6,8 +6,8 @@
 #include <optional>
 
 #include "mesh/mesh.h"
-#include "scheduler/mode_tuning.h"
 #include "scheduler/haptic_setup.h"
+#include "scheduler/mode_tuning.h"
 #include "scheduler/rendered_wrench.h"
 #include "scheduler/rigid_contact.h"
 #include "scheduler/thread_priority.h"
@@ -37,8 +37,8 @@ struct SessionResult {
   DeviceLimits limits;
   double geometry_gain = 0;
   double max_force_rate_n_per_s = 0;  // the loop's bound on the sent force's rate (0: none)
-  double force_scale = 0;  // largest engine force at the gain's probe poses
-  Pose target;             // the assembled pose (else the last keyframe)
+  double force_scale = 0;             // largest engine force at the gain's probe poses
+  Pose target;                        // the assembled pose (else the last keyframe)
   PoseError final_error;
   // The final position error split along the insertion (the trajectory's last segment,
   // pointing into the fit) and across it, scene units: axial > 0 is past the target
@@ -46,11 +46,11 @@ struct SessionResult {
   Eigen::Vector3d insertion_direction = Eigen::Vector3d::UnitZ();
   double axial_error = 0, lateral_error = 0;
   Eigen::Vector3d final_force = Eigen::Vector3d::Zero();  // sent to the device in the last frame, N
-  double position_tolerance = 0;  // scene units
+  double position_tolerance = 0;                          // scene units
   double angle_tolerance_deg = 0;
-  bool evaluated = false;   // the scene has an assembled pose to judge the end against
-  bool assembled = false;   // evaluated, and final_error within the tolerances
-  PriorityChange priority;  // what raising the threads' priority did
+  bool evaluated = false;                            // the scene has an assembled pose to judge the end against
+  bool assembled = false;                            // evaluated, and final_error within the tolerances
+  PriorityChange priority;                           // what raising the threads' priority did
   std::shared_ptr<const RigidContactModel> contact;  // null: the loop rendered no rigid contact
   double contact_build_s = 0;
   std::string contact_off;      // why the scene's rigid contact is off (a part not watertight); empty otherwise
@@ -77,7 +77,7 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part1_mesh, 
                                     const SessionOptions& options = {});
 
 // The same for any method's evaluator and loop configuration (a Voxmap PointShell run:
-// scheduler/vps_method.h); `spacing` is the default position tolerance.
+// scheduler/vps/vps_method.h); `spacing` is the default position tolerance.
 SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfig config,
                                    const WrenchEvaluator& evaluator, const SessionOptions& options = {});
 

@@ -3,14 +3,15 @@
 // within the edge band of a profile corner; every surface voxel of a hole block maps to a
 // face, the wall's voxels to the wall; radii differ by the clearance; the three-peg pair's
 // planes, cylinders and fillets; excluded discs, turned faces; bad input.
-#include <doctest/doctest.h>
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstring>
+#include <doctest/doctest.h>
 
 #include "mesh/analytic_faces.h"
 #include "mesh/procedural/procedural_parts.h"
-#include "mesh/voxmap.h"
+#include "scheduler/vps/face_labels.h"
+#include "scheduler/vps/voxmap.h"
 #include "snapfit/error.h"
 
 using namespace snapfit;
@@ -182,7 +183,8 @@ TEST_CASE("analytic faces: the three-peg pair's planes and cylinders label its p
       if (std::abs(x.z() - h) < 1e-6 && rho < r - s) CHECK(labels[i] == find_face(cover, ceilings[k]));
       // On the fillet: distance f from the arc's centre (rho, z) = (r + f, f), between its ends.
       const Eigen::Vector2d q(rho - (r + f), x.z() - f);
-      if (std::abs(q.norm() - f) < 0.05 && q.x() < 0 && q.y() < 0 && (Eigen::Vector2d(rho, x.z()) - Eigen::Vector2d(r, f)).norm() > s &&
+      if (std::abs(q.norm() - f) < 0.05 && q.x() < 0 && q.y() < 0 &&
+          (Eigen::Vector2d(rho, x.z()) - Eigen::Vector2d(r, f)).norm() > s &&
           (Eigen::Vector2d(rho, x.z()) - Eigen::Vector2d(r + f, 0)).norm() > s) {
         CHECK(labels[i] == kNoFace);
         ++on_fillet;
@@ -222,7 +224,8 @@ TEST_CASE("analytic faces: excluded discs, turned faces, and bad input is refuse
   CHECK(face_distance(plate, Eigen::Vector3d(0, 0, 0.3)) == doctest::Approx(0.3));
   CHECK(face_distance(plate, Eigen::Vector3d(-5, 0, 1.5)) == doctest::Approx(2.5));  // 2 sideways, 1.5 up
   // Turned a quarter about x: the normal becomes -y, the box and holes follow.
-  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.5 * 3.14159265358979323846, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(0.5 * 3.14159265358979323846, Eigen::Vector3d::UnitX()).toRotationMatrix();
   const AnalyticFace turned = rotated_face(plate, turn);
   CHECK(turned.axis.isApprox(-Eigen::Vector3d::UnitY()));
   for (const Eigen::Vector3d& p : {Eigen::Vector3d(-5, 0, 0), Eigen::Vector3d(5, 0.5, 0), Eigen::Vector3d(0, 3, 0.3)})

@@ -5,11 +5,10 @@
 // or hole from the face orientation), a chamfered peg's cone, a placed solid's faces, and
 // the hybrid on the STEP scene: concentric while the peg goes down its hole, then the
 // floor's planar constraint; a part from a mesh file runs as plain VPS, said so.
-#include <doctest/doctest.h>
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <doctest/doctest.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -20,7 +19,7 @@
 #include "io/mesh_export.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/haptic_setup.h"
-#include "scheduler/vps_hybrid.h"
+#include "scheduler/vps/vps_hybrid.h"
 #include "snapfit/error.h"
 #include "tests/cad_fixtures.h"
 #include "tests/test_support.h"
@@ -102,7 +101,8 @@ TEST_CASE("cad faces: the shipped STEP peg's cylinder and end discs match scenes
   }
 }
 
-TEST_CASE("cad faces: the shipped STEP hole block's wall, countersink, floor and top match scenes/default.json's block") {
+TEST_CASE(
+    "cad faces: the shipped STEP hole block's wall, countersink, floor and top match scenes/default.json's block") {
   const double r = number(1, "peg_radius") + number(1, "clearance"), depth = number(1, "hole_depth");
   const double chamfer = number(1, "chamfer"), half = 0.5 * number(1, "width"), height = number(1, "height");
   const CadMesh block = load_cad_mesh(kSource + "/scenes/parts/hole_block.step", with_deflection(0.06));
@@ -145,8 +145,8 @@ TEST_CASE("cad faces: the shipped STEP hole block's wall, countersink, floor and
   CHECK(face_distance(*top, Eigen::Vector3d(0, 0, 0)) == doctest::Approx(r + chamfer).epsilon(1e-9));  // over the hole
   CHECK(face_distance(*top, Eigen::Vector3d(10, 0, 0.2)) == doctest::Approx(0.2).epsilon(1e-9));
   // The box's sides and bottom, normals outward.
-  for (const Eigen::Vector3d& n : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(0, 1, 0),
-                                   Eigen::Vector3d(0, -1, 0)})
+  for (const Eigen::Vector3d& n :
+       {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, -1, 0)})
     CHECK(plane_with(block.faces, n, half * n));
   CHECK(plane_with(block.faces, -Eigen::Vector3d::UnitZ(), Eigen::Vector3d(0, 0, -height)));
 
@@ -240,7 +240,8 @@ TEST_CASE("cad faces: the STEP peg and hole as vps_hybrid engage concentric down
       if (on_floor(a) && z > floor + 2 * scene.vps.voxel_size.value()) floor_early = true;
     }
   }
-  MESSAGE("STEP hybrid: concentric from frame " << first_concentric << ", the floor's planar from frame " << first_floor);
+  MESSAGE("STEP hybrid: concentric from frame " << first_concentric << ", the floor's planar from frame "
+                                                << first_floor);
   CHECK(concentric_inside);
   CHECK(floor_engaged);
   CHECK_FALSE(floor_early);  // recognised only when the faces are within the tolerance (2 voxels)

@@ -240,19 +240,23 @@ TEST_CASE("device minima: infinities and overflowing lists are reported, long li
   check_same(full.result, host_reference(small, blocks, full_box(small), 1000, 0.0), "checkerboard");
 }
 
-TEST_CASE("device minima: the shipped default scene's maps, pipelined, equal map_minima on the maps read back") {
-  const Scene scene = test::shipped_scene("default.json");
-  const FftLibrary fft;
+// The shipped default scene's pair, fields and spectra through the caches.
+static AssemblyPair default_scene_pair(const FftLibrary& fft) {
   PairOptions options;
   options.note = [](const std::string&) {};
-  const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, options);
+  return build_assembly_pair(test::shipped_scene("default.json"), test::test_context(), fft, options);
+}
+
+TEST_CASE("device minima: the shipped default scene's maps, pipelined, equal map_minima on the maps read back") {
+  const FftLibrary fft;
+  const AssemblyPair pair = default_scene_pair(fft);
   const PairSpectra& spectra = pair.spectra;
   const double separation = 2 * spectra.spacing;
   const So3Grid grid = so3_grid_for_count(24);
   std::vector<std::size_t> picked{0, 5, 11, 17, 23};
   std::vector<Eigen::Quaterniond> rotations;
   for (std::size_t i : picked) rotations.push_back(grid.rotations[i]);
-  if (scene.assembled_pose) rotations.push_back(scene.assembled_pose->rotation);
+  if (pair.scene.assembled_pose) rotations.push_back(pair.scene.assembled_pose->rotation);
   // Every device FFT built (clFFT, VkFFT), each against its own maps read back.
   std::unique_ptr<TranslationMapper> clfft_mapper;
   std::vector<MapMinimaResult> clfft_every, clfft_top;  // for the checks after
@@ -342,11 +346,8 @@ TEST_CASE("device minima: the shipped default scene's maps, pipelined, equal map
 
 TEST_CASE(
     "device minima: batches of rotations on the shipped default scene give the maps and minima of one at a time") {
-  const Scene scene = test::shipped_scene("default.json");
   const FftLibrary fft;
-  PairOptions options;
-  options.note = [](const std::string&) {};
-  const AssemblyPair pair = build_assembly_pair(scene, test::test_context(), fft, options);
+  const AssemblyPair pair = default_scene_pair(fft);
   const PairSpectra& spectra = pair.spectra;
   const double separation = 2 * spectra.spacing;
   const So3Grid grid = so3_grid_for_count(24);

@@ -1,4 +1,4 @@
-// Voxmap PointShell (mesh/voxmap.h, scheduler/vps_method.h): the voxmap of a box against
+// Voxmap PointShell (scheduler/vps/voxmap.h, scheduler/vps/vps_method.h): the voxmap of a box against
 // its closed-form voxel counts, one point against a plane against the closed-form force
 // and torque, and a cube inserted into a square cup through the haptic loop: it goes in
 // at a clearance of twice the voxel size and jams at zero clearance (seed 002 8.2.1);
@@ -7,12 +7,12 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "mesh/voxmap.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/scripted_device.h"
 #include "scheduler/virtual_coupling.h"
-#include "scheduler/vps_method.h"
+#include "scheduler/vps/voxmap.h"
+#include "scheduler/vps/vps_method.h"
 #include "tests/test_meshes.h"
 #include "tests/test_support.h"
 

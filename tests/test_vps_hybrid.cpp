@@ -1,5 +1,5 @@
-// The Voxmap PointShell - constraint hybrid (scheduler/constraint_recognition.h,
-// scheduler/vps_hybrid.h): recognition between the procedural peg's and hole's faces
+// The Voxmap PointShell - constraint hybrid (scheduler/vps/constraint_recognition.h,
+// scheduler/vps/vps_hybrid.h): recognition between the procedural peg's and hole's faces
 // (concentric, planar; none for a cylinder against a plane, cylinders of different radii,
 // two pegs, tilted axes), engagement (eq. 15-17), and a scripted insertion down to the
 // floor and back out: concentric while inserting, then planar at the floor, both
@@ -8,18 +8,18 @@
 // (constraint per frame in loop.csv and summary.json; with the paper's blend it assembles
 // below the voxel size, the weight steps little and the force sent no more than 1.5x plain
 // VPS's; with the default blend it assembles at zero clearance) and on the three-peg pair.
-#include <doctest/doctest.h>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <algorithm>
+#include <doctest/doctest.h>
 #include <fstream>
-#include <sstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "mesh/procedural/procedural_parts.h"
-#include "scheduler/vps_hybrid.h"
+#include "scheduler/vps/vps_hybrid.h"
 #include "snapfit/error.h"
 #include "tests/test_support.h"
 
@@ -112,10 +112,10 @@ TEST_CASE("vps hybrid: recognition between the peg's and the hole's faces") {
   const AnalyticFace &side = peg[face(peg, "peg side")], &bottom = peg[face(peg, "peg bottom")];
   CHECK(recognise(wall, side, at(0.1, -3), tol) == ConstraintKind::concentric);
   CHECK(recognise(wall, side, at(0, -3), tol) == ConstraintKind::concentric);
-  CHECK(recognise(wall, bottom, at(0, -3), tol) == ConstraintKind::none);       // cylinder against plane
-  CHECK(recognise(floor, side, at(0, -kDepth), tol) == ConstraintKind::none);   // plane against cylinder
+  CHECK(recognise(wall, bottom, at(0, -3), tol) == ConstraintKind::none);      // cylinder against plane
+  CHECK(recognise(floor, side, at(0, -kDepth), tol) == ConstraintKind::none);  // plane against cylinder
   CHECK(recognise(wall, thin[face(thin, "peg side")], at(0, -3), tol) == ConstraintKind::none);  // radii differ
-  CHECK(recognise(side, side, at(0, -3), tol) == ConstraintKind::none);         // peg against peg
+  CHECK(recognise(side, side, at(0, -3), tol) == ConstraintKind::none);                          // peg against peg
   Pose tilted = at(0, -3);
   tilted.rotation = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX());
   CHECK(recognise(wall, side, tilted, tol) == ConstraintKind::none);
@@ -155,12 +155,13 @@ TEST_CASE("vps hybrid: bad parameters are refused") {
   CHECK_THROWS_WITH(hybrid_model(vps, {}, {}, CouplingParams{}, p), doctest::Contains("release < engage"));
 }
 
-TEST_CASE("vps hybrid: the scene's vps.hybrid section sets the parameters, x_full saturates the weight, the face region") {
+TEST_CASE(
+    "vps hybrid: the scene's vps.hybrid section sets the parameters, x_full saturates the weight, the face region") {
   nlohmann::json j;
   std::ifstream(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/peg_hole_clearance_0p5.json") >> j;
   j["method"] = "vps_hybrid";
-  j["vps"]["hybrid"] = {{"rotation_fraction", 0.8}, {"x_full", 0.8},       {"angle_tolerance_deg", 5},
-                        {"region", "face"},         {"ramp_s", 0},          {"offset_tolerance", 0.3}};
+  j["vps"]["hybrid"] = {{"rotation_fraction", 0.8}, {"x_full", 0.8}, {"angle_tolerance_deg", 5},
+                        {"region", "face"},         {"ramp_s", 0},   {"offset_tolerance", 0.3}};
   const Scene scene = parse_scene(j.dump(), "hybrid.json");
   const HybridParams p = hybrid_params_for(scene);
   CHECK(p.rotation_fraction == 0.8);
@@ -269,7 +270,9 @@ TEST_CASE("vps hybrid: a scripted insertion engages concentric, then planar at t
   CHECK(instant_step >= 0.75);
 }
 
-TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint per frame, and the three-peg pair with its faces") {
+TEST_CASE(
+    "vps hybrid: snapfit run plays a vps_hybrid scene with the constraint per frame, and the three-peg pair with its "
+    "faces") {
   // The shipped peg scene at 0.1 mm clearance (below the voxel: the peg touches the wall)
   // as "method": "vps_hybrid" at a quarter-millimetre voxel, with the paper's blend (eq.
   // 13's x, the pair region, k_R half the coupling's).
@@ -277,8 +280,7 @@ TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint 
   std::ifstream(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/peg_hole_clearance_0p5.json") >> scene;
   scene["part1"]["procedural"]["clearance"] = 0.1;
   scene["method"] = "vps_hybrid";
-  scene["vps"] = {{"voxel_size", 0.25},
-                  {"hybrid", {{"x_full", 1}, {"region", "pair"}, {"rotation_fraction", 0.5}}}};
+  scene["vps"] = {{"voxel_size", 0.25}, {"hybrid", {{"x_full", 1}, {"region", "pair"}, {"rotation_fraction", 0.5}}}};
   const test::TempDir dir;
   test::write_text(dir.file("hybrid.json"), scene.dump());
   const test::Command run = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("hybrid.json") +
@@ -315,8 +317,10 @@ TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint 
   const test::Command vps_run = test::run_command(std::string(SNAPFIT_CLI_PATH) + " run " + dir.file("vps.json") +
                                                   " --simulated-time --out " + dir.file("vps_out"));
   REQUIRE(vps_run.status == 0);
-  const double hybrid_step = hybrid_loop.max_sent_step(), vps_step = read_loop(dir.file("vps_out/loop.csv")).max_sent_step();
-  MESSAGE("largest sent force step: hybrid " << hybrid_step << " N, plain VPS " << vps_step << " N; weight step " << max_dx);
+  const double hybrid_step = hybrid_loop.max_sent_step(),
+               vps_step = read_loop(dir.file("vps_out/loop.csv")).max_sent_step();
+  MESSAGE("largest sent force step: hybrid " << hybrid_step << " N, plain VPS " << vps_step << " N; weight step "
+                                             << max_dx);
   CHECK(hybrid_step <= 1.5 * vps_step);
 
   // At zero clearance with the default blend (x_full 0.8, the face region, k_R 0.9 of the
@@ -347,7 +351,8 @@ TEST_CASE("vps hybrid: snapfit run plays a vps_hybrid scene with the constraint 
   nlohmann::json zv;
   std::ifstream(dir.file("zero_vps/summary.json")) >> zv;
   CHECK(zv["haptic_loop"]["assembled"] == false);
-  const double zero_step = zero_loop.max_sent_step(), zero_vps_step = read_loop(dir.file("zero_vps/loop.csv")).max_sent_step();
+  const double zero_step = zero_loop.max_sent_step(),
+               zero_vps_step = read_loop(dir.file("zero_vps/loop.csv")).max_sent_step();
   MESSAGE("zero clearance: largest sent force step hybrid " << zero_step << " N, plain VPS " << zero_vps_step
                                                             << " N; weight step " << zero_dx);
   CHECK(zero_step <= zero_vps_step);

@@ -144,16 +144,16 @@ enum class HybridRegion {
 };
 
 // The VPS - constraint hybrid's parameters (the scene's `vps.hybrid` section; every field
-// optional; scheduler/vps_hybrid.h, docs/scenes.md).
+// optional; scheduler/vps/vps_hybrid.h, docs/scenes.md).
 struct VpsHybridParams {
   // The defaults differ from the paper's (rotation_fraction 0.5, x_full 1, region pair)
   // in three places, measured in docs/haptics.md: they insert at zero clearance.
-  double alignment_fraction = 0.5;  // k_A as this fraction of the coupling's k_T, in (0, 1)
-  double rotation_fraction = 0.9;   // k_R as this fraction of the coupling's k_R, in (0, 1)
-  double x_engage = 0.75;           // a recognised constraint engages at x >= this
-  double x_release = 0.6;           // and releases at x < this (0 < release < engage <= 1)
-  double x_full = 0.8;              // blend weight min(1, x / x_full): 1 is eq. 13's x itself
-  double ramp_s = 0.05;             // seconds to phase a constraint in or out (>= 0)
+  double alignment_fraction = 0.5;            // k_A as this fraction of the coupling's k_T, in (0, 1)
+  double rotation_fraction = 0.9;             // k_R as this fraction of the coupling's k_R, in (0, 1)
+  double x_engage = 0.75;                     // a recognised constraint engages at x >= this
+  double x_release = 0.6;                     // and releases at x < this (0 < release < engage <= 1)
+  double x_full = 0.8;                        // blend weight min(1, x / x_full): 1 is eq. 13's x itself
+  double ramp_s = 0.05;                       // seconds to phase a constraint in or out (>= 0)
   std::optional<double> radius_tolerance;     // |r1 - r2| of a concentric pair; default 2 voxels
   std::optional<double> offset_tolerance;     // axis offset beyond it, plane separation; default 2 voxels
   std::optional<double> angle_tolerance_deg;  // between axes or normals; default 0.2 rad

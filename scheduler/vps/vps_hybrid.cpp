@@ -1,8 +1,9 @@
-#include "scheduler/vps_hybrid.h"
+#include "scheduler/vps/vps_hybrid.h"
 
 #include <algorithm>
 #include <string>
 
+#include "scheduler/vps/face_labels.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -46,17 +47,20 @@ void on_contact(void* context, std::size_t voxel, std::size_t point, const Eigen
 HybridModel hybrid_model(VpsModel vps, std::vector<AnalyticFace> faces1, std::vector<AnalyticFace> faces2,
                          const CouplingParams& coupling, HybridParams params) {
   if (!(params.alignment_fraction > 0 && params.alignment_fraction < 1))
-    throw Error("vps_hybrid: the alignment fraction must lie in (0, 1): the user stays stronger than the constraint (got " +
-                std::to_string(params.alignment_fraction) + ")");
+    throw Error(
+        "vps_hybrid: the alignment fraction must lie in (0, 1): the user stays stronger than the constraint (got " +
+        std::to_string(params.alignment_fraction) + ")");
   if (!(params.x_release > 0 && params.x_release < params.x_engage && params.x_engage <= 1))
     throw Error("vps_hybrid: the engagement thresholds must satisfy 0 < release < engage <= 1 (got release " +
                 std::to_string(params.x_release) + ", engage " + std::to_string(params.x_engage) + ")");
   if (!(params.rotation_fraction > 0 && params.rotation_fraction < 1))
-    throw Error("vps_hybrid: the rotation fraction must lie in (0, 1): the user stays stronger than the constraint (got " +
-                std::to_string(params.rotation_fraction) + ")");
+    throw Error(
+        "vps_hybrid: the rotation fraction must lie in (0, 1): the user stays stronger than the constraint (got " +
+        std::to_string(params.rotation_fraction) + ")");
   if (!(params.x_full > 0 && params.x_full <= 1))
     throw Error("vps_hybrid: x_full must lie in (0, 1] (got " + std::to_string(params.x_full) + ")");
-  if (!(params.ramp_s >= 0)) throw Error("vps_hybrid: the ramp time must be >= 0 (got " + std::to_string(params.ramp_s) + ")");
+  if (!(params.ramp_s >= 0))
+    throw Error("vps_hybrid: the ramp time must be >= 0 (got " + std::to_string(params.ramp_s) + ")");
   const double s = vps.voxmap.voxel_size;
   RecognitionTolerance& t = params.tolerance;
   if (!(t.radius > 0)) t.radius = 2 * s;
@@ -146,7 +150,8 @@ HybridResult hybrid_wrench(const HybridModel& model, HybridState& state, const B
     if (state.pair_contacts[pair] == 0) continue;
     const auto f1 = static_cast<std::int16_t>(pair / n2), f2 = static_cast<std::int16_t>(pair % n2);
     bool known = false;
-    for (const ActiveConstraint& a : state.active) known |= a.kind != ConstraintKind::none && a.face1 == f1 && a.face2 == f2;
+    for (const ActiveConstraint& a : state.active)
+      known |= a.kind != ConstraintKind::none && a.face1 == f1 && a.face2 == f2;
     if (known) continue;
     const ConstraintKind kind = recognise(model.faces1[f1], model.faces2[f2], part.pose, p.tolerance);
     if (kind == ConstraintKind::none) continue;

@@ -1,4 +1,4 @@
-#include "mesh/voxmap.h"
+#include "scheduler/vps/voxmap.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

@@ -1,8 +1,8 @@
 #pragma once
 // The Voxmap PointShell - geometric constraint hybrid (seed 002 chapter 5): VPS detects
-// the contacts (scheduler/vps_method.h); part 1's surface voxels and part 2's shell points
+// the contacts (scheduler/vps/vps_method.h); part 1's surface voxels and part 2's shell points
 // carry the analytic faces they lie on (mesh/analytic_faces.h), so each contact names a
-// face pair; a compatible pair (scheduler/constraint_recognition.h) is recognised as a
+// face pair; a compatible pair (scheduler/vps/constraint_recognition.h) is recognised as a
 // constraint and phased in. Per engaged constraint k with engagement x_k (eq. 15-17):
 //     F = F_other + sum_k [ F_C,k (1 - x_k) + F_A,k x_k ]          (eq. 13, 19)
 // (x_k in the blend is min(1, x_k / x_full), HybridParams: x_full = 1 is the paper's)
@@ -22,14 +22,14 @@
 #include <vector>
 
 #include "mesh/analytic_faces.h"
-#include "scheduler/constraint_recognition.h"
-#include "scheduler/vps_method.h"
+#include "scheduler/vps/constraint_recognition.h"
+#include "scheduler/vps/vps_method.h"
 #include "snapfit/scene.h"
 
 namespace snapfit {
 
 struct HybridParams {
-  RecognitionTolerance tolerance;   // set from the voxel size by hybrid_model unless > 0
+  RecognitionTolerance tolerance;  // set from the voxel size by hybrid_model unless > 0
   // Defaults as the scene's (VpsHybridParams): the paper's is rotation_fraction 0.5,
   // x_full 1, region pair; these insert at zero clearance (docs/haptics.md).
   double alignment_fraction = 0.5;  // k_A as this fraction of the coupling's k_T
@@ -41,7 +41,7 @@ struct HybridParams {
   // met (x ~ 0.9 deep in a hole, where theta_0 = s / l of eq. 16 is small) blends the
   // region's collision force out entirely.
   double x_full = 0.8;
-  double ramp_s = 0.05;             // seconds to phase a constraint fully in or out
+  double ramp_s = 0.05;                      // seconds to phase a constraint fully in or out
   HybridRegion region = HybridRegion::face;  // which contacts a constraint's region holds
 };
 
@@ -55,8 +55,8 @@ struct HybridModel {
   std::vector<std::int16_t> voxel_face;      // per voxel of vps.voxmap (label_voxmap)
   std::vector<std::int16_t> point_face;      // per point of vps.shell (label_point_shell)
   HybridParams params;
-  double k_a_n_per_m = 0;      // alignment stiffness, N / m
-  double k_r_nm_per_rad = 0;   // alignment rotational stiffness, N m / rad
+  double k_a_n_per_m = 0;     // alignment stiffness, N / m
+  double k_r_nm_per_rad = 0;  // alignment rotational stiffness, N m / rad
 };
 
 // The hybrid over a VPS model: labels part 1's surface voxels and part 2's shell points
@@ -72,8 +72,8 @@ constexpr int kMaxConstraints = 4;
 struct ActiveConstraint {
   ConstraintKind kind = ConstraintKind::none;  // none: a free slot
   std::int16_t face1 = kNoFace, face2 = kNoFace;
-  double x = 0;        // eq. 15 this frame
-  double phase = 0;    // ramp weight in [0, 1]; the blend uses phase * x
+  double x = 0;      // eq. 15 this frame
+  double phase = 0;  // ramp weight in [0, 1]; the blend uses phase * x
   bool releasing = false;
 };
 
@@ -81,17 +81,17 @@ struct ActiveConstraint {
 // frame allocates nothing.
 struct HybridState {
   std::array<ActiveConstraint, kMaxConstraints> active{};
-  std::vector<std::uint32_t> pair_contacts;  // this frame's contacts per face pair (faces1 x faces2)
+  std::vector<std::uint32_t> pair_contacts;           // this frame's contacts per face pair (faces1 x faces2)
   std::array<QueryWrench, kMaxConstraints> region{};  // this frame's F_C,k, tau_C,k
 };
 HybridState hybrid_state_for(const HybridModel& model);
 
 struct HybridResult {
-  VpsResult vps;       // vps.query: the blended wrench the loop renders
-  QueryWrench collision;    // the plain VPS wrench (contacts and braking), for comparison
+  VpsResult vps;                               // vps.query: the blended wrench the loop renders
+  QueryWrench collision;                       // the plain VPS wrench (contacts and braking), for comparison
   ConstraintKind kind = ConstraintKind::none;  // the engaged constraint of largest weight
-  double x = 0;        // its blend weight, phase * x
-  int engaged = 0;     // constraints with a weight > 0
+  double x = 0;                                // its blend weight, phase * x
+  int engaged = 0;                             // constraints with a weight > 0
 };
 
 // One frame: advances `state` (recognition, hysteresis, ramps) by the loop's period.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mesh/mesh.h"
+#include "mesh/shell_chunk.h"
 
 namespace snapfit {
 
@@ -50,14 +51,6 @@ struct Voxmap {
 // (26-neighbourhood) of the surface. The map covers the mesh's box plus the proximity
 // layers and one free voxel. Throws snapfit::Error for an empty mesh or a bad size.
 Voxmap build_voxmap(const Mesh& mesh, double voxel_size, int proximity_layers);
-
-// A group of consecutive shell points within `radius` of `centre` (part 2's frame), so
-// that a query can skip the whole group when its centre lies far from part 1.
-struct ShellChunk {
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  double radius = 0;
-  std::size_t begin = 0, end = 0;  // points[begin, end)
-};
 
 struct PointShell {
   std::vector<Eigen::Vector3d> points;   // in the part's frame, grouped by chunk

@@ -1,4 +1,4 @@
-#include "scheduler/constraint_recognition.h"
+#include "scheduler/vps/constraint_recognition.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

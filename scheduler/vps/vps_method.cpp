@@ -1,4 +1,4 @@
-#include "scheduler/vps_method.h"
+#include "scheduler/vps/vps_method.h"
 
 #include <algorithm>
 #include <chrono>
@@ -61,7 +61,7 @@ VpsResult vps_wrench(const VpsModel& model, const BodyState& part, const VpsCont
       const double depth = std::max(0.0, (map.centre(ijk.x(), ijk.y(), ijk.z()) - p).dot(n) + interior);
       if (depth <= 0) continue;
       const Eigen::Vector3d f = model.stiffness * u * depth * n;  // eq. 3, N
-      const Eigen::Vector3d torque = r.cross(f);  // N per scene unit of lever arm
+      const Eigen::Vector3d torque = r.cross(f);                  // N per scene unit of lever arm
       q.force += f;
       q.torque += torque;
       if (sink) sink->contact(sink->context, id, i, f, torque);

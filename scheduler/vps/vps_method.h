@@ -1,7 +1,7 @@
 #pragma once
 // Voxmap PointShell (McNeely, Puterbaugh & Troy 1999; seed 002 section 4.1) as a peer
 // of snapfit's engine in the same haptic loop: part 1 as a voxmap, part 2 as a point
-// shell (mesh/voxmap.h). Each frame, every shell point (at part 2's pose, in part 1's
+// shell (scheduler/vps/voxmap.h). Each frame, every shell point (at part 2's pose, in part 1's
 // frame) that lies in a surface or interior voxel pushes part 2 along its inward normal
 // n with the tangent-plane force model (seed 002 Fig. 13B, eq. 3):
 //     d = max(0, (c - p).n + l s),   F_i = k_ff d n,   tau_i = (p - t) x F_i
@@ -14,7 +14,7 @@
 // LoopConfig::max_travel.
 #include <memory>
 
-#include "mesh/voxmap.h"
+#include "scheduler/vps/voxmap.h"
 #include "snapfit/haptic_device.h"
 #include "snapfit/haptic_loop.h"
 #include "snapfit/query.h"

@@ -37,12 +37,12 @@ ConstraintKind recognise(const AnalyticFace& f1, const AnalyticFace& f2, const P
 // Where part 2 stands relative to the constraint `kind` between f1 and f2 (as above), all
 // in part 1's frame.
 struct ConstraintOffset {
-  double theta = 0;                                        // rad
-  Eigen::Vector3d d = Eigen::Vector3d::Zero();             // moves `point` onto the constraint
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();         // on part 2: where the spring pulls
-  Eigen::Vector3d turn_axis = Eigen::Vector3d::UnitX();    // unit: turning part 2 about it reduces theta
-  double depth = 0;                                        // l: axial overlap (concentric), face size (planar)
-  double play = 0;                                         // |r1 - r2| (concentric): the offset the fit allows
+  double theta = 0;                                      // rad
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();           // moves `point` onto the constraint
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();       // on part 2: where the spring pulls
+  Eigen::Vector3d turn_axis = Eigen::Vector3d::UnitX();  // unit: turning part 2 about it reduces theta
+  double depth = 0;                                      // l: axial overlap (concentric), face size (planar)
+  double play = 0;                                       // |r1 - r2| (concentric): the offset the fit allows
 };
 ConstraintOffset constraint_offset(ConstraintKind kind, const AnalyticFace& f1, const AnalyticFace& f2,
                                    const Pose& pose);
@@ -62,6 +62,6 @@ struct QueryWrench {
 // metres), its torque about part 2's origin plus k_R theta about the turn axis, in the
 // loop's units (N per scene unit of lever arm).
 QueryWrench alignment_wrench(const ConstraintOffset& offset, const Pose& pose, double k_a_n_per_m,
-                        double k_r_nm_per_rad, double metres_per_unit);
+                             double k_r_nm_per_rad, double metres_per_unit);
 
 }  // namespace snapfit
