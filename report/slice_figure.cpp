@@ -67,6 +67,93 @@ std::string figure_font_problem() {
   return problem;
 }
 
+namespace {
+
+// Part 2's outline, black on a white halo, clipped to the field.
+void draw_outline(cairo_t* c, const SliceFigure& fig, int field_w, int field_h,
+                  const std::vector<OutlineSegment>& outline) {
+  cairo_save(c);
+  cairo_rectangle(c, fig.left, fig.top, field_w, field_h);
+  cairo_clip(c);
+  cairo_set_line_cap(c, CAIRO_LINE_CAP_ROUND);
+  for (const auto& [colour, width_px] : {std::pair{1.0, 3.5}, std::pair{0.0, 1.5}}) {
+    cairo_set_source_rgb(c, colour, colour, colour);
+    cairo_set_line_width(c, width_px);
+    for (const OutlineSegment& s : outline) {
+      cairo_move_to(c, fig.pixel_x(s.a.x()), fig.pixel_y(s.a.y()));
+      cairo_line_to(c, fig.pixel_x(s.b.x()), fig.pixel_y(s.b.y()));
+    }
+    cairo_stroke(c);
+  }
+  cairo_restore(c);
+}
+
+// The frames of the field and the colour bar, their ticks and labels, the axis names and
+// the value's label (and a note when the slice holds NaN).
+void draw_frames_and_labels(cairo_t* c, const SliceFigure& fig, const GridSpec& grid, char axis, int field_w,
+                            int field_h, double lo, double hi, const SliceFigureOptions& options,
+                            const SliceImage& plain) {
+  cairo_set_source_rgb(c, 0.1, 0.1, 0.1);
+  cairo_set_line_width(c, 1);
+  cairo_rectangle(c, fig.left - 0.5, fig.top - 0.5, field_w + 1, field_h + 1);
+  cairo_rectangle(c, fig.bar_left - 0.5, fig.bar_top - 0.5, kBarWidth + 1, field_h + 1);
+  cairo_stroke(c);
+  cairo_select_font_face(c, kFontFamily, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  const double u_lo = fig.u0 - grid.spacing / 2, u_hi = fig.u0 + (fig.columns - 0.5) * grid.spacing;
+  const double v_lo = fig.v0 - grid.spacing / 2, v_hi = fig.v0 + (fig.rows - 0.5) * grid.spacing;
+  const AxisTicks ut = linear_ticks(u_lo, u_hi, std::max(2, field_w / 70));
+  for (double t : ut.major) {
+    const double x = std::round(fig.pixel_x(t)) + 0.5;
+    line(c, x, fig.top + field_h, x, fig.top + field_h + 5);
+    text(c, tick_label(t, ut.step), x, fig.top + field_h + 16, Align::center);
+  }
+  const AxisTicks vt = linear_ticks(v_lo, v_hi, std::max(2, field_h / 50));
+  for (double t : vt.major) {
+    const double y = std::round(fig.pixel_y(t)) + 0.5;
+    line(c, fig.left - 5, y, fig.left, y);
+    text(c, tick_label(t, vt.step), fig.left - 8, y, Align::right);
+  }
+  const int a = axis - 'x', u = a == 0 ? 1 : 0, v = a == 2 ? 1 : 2;
+  const std::string axis_names = "xyz";
+  const std::string units = options.units.empty() ? "" : " (" + options.units + ")";
+  text(c, std::string(1, axis_names[u]) + units, fig.left + field_w / 2.0, fig.top + field_h + 40, Align::center);
+  cairo_save(c);
+  cairo_translate(c, 18, fig.top + field_h / 2.0);
+  cairo_rotate(c, -M_PI / 2);
+  text(c, std::string(1, axis_names[v]) + units, 0, 0, Align::center);
+  cairo_restore(c);
+  if (hi > lo) {
+    const AxisTicks bt = linear_ticks(lo, hi, std::max(2, field_h / 45));
+    for (double t : bt.major) {
+      const double y = std::round(fig.bar_bottom - (t - lo) / (hi - lo) * (fig.bar_bottom - fig.bar_top)) + 0.5;
+      line(c, fig.bar_right, y, fig.bar_right + 5, y);
+      text(c, tick_label(t, bt.step), fig.bar_right + 8, y, Align::left);
+    }
+  } else {
+    text(c, tick_label(lo, 0), fig.bar_right + 8, fig.bar_bottom - 0.5, Align::left);
+  }
+  text(c, options.value_label, fig.bar_left, fig.top - 10, Align::left);
+  bool any_nan = false;  // render_slice draws NaN magenta, a colour neither map uses
+  for (std::size_t p = 0; p + 2 < plain.rgb.size() && !any_nan; p += 3)
+    any_nan = plain.rgb[p] == 255 && plain.rgb[p + 1] == 0 && plain.rgb[p + 2] == 255;
+  if (any_nan) text(c, "magenta: NaN", fig.bar_left, fig.bar_bottom + 16, Align::left);
+}
+
+// The image surface's pixels (xRGB, `stride` bytes a row) as RGB bytes.
+void copy_pixels(const unsigned char* data, int stride, int width, int height, std::vector<unsigned char>& rgb) {
+  rgb.resize(3 * static_cast<std::size_t>(width) * height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::uint32_t px = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::size_t>(y) * stride)[x];
+      unsigned char* out = rgb.data() + 3 * (static_cast<std::size_t>(y) * width + x);
+      out[0] = (px >> 16) & 255;
+      out[1] = (px >> 8) & 255;
+      out[2] = px & 255;
+    }
+}
+
+}  // namespace
+
 SliceFigure render_slice_figure(const GridSpec& grid, const float* values, char axis, int index, ColorMap map,
                                 const SliceFigureOptions& options) {
   if (options.pixels_per_point < 0)
@@ -134,66 +221,9 @@ SliceFigure render_slice_figure(const GridSpec& grid, const float* values, char 
     cairo_fill(c);
   }
 
-  // The outline, black on a white halo, clipped to the field.
-  cairo_save(c);
-  cairo_rectangle(c, fig.left, fig.top, field_w, field_h);
-  cairo_clip(c);
-  cairo_set_line_cap(c, CAIRO_LINE_CAP_ROUND);
-  for (const auto& [colour, width_px] : {std::pair{1.0, 3.5}, std::pair{0.0, 1.5}}) {
-    cairo_set_source_rgb(c, colour, colour, colour);
-    cairo_set_line_width(c, width_px);
-    for (const OutlineSegment& s : options.outline) {
-      cairo_move_to(c, fig.pixel_x(s.a.x()), fig.pixel_y(s.a.y()));
-      cairo_line_to(c, fig.pixel_x(s.b.x()), fig.pixel_y(s.b.y()));
-    }
-    cairo_stroke(c);
-  }
-  cairo_restore(c);
+  draw_outline(c, fig, field_w, field_h, options.outline);
 
-  // Frames, ticks and labels.
-  cairo_set_source_rgb(c, 0.1, 0.1, 0.1);
-  cairo_set_line_width(c, 1);
-  cairo_rectangle(c, fig.left - 0.5, fig.top - 0.5, field_w + 1, field_h + 1);
-  cairo_rectangle(c, fig.bar_left - 0.5, fig.bar_top - 0.5, kBarWidth + 1, field_h + 1);
-  cairo_stroke(c);
-  cairo_select_font_face(c, kFontFamily, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  const double u_lo = fig.u0 - grid.spacing / 2, u_hi = fig.u0 + (fig.columns - 0.5) * grid.spacing;
-  const double v_lo = fig.v0 - grid.spacing / 2, v_hi = fig.v0 + (fig.rows - 0.5) * grid.spacing;
-  const AxisTicks ut = linear_ticks(u_lo, u_hi, std::max(2, field_w / 70));
-  for (double t : ut.major) {
-    const double x = std::round(fig.pixel_x(t)) + 0.5;
-    line(c, x, fig.top + field_h, x, fig.top + field_h + 5);
-    text(c, tick_label(t, ut.step), x, fig.top + field_h + 16, Align::center);
-  }
-  const AxisTicks vt = linear_ticks(v_lo, v_hi, std::max(2, field_h / 50));
-  for (double t : vt.major) {
-    const double y = std::round(fig.pixel_y(t)) + 0.5;
-    line(c, fig.left - 5, y, fig.left, y);
-    text(c, tick_label(t, vt.step), fig.left - 8, y, Align::right);
-  }
-  const std::string axis_names = "xyz";
-  const std::string units = options.units.empty() ? "" : " (" + options.units + ")";
-  text(c, std::string(1, axis_names[u]) + units, fig.left + field_w / 2.0, fig.top + field_h + 40, Align::center);
-  cairo_save(c);
-  cairo_translate(c, 18, fig.top + field_h / 2.0);
-  cairo_rotate(c, -M_PI / 2);
-  text(c, std::string(1, axis_names[v]) + units, 0, 0, Align::center);
-  cairo_restore(c);
-  if (hi > lo) {
-    const AxisTicks bt = linear_ticks(lo, hi, std::max(2, field_h / 45));
-    for (double t : bt.major) {
-      const double y = std::round(fig.bar_bottom - (t - lo) / (hi - lo) * (fig.bar_bottom - fig.bar_top)) + 0.5;
-      line(c, fig.bar_right, y, fig.bar_right + 5, y);
-      text(c, tick_label(t, bt.step), fig.bar_right + 8, y, Align::left);
-    }
-  } else {
-    text(c, tick_label(lo, 0), fig.bar_right + 8, fig.bar_bottom - 0.5, Align::left);
-  }
-  text(c, options.value_label, fig.bar_left, fig.top - 10, Align::left);
-  bool any_nan = false;  // render_slice draws NaN magenta, a colour neither map uses
-  for (std::size_t p = 0; p + 2 < plain.rgb.size() && !any_nan; p += 3)
-    any_nan = plain.rgb[p] == 255 && plain.rgb[p + 1] == 0 && plain.rgb[p + 2] == 255;
-  if (any_nan) text(c, "magenta: NaN", fig.bar_left, fig.bar_bottom + 16, Align::left);
+  draw_frames_and_labels(c, fig, grid, axis, field_w, field_h, lo, hi, options, plain);
   cairo_select_font_face(c, kFontFamily, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
   text(c, options.title, 12, 16, Align::left, kTitleSize);
   cairo_surface_flush(surface.get());
@@ -202,15 +232,7 @@ SliceFigure render_slice_figure(const GridSpec& grid, const float* values, char 
   fig.image.height = height;
   fig.image.value_min = lo;
   fig.image.value_max = hi;
-  fig.image.rgb.resize(3 * static_cast<std::size_t>(width) * height);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const std::uint32_t px = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::size_t>(y) * stride)[x];
-      unsigned char* out = fig.image.rgb.data() + 3 * (static_cast<std::size_t>(y) * width + x);
-      out[0] = (px >> 16) & 255;
-      out[1] = (px >> 8) & 255;
-      out[2] = px & 255;
-    }
+  copy_pixels(data, stride, width, height, fig.image.rgb);
   return fig;
 }
 

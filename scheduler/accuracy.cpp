@@ -63,9 +63,12 @@ std::vector<TurningAccuracy> turning_accuracy(const ComputeContext& ctx, const P
   at_rest_variant.product_update = ProductUpdate::each_query;
   auto at_rest = make_query_engine(ctx, spectra, at_rest_variant);
   at_rest->set_modes(modes);
-  const Eigen::Vector3d axes[6] = {Eigen::Vector3d::UnitX(),          Eigen::Vector3d::UnitY(),
-                                   Eigen::Vector3d::UnitZ(),          Eigen::Vector3d(1, 1, 0).normalized(),
-                                   Eigen::Vector3d(0, 1, 1).normalized(), Eigen::Vector3d(1, 0, 1).normalized()};
+  const Eigen::Vector3d axes[6] = {Eigen::Vector3d::UnitX(),
+                                   Eigen::Vector3d::UnitY(),
+                                   Eigen::Vector3d::UnitZ(),
+                                   Eigen::Vector3d(1, 1, 0).normalized(),
+                                   Eigen::Vector3d(0, 1, 1).normalized(),
+                                   Eigen::Vector3d(1, 0, 1).normalized()};
   const double period = 1.0 / (rate_hz > 0 ? rate_hz : 1000.0);
   const int frames = static_cast<int>(std::lround(0.2 / period));
   std::vector<TurningAccuracy> out;
@@ -168,6 +171,54 @@ std::vector<Pose> accuracy_poses(const Scene& scene, std::size_t count) {
   return poses;
 }
 
+namespace {
+
+// The exact product's cost at the engine's m': a query at a rotation not yet made, less a
+// query at the same rotation again, in ms.
+double product_ms(QueryEngine& engine, const Pose& pose) {
+  Pose turned = pose;
+  turned.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(1e-3, Eigen::Vector3d::UnitZ())) * turned.rotation;
+  engine.query(pose);
+  const auto t0 = std::chrono::steady_clock::now();
+  engine.query(turned);
+  const double with_product = seconds_since(t0);
+  const auto t1 = std::chrono::steady_clock::now();
+  engine.query(turned);
+  return 1e3 * std::max(0.0, with_product - seconds_since(t1));
+}
+
+// The strategy's errors against the reference at every pose both answer, and how often
+// and by how much its error estimate covers the true error.
+void compare_with_reference(QueryEngine& engine, const std::vector<Pose>& poses,
+                            const std::vector<QueryResult>& reference, StrategyAccuracy& s) {
+  RelativeErrors sums;
+  std::vector<double> ratios[3];
+  std::size_t covered[3] = {0, 0, 0}, compared = 0;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const QueryResult r = engine.query(poses[i]);
+    const QueryResult& ref = reference[i];
+    if (r.flags != query_ok || ref.flags != query_ok) continue;
+    sums.add(r, ref);
+    const double truth[3] = {std::abs(r.energy - ref.energy), (r.force - ref.force).norm(),
+                             (r.torque - ref.torque).norm()};
+    const double estimate[3] = {r.error_estimate.energy, r.error_estimate.force, r.error_estimate.torque};
+    ++compared;
+    for (int q = 0; q < 3; ++q) {
+      if (estimate[q] >= truth[q]) ++covered[q];
+      if (truth[q] > 0) ratios[q].push_back(estimate[q] / truth[q]);
+    }
+  }
+  for (int q = 0; q < 3; ++q) {
+    s.estimate_coverage[q] = compared ? double(covered[q]) / double(compared) : 0;
+    s.estimate_ratio_median[q] = ratios[q].empty() ? 0 : quantile(ratios[q], 0.5);
+  }
+  s.energy_error = sums.relative(0);
+  s.force_error = sums.relative(1);
+  s.torque_error = sums.relative(2);
+}
+
+}  // namespace
+
 AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, const PairSpectra& spectra,
                                 const AccuracyOptions& options) {
   const auto note = [&](const std::string& m) {
@@ -233,44 +284,12 @@ AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, c
       engine.reset();
       measured = make_query_engine(ctx, spectra, exact_product(base, ProductUpdate::each_query, s.modes));
       measured->set_modes(s.modes);
-      // One product at m': the query at a rotation not yet made, less a query at the same.
-      Pose turned = poses.front();
-      turned.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(1e-3, Eigen::Vector3d::UnitZ())) * turned.rotation;
-      measured->query(poses.front());
-      const auto t0 = std::chrono::steady_clock::now();
-      measured->query(turned);
-      const double with_product = seconds_since(t0);
-      const auto t1 = std::chrono::steady_clock::now();
-      measured->query(turned);
-      s.product_ms = 1e3 * std::max(0.0, with_product - seconds_since(t1));
+      s.product_ms = product_ms(*measured, poses.front());
     } else {
       measured = std::move(engine);
       measured->set_modes(s.modes);
     }
-    RelativeErrors sums;
-    std::vector<double> ratios[3];
-    std::size_t covered[3] = {0, 0, 0}, compared = 0;
-    for (std::size_t i = 0; i < poses.size(); ++i) {
-      const QueryResult r = measured->query(poses[i]);
-      const QueryResult& ref = reference[i];
-      if (r.flags != query_ok || ref.flags != query_ok) continue;
-      sums.add(r, ref);
-      const double truth[3] = {std::abs(r.energy - ref.energy), (r.force - ref.force).norm(),
-                               (r.torque - ref.torque).norm()};
-      const double estimate[3] = {r.error_estimate.energy, r.error_estimate.force, r.error_estimate.torque};
-      ++compared;
-      for (int q = 0; q < 3; ++q) {
-        if (estimate[q] >= truth[q]) ++covered[q];
-        if (truth[q] > 0) ratios[q].push_back(estimate[q] / truth[q]);
-      }
-    }
-    for (int q = 0; q < 3; ++q) {
-      s.estimate_coverage[q] = compared ? double(covered[q]) / double(compared) : 0;
-      s.estimate_ratio_median[q] = ratios[q].empty() ? 0 : quantile(ratios[q], 0.5);
-    }
-    s.energy_error = sums.relative(0);
-    s.force_error = sums.relative(1);
-    s.torque_error = sums.relative(2);
+    compare_with_reference(*measured, poses, reference, s);
     if (timed.rotation == RotationMethod::exact_product && timed.product_update == ProductUpdate::background &&
         !options.turning_deg_per_s.empty()) {
       measured.reset();

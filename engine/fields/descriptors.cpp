@@ -4,9 +4,9 @@
 #include <climits>
 #include <cmath>
 
-#include "engine/runtime/kernel_sources.h"
 #include "engine/fields/triangle_bvh.h"
 #include "engine/fields/winding_propagation.h"
+#include "engine/runtime/kernel_sources.h"
 #include "mesh/triangle_refine.h"
 #include "snapfit/error.h"
 
@@ -99,6 +99,72 @@ void check_inputs(const Mesh& mesh, const DescriptorParams& params, const Descri
   if (!(params.tolerance > 0 && params.tolerance < 1)) throw Error("descriptor tolerance must be in (0, 1)");
   if (params.kind == DescriptorKind::skeletal_density && !(params.sigma > 0))
     throw Error("descriptor sigma must be positive");
+}
+
+// Pass 3: the skeletal density s and its error bound at every point, from |xi| (the
+// density BVH's nodes and triangles already on the device), into out.
+void skeletal_density_pass(const ComputeContext& ctx, const EvalPoints& points, const DescriptorParams& params,
+                           const DescriptorOptions& options, const std::vector<float>& distance,
+                           const cl::Buffer& density_nodes, const cl::Buffer& density_triangles,
+                           std::size_t density_triangle_count, int stack_size, const std::string& explicit_flag,
+                           DescriptorFields& out) {
+  const GridSpec& grid = points.grid;
+  const std::size_t count = points.count();
+  // Points in packets of `lanes` neighbours (kernels/skeletal_density.cl): bricks of the
+  // grid, or the list's points in their order; |xi| (and the coordinates of a list)
+  // gathered into packet order, s and its bound scattered back.
+  const int lanes = density_lanes(ctx, options);
+  std::vector<long long> order;
+  if (points.explicit_points()) {
+    order.assign((count + lanes - 1) / lanes * lanes, -1);
+    for (std::size_t i = 0; i < count; ++i) order[i] = static_cast<long long>(i);
+  } else {
+    order = brick_point_order(grid, lanes);
+  }
+  auto gather = [&](const std::vector<float>& from, float padding) {
+    std::vector<float> to(order.size(), padding);
+    for (std::size_t i = 0; i < order.size(); ++i)
+      if (order[i] >= 0) to[i] = from[static_cast<std::size_t>(order[i])];
+    return to;
+  };
+  std::vector<float> ordered_distance = gather(distance, 1.0f), ordered_density(order.size()),
+                     ordered_bound(order.size());
+  std::vector<std::vector<float>> ordered_coordinates;
+  if (points.explicit_points())
+    for (const std::vector<float>* c : {points.x, points.y, points.z}) ordered_coordinates.push_back(gather(*c, 0.0f));
+  static_assert(sizeof(long long) == sizeof(cl_long), "point ids are OpenCL longs");
+  cl::Buffer id_buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_long) * order.size(),
+                       const_cast<long long*>(order.data()));
+  const std::size_t packet_chunk = (std::min(options.chunk_points, order.size()) + lanes - 1) / lanes * lanes;
+  auto chunk_buffer = [&](cl_mem_flags flags) { return cl::Buffer(ctx.context, flags, sizeof(float) * packet_chunk); };
+  std::vector<ChunkIo> inputs = {{chunk_buffer(CL_MEM_READ_ONLY), &ordered_distance}};
+  for (std::vector<float>& c : ordered_coordinates) inputs.push_back({chunk_buffer(CL_MEM_READ_ONLY), &c});
+  cl::Buffer out_density = chunk_buffer(CL_MEM_WRITE_ONLY), out_bound = chunk_buffer(CL_MEM_WRITE_ONLY);
+  cl::Kernel density_kernel =
+      make_kernel(ctx, "skeletal_density", stack_size, options,
+                  " -D LANES=" + std::to_string(lanes) +
+                      (options.brute_force_density ? " -D BRUTE_FORCE -D MAX_SPLIT_DEPTH=40" : "") + explicit_flag);
+  density_kernel.setArg(6, density_nodes);
+  density_kernel.setArg(7, density_triangles);
+  density_kernel.setArg(8, inputs[0].buffer);
+  density_kernel.setArg(9, static_cast<float>(options.min_distance_fraction * grid.spacing));
+  density_kernel.setArg(10, static_cast<float>(params.sigma));
+  density_kernel.setArg(11, static_cast<float>(params.tolerance));
+  density_kernel.setArg(12, static_cast<cl_int>(density_triangle_count));
+  density_kernel.setArg(13, out_density);
+  density_kernel.setArg(14, out_bound);
+  density_kernel.setArg(15, id_buffer);
+  for (std::size_t a = 1; a < inputs.size(); ++a) density_kernel.setArg(16 + cl_uint(a - 1), inputs[a].buffer);
+  run_pass(ctx, grid, options, density_kernel, inputs, {{out_density, &ordered_density}, {out_bound, &ordered_bound}},
+           "skeletal density", order.size(), packet_chunk, static_cast<std::size_t>(lanes));
+  out.skeletal_density.resize(count);
+  out.density_bound.resize(count);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    if (order[i] < 0) continue;
+    out.skeletal_density[static_cast<std::size_t>(order[i])] = ordered_density[i];
+    out.density_bound[static_cast<std::size_t>(order[i])] = ordered_bound[i];
+  }
+  out.density_lanes = lanes;
 }
 
 // The three passes (distance, winding number, skeletal density) at `points`, for a mesh
@@ -209,64 +275,8 @@ std::vector<float> run_passes(const ComputeContext& ctx, const Mesh& mesh, const
 
   // 3. Skeletal density s and its error bound, from |xi|.
   if (skeletal) {
-    // Points in packets of `lanes` neighbours (kernels/skeletal_density.cl): bricks of the
-    // grid, or the list's points in their order; |xi| (and the coordinates of a list)
-    // gathered into packet order, s and its bound scattered back.
-    const int lanes = density_lanes(ctx, options);
-    std::vector<long long> order;
-    if (points.explicit_points()) {
-      order.assign((count + lanes - 1) / lanes * lanes, -1);
-      for (std::size_t i = 0; i < count; ++i) order[i] = static_cast<long long>(i);
-    } else {
-      order = brick_point_order(grid, lanes);
-    }
-    auto gather = [&](const std::vector<float>& from, float padding) {
-      std::vector<float> to(order.size(), padding);
-      for (std::size_t i = 0; i < order.size(); ++i)
-        if (order[i] >= 0) to[i] = from[static_cast<std::size_t>(order[i])];
-      return to;
-    };
-    std::vector<float> ordered_distance = gather(distance, 1.0f), ordered_density(order.size()),
-                       ordered_bound(order.size());
-    std::vector<std::vector<float>> ordered_coordinates;
-    if (points.explicit_points())
-      for (const std::vector<float>* c : {points.x, points.y, points.z})
-        ordered_coordinates.push_back(gather(*c, 0.0f));
-    static_assert(sizeof(long long) == sizeof(cl_long), "point ids are OpenCL longs");
-    cl::Buffer id_buffer(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_long) * order.size(),
-                         const_cast<long long*>(order.data()));
-    const std::size_t packet_chunk = (std::min(options.chunk_points, order.size()) + lanes - 1) / lanes * lanes;
-    auto chunk_buffer = [&](cl_mem_flags flags) {
-      return cl::Buffer(ctx.context, flags, sizeof(float) * packet_chunk);
-    };
-    std::vector<ChunkIo> inputs = {{chunk_buffer(CL_MEM_READ_ONLY), &ordered_distance}};
-    for (std::vector<float>& c : ordered_coordinates) inputs.push_back({chunk_buffer(CL_MEM_READ_ONLY), &c});
-    cl::Buffer out_density = chunk_buffer(CL_MEM_WRITE_ONLY), out_bound = chunk_buffer(CL_MEM_WRITE_ONLY);
-    cl::Kernel density_kernel =
-        make_kernel(ctx, "skeletal_density", stack_size, options,
-                    " -D LANES=" + std::to_string(lanes) +
-                        (options.brute_force_density ? " -D BRUTE_FORCE -D MAX_SPLIT_DEPTH=40" : "") + explicit_flag);
-    density_kernel.setArg(6, density_nodes);
-    density_kernel.setArg(7, density_triangles);
-    density_kernel.setArg(8, inputs[0].buffer);
-    density_kernel.setArg(9, static_cast<float>(options.min_distance_fraction * grid.spacing));
-    density_kernel.setArg(10, static_cast<float>(params.sigma));
-    density_kernel.setArg(11, static_cast<float>(params.tolerance));
-    density_kernel.setArg(12, static_cast<cl_int>(density_bvh.triangles.size() / 3));
-    density_kernel.setArg(13, out_density);
-    density_kernel.setArg(14, out_bound);
-    density_kernel.setArg(15, id_buffer);
-    bind_coordinates(density_kernel, 16, std::vector<ChunkIo>(inputs.begin() + 1, inputs.end()));
-    run_pass(ctx, grid, options, density_kernel, inputs, {{out_density, &ordered_density}, {out_bound, &ordered_bound}},
-             "skeletal density", order.size(), packet_chunk, static_cast<std::size_t>(lanes));
-    out.skeletal_density.resize(count);
-    out.density_bound.resize(count);
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      if (order[i] < 0) continue;
-      out.skeletal_density[static_cast<std::size_t>(order[i])] = ordered_density[i];
-      out.density_bound[static_cast<std::size_t>(order[i])] = ordered_bound[i];
-    }
-    out.density_lanes = lanes;
+    skeletal_density_pass(ctx, points, params, options, distance, density_nodes, density_triangles,
+                          density_bvh.triangles.size() / 3, stack_size, explicit_flag, out);
     out.density_seconds = seconds_since(t);
   }
   return distance;
