@@ -22,14 +22,14 @@
 #include "core/progress.h"
 #include "core/so3_grid.h"
 #include "engine/maps/map_fft_choice.h"
+#include "engine/maps/rotation_search.h"
 #include "engine/query/pose_descent.h"
 #include "engine/query/query_engine.h"
-#include "engine/maps/rotation_search.h"
 #include "io/atomic_write.h"
 #include "pipeline/assembly_pair.h"
 #include "report/chart_spec.h"
-#include "scheduler/mode_tuning.h"
 #include "scheduler/haptic_setup.h"
+#include "scheduler/mode_tuning.h"
 #include "scheduler/rendered_wrench.h"
 #include "scheduler/rigid_contact.h"
 #include "snapfit/error.h"
@@ -173,7 +173,9 @@ void run_search(const SearchOptions& opt, const SearchRanks& ranks) {
         kind = parse_map_fft(opt.map_fft);
         fft_used = map_fft_name(kind) + " (--map-fft)";
       }
-      if (opt.map_batch) fft_used += ", " + std::to_string(batch) + " rotations per batch (--map-batch)";
+      if (opt.map_batch)
+        fft_used +=
+            ", " + std::to_string(batch) + (batch == 1 ? " rotation" : " rotations") + " per batch (--map-batch)";
       mapper = std::make_unique<TranslationMapper>(*fft, *ctx, pair.spectra, interpolation, opt.modes, kind,
                                                    default_program_cache(), batch);
     } catch (const std::exception& e) {
