@@ -15,7 +15,7 @@
 #include "io/vti_export.h"
 #include "mesh/mesh_slice.h"
 #include "pipeline/assembly_pair.h"
-#include "report/scene_summary.h"
+#include "pipeline/scene_summary.h"
 #include "report/slice_figure.h"
 #include "snapfit/error.h"
 

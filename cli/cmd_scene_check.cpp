@@ -4,7 +4,7 @@
 
 #include "cli/commands.h"
 #include "pipeline/assembly_pair.h"
-#include "report/scene_summary.h"
+#include "pipeline/scene_summary.h"
 
 namespace snapfit::cli {
 

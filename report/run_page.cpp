@@ -57,7 +57,7 @@ nlohmann::json rendered_modes_json(const LoopReport& loop) {
           {"changes", loop.mode_changes.size()}};
 }
 
-nlohmann::json summary_json(const RunRecord& run) {
+nlohmann::json summary_json(const JobRecord& run) {
   const Scene& scene = run.pair->scene;
   nlohmann::json s = {{"scene", scene.name},
                       {"scene_file", scene.source_path},
@@ -104,7 +104,7 @@ nlohmann::json summary_json(const RunRecord& run) {
 
 // Playback: part 2's pose, the wrench sent to the device, energy and m' at evenly spaced
 // frames; inside-flags of both parts' triangles at as many of them as contact_bits allows.
-nlohmann::json playback_json(const RunRecord& run, const std::vector<Mesh>& shown, const RunPageLimits& limits) {
+nlohmann::json playback_json(const JobRecord& run, const std::vector<Mesh>& shown, const RunPageLimits& limits) {
   const LoopReport& loop = run.session->loop;
   const std::vector<std::size_t> frames =
       evenly_spaced_frames(loop.log.size(), std::max<std::size_t>(2, limits.playback_frames));
@@ -178,7 +178,7 @@ Chart time_chart(const std::string& title, const std::string& y_label, const Env
 }
 
 // The loop's time series, every frame or min/max envelopes of buckets of frames.
-nlohmann::json timeline_json(const RunRecord& run, const RunPageLimits& limits) {
+nlohmann::json timeline_json(const JobRecord& run, const RunPageLimits& limits) {
   const Scene& scene = run.pair->scene;
   const SessionResult& session = *run.session;
   const LoopReport& loop = session.loop;
@@ -254,7 +254,7 @@ Mesh display_mesh(const Mesh& mesh, double spacing, std::size_t max_triangles) {
   return mesh;
 }
 
-nlohmann::json run_page_data(const RunRecord& run, const std::vector<PageFigure>& figures,
+nlohmann::json run_page_data(const JobRecord& run, const std::vector<PageFigure>& figures,
                              const RunPageLimits& limits) {
   const AssemblyPair& pair = *run.pair;
   const Scene& scene = pair.scene;
@@ -294,7 +294,7 @@ nlohmann::json run_page_data(const RunRecord& run, const std::vector<PageFigure>
   return data;
 }
 
-void write_run_page(const std::string& path, const RunRecord& run, const std::vector<PageFigure>& figures,
+void write_run_page(const std::string& path, const JobRecord& run, const std::vector<PageFigure>& figures,
                     const RunPageLimits& limits) {
   const nlohmann::json data = run_page_data(run, figures, limits);
   write_html_page(path, "run_report", data["title"].get<std::string>(), data);

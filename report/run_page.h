@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "mesh/mesh.h"
-#include "report/run_record.h"
+#include "jobs/job_record.h"
 
 namespace snapfit {
 
@@ -35,11 +35,11 @@ struct PageFigure {
 Mesh display_mesh(const Mesh& mesh, double spacing, std::size_t max_triangles);
 
 // The page's data block (report/web/src/run_report.js reads it).
-nlohmann::json run_page_data(const RunRecord& run, const std::vector<PageFigure>& figures,
+nlohmann::json run_page_data(const JobRecord& run, const std::vector<PageFigure>& figures,
                              const RunPageLimits& limits = {});
 
 // Writes report.html to `path`. Throws snapfit::Error when this build has no web report.
-void write_run_page(const std::string& path, const RunRecord& run, const std::vector<PageFigure>& figures,
+void write_run_page(const std::string& path, const JobRecord& run, const std::vector<PageFigure>& figures,
                     const RunPageLimits& limits = {});
 
 }  // namespace snapfit

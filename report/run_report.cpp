@@ -65,7 +65,7 @@ nlohmann::json part_json(const PreparedPart& part) {
 
 }  // namespace
 
-std::vector<std::string> write_run_report(const std::filesystem::path& out, const RunRecord& run) {
+std::vector<std::string> write_run_report(const std::filesystem::path& out, const JobRecord& run) {
   const AssemblyPair& pair = *run.pair;
   const Scene& scene = pair.scene;
   std::filesystem::create_directories(out);
@@ -169,6 +169,18 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
   };
   write_text_file((out / "summary.json").string(), summary.dump(2) + "\n");
   return written;
+}
+
+RunReportFiles write_job_report(const std::filesystem::path& out, JobRecord& run, double seconds) {
+  run.seconds = seconds;
+  RunReportFiles files;
+  files.written = write_run_report(out, run);
+  if (!web_pages_available())
+    files.warnings.push_back(
+        "no report.html: this snapfit was built with -DSNAPFIT_WEB_REPORT=OFF (no node/npm at build time)");
+  if (const std::string font = figure_font_problem(); !font.empty() && !run.vps)
+    files.warnings.push_back(font + ": the field figures' labels are not readable");
+  return files;
 }
 
 }  // namespace snapfit

@@ -7,13 +7,21 @@
 #include <string>
 #include <vector>
 
-#include "report/run_record.h"
+#include "jobs/job_record.h"
 
 namespace snapfit {
 
 // Writes every file into `out` (created); returns their names, summary.json first.
 // report.html is left out, and summary.json says so, when this build has no web report
 // (report/web_assets.h). Throws snapfit::Error naming the file that cannot be written.
-std::vector<std::string> write_run_report(const std::filesystem::path& out, const RunRecord& run);
+std::vector<std::string> write_run_report(const std::filesystem::path& out, const JobRecord& run);
+
+struct RunReportFiles {
+  std::vector<std::string> written;   // summary.json first
+  std::vector<std::string> warnings;  // what the folder lacks and why (no report.html, unreadable labels)
+};
+
+// write_run_report for a job that has taken `seconds` so far, with what the folder lacks.
+RunReportFiles write_job_report(const std::filesystem::path& out, JobRecord& run, double seconds);
 
 }  // namespace snapfit

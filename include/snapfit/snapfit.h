@@ -7,6 +7,7 @@
 //   tuning.h         m' for the scene's frame budget on this device (auto_tune)
 //   haptic_device.h  what a haptic device implements (read pose, send wrench, limits)
 //   haptic_loop.h    the fixed-rate loop with virtual coupling, on its own thread
+//   job.h            the main job in one call: parts, device, fields, spectra, m', scripted session
 //   pose.h, error.h  rigid poses; the one exception type
 //
 // The papers the comments cite:
@@ -21,6 +22,7 @@
 #include "snapfit/error.h"
 #include "snapfit/haptic_device.h"
 #include "snapfit/haptic_loop.h"
+#include "snapfit/job.h"
 #include "snapfit/pose.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"

@@ -1,4 +1,4 @@
-#include "report/scene_summary.h"
+#include "pipeline/scene_summary.h"
 
 #include <algorithm>
 #include <iomanip>

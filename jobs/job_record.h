@@ -1,5 +1,6 @@
 #pragma once
-// What `snapfit run` knows at the end of its job, for the report (report/run_report.h).
+// Everything the main job (snapfit/job.h) built and measured, for the tool's report.
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -26,8 +27,8 @@ struct VpsFacts {
   double alignment_k_n_per_m = 0;
 };
 
-struct RunRecord {
-  const AssemblyPair* pair = nullptr;  // parts, fields, spectra
+struct JobRecord {
+  std::shared_ptr<const AssemblyPair> pair;  // parts, fields, spectra
   DeviceInfo device;                   // where fields and spectra were computed
   DeviceInfo loop_device;              // where the loop ran (or would run)
   DeviceCheckResult check;

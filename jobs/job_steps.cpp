@@ -1,0 +1,60 @@
+#include "jobs/job_steps.h"
+
+#include <iostream>
+#include <sstream>
+
+#include "jobs/job_text.h"
+
+namespace snapfit {
+
+JobOutput job_output(const JobRequest& request) {
+  JobOutput out;
+  out.say = request.say ? request.say : [](const std::string&) {};
+  out.note = request.note ? request.note : [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; };
+  return out;
+}
+
+void run_session_step(const Scene& scene, const JobRequest& request, const JobOutput& out, const std::string& what,
+                      JobRecord& record, const std::function<SessionResult(const SessionOptions&)>& play) {
+  if (scene.trajectory.keyframes.empty()) {
+    out.say("[7/7] the scene has no trajectory: no scripted assembly to run\n");
+    return;
+  }
+  const Trajectory& t = scene.trajectory;
+  const double seconds = t.keyframes.back().time_s - t.keyframes.front().time_s + scene.haptics.settle_s;
+  std::ostringstream line;
+  line << "[7/7] haptic loop at " << scene.loop_rate_hz << " Hz playing the scripted trajectory (" << seconds
+       << " s of " << (request.simulated_time ? "simulated" : "real") << " time, " << what << ")\n";
+  out.say(line.str());
+  SessionOptions session;
+  session.simulated_time = request.simulated_time;
+  session.wait = request.loop_wait;
+  record.session = play(session);
+  const SessionResult& s = *record.session;
+  if (s.priority.failed)
+    out.note("could not raise the priority of " + std::to_string(s.priority.failed) + " threads for the loop (" +
+             s.priority.reason + "); frames may be late on a busy machine");
+  if (!s.contact_off.empty()) out.note(s.contact_off);
+  out.say(session_text(scene, s));
+}
+
+JobResult job_result(std::shared_ptr<JobRecord> record) {
+  JobResult r;
+  r.device = record->device.name;
+  r.loop_device = record->loop_device.name;
+  r.strategy = record->strategy;
+  r.strategy_chosen_by = record->strategy_chosen_by;
+  r.tuning = record->tuning;
+  if (record->session) {
+    const SessionResult& s = *record->session;
+    r.loop = s.loop;
+    r.evaluated = s.evaluated;
+    r.assembled = s.assembled;
+    r.final_position_error = s.final_error.position;
+    r.final_angle_deg = s.final_error.angle_deg;
+  }
+  r.record = std::move(record);
+  return r;
+}
+
+}  // namespace snapfit

@@ -1,0 +1,32 @@
+#pragma once
+// What the main job's steps share: the request's text callbacks with their defaults,
+// and the scripted-session step both methods end with.
+#include <functional>
+#include <string>
+
+#include "jobs/job_record.h"
+#include "snapfit/job.h"
+
+namespace snapfit {
+
+struct JobOutput {
+  std::function<void(const std::string&)> say;   // never empty
+  std::function<void(const std::string&)> note;  // never empty
+};
+
+// The request's callbacks, silent `say` and stderr `note` where it has none.
+JobOutput job_output(const JobRequest& request);
+
+// The scene's trajectory played through the loop's "[7/7]" step: `play` runs the
+// session; `what` names the method in the step's line.
+void run_session_step(const Scene& scene, const JobRequest& request, const JobOutput& out, const std::string& what,
+                      JobRecord& record, const std::function<SessionResult(const SessionOptions&)>& play);
+
+// The public result: the record's summary, and the record itself for the report.
+JobResult job_result(std::shared_ptr<JobRecord> record);
+
+// A scene whose method is "vps" or "vps_hybrid": the Voxmap PointShell peer on the host
+// (scheduler/vps/), through the same loop; `pair` holds the prepared parts.
+JobResult run_vps_job(std::shared_ptr<AssemblyPair> pair, const JobRequest& request, const JobOutput& out);
+
+}  // namespace snapfit

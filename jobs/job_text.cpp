@@ -1,0 +1,51 @@
+#include "jobs/job_text.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include "core/quantile.h"
+#include "scheduler/session_text.h"
+
+namespace snapfit {
+
+std::string strategies_text(const StrategyChoice& choice) {
+  std::ostringstream out;
+  out << "    " << (choice.from_file ? "from the strategy file " : "measured and saved to ") << choice.path
+      << "\n    strategy                                                m'   p99 ms   energy    force   torque\n";
+  for (std::size_t i = 0; i < choice.report.strategies.size(); ++i) {
+    const StrategyAccuracy& s = choice.report.strategies[i];
+    char line[512];
+    std::snprintf(line, sizeof line, "    %-50s %9zu %8.3f %7.2f%% %7.2f%% %7.2f%%%s%s\n", s.name.c_str(), s.modes,
+                  s.frame_ms_p99, 100 * s.energy_error, 100 * s.force_error, 100 * s.torque_error,
+                  s.fits ? "" : "  does not fit", i == choice.report.best ? "  <- chosen" : "");
+    out << line;
+  }
+  out << "    " << choice.report.why << "\n";
+  return out.str();
+}
+
+std::string session_text(const Scene& scene, const SessionResult& session) {
+  const LoopReport& loop = session.loop;
+  std::ostringstream out;
+  if (session.contact)
+    out << "    rigid contact: built in " << session.contact_build_s << " s, " << session.contact_ms
+        << " ms a frame (p99 near the fit) left out of the query's budget: the loop starts at m' "
+        << session.start_modes << "\n";
+  out << "    " << loop.frames << " frames, measured " << loop.measured_rate_hz << " Hz; frame time p50 "
+      << quantile(loop.frame_ms, 0.5) << " ms, p99 " << quantile(loop.frame_ms, 0.99) << " ms, max "
+      << quantile(loop.frame_ms, 1.0) << " ms; " << loop.misses << " misses (" << 100 * loop.miss_rate() << " %; "
+      << loop.late_wakeup_misses << " late wake-ups, " << loop.stall_misses << " stalls), "
+      << loop.mode_changes.size() << " m' changes; threads: " << session.priority.describe() << "\n";
+  for (const ModeChange& c : loop.mode_changes)
+    out << "      t = " << c.time_s << " s: m' " << c.from << " -> " << c.to << " (" << c.reason << ")\n";
+  out << "    final pose error " << session.final_error.position << " " << scene.units << ", "
+      << session.final_error.angle_deg << " deg (tolerance " << session.position_tolerance << " " << scene.units
+      << ", " << session.angle_tolerance_deg << " deg): "
+      << (!session.evaluated  ? "not evaluated (the scene has no assembled pose)"
+          : session.assembled ? "ASSEMBLED"
+                              : "NOT assembled")
+      << "\n      " << final_error_text(session, scene.units) << "\n";
+  return out.str();
+}
+
+}  // namespace snapfit

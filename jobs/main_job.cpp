@@ -1,0 +1,197 @@
+// snapfit/job.h: the main job on an OpenCL device (Behandish & Ilies 2016 sections 3-4):
+// the parts, the device and its self-check, the fields, the spectra, the strategy and m',
+// and the scripted session; a VPS scene goes to jobs/vps_job.cpp after the parts.
+#include <algorithm>
+#include <sstream>
+
+#include "core/progress.h"
+#include "engine/query/query_engine.h"
+#include "engine/runtime/device_check.h"
+#include "jobs/job_steps.h"
+#include "jobs/job_text.h"
+#include "pipeline/assembly_pair.h"
+#include "pipeline/scene_summary.h"
+#include "scheduler/loop_devices.h"
+#include "scheduler/session_text.h"
+#include "snapfit/error.h"
+#include "snapfit/job.h"
+
+namespace snapfit {
+namespace {
+
+// The variant the request's strategy names for `scene` (auto: the scene's tricubic
+// variant, the starting point of the measured choice).
+QueryVariant named_strategy(const Scene& scene, const std::string& name) {
+  if (name != "auto" && name != "tricubic" && name != "trilinear" && name != "exact-product")
+    throw Error("strategy '" + name + "': expected auto, tricubic, trilinear or exact-product");
+  QueryVariant v = query_variant_for(scene, Interpolation::tricubic);
+  if (v.translation_only) {
+    if (name != "auto" && name != "tricubic")
+      throw Error("--strategy " + name + ": a translation-only scene has one strategy, the translation lines");
+    return v;
+  }
+  if (name == "trilinear") v.interpolation = Interpolation::trilinear;
+  if (name == "exact-product") {
+    v.rotation = RotationMethod::exact_product;
+    v.product_update = ProductUpdate::background;
+  }
+  return v;
+}
+
+// "[3/7]": the device, opened and self-checked.
+ComputeContext open_checked_device(const JobRequest& request, const JobOutput& out, JobRecord& record) {
+  out.say("[3/7] opening the OpenCL device and checking it\n");
+  const Device device = select_device(device_spec_from(request.device));
+  out.say("    device " + describe_device(device.info) + "\n");
+  ComputeContext ctx = make_compute_context(device);
+  const DeviceCheckResult check = run_device_check(ctx, false);
+  std::ostringstream line;
+  line << "    self-check " << (check.passed ? "passed" : "FAILED") << " (relative error " << check.relative_error
+       << ", program " << (check.origin == ProgramOrigin::cache_hit ? "from cache" : "compiled") << " in "
+       << check.build_ms << " ms)\n";
+  out.say(line.str());
+  if (!check.passed) throw Error("device " + device.info.name + " failed its self-check; choose another with --device");
+  record.device = device.info;
+  record.check = check;
+  return ctx;
+}
+
+// "[4/7]" and "[5/7]": both parts' fields, then the spectra.
+void compute_fields_and_spectra(AssemblyPair& pair, const ComputeContext& ctx, const JobRequest& request,
+                                const JobOutput& out) {
+  const Scene& scene = pair.scene;
+  std::ostringstream head;
+  head << "[4/7] descriptor fields of both parts at spacing " << pair.grids.spacing << " " << scene.units
+       << " (from the field cache when present)\n";
+  out.say(head.str());
+  PairOptions options;
+  if (request.progress) options.descriptors.progress = pass_progress_bars();
+  options.note = out.note;
+  for (int part = 1; part <= 2; ++part) {
+    const GridSpec& grid = pair.grid(part);
+    std::ostringstream line;
+    line << "  part " << part << ": grid " << grid.dims.x() << " x " << grid.dims.y() << " x " << grid.dims.z()
+         << " = " << grid.count() << " points, " << pair.part(part).mesh.triangles.size() << " triangles\n";
+    out.say(line.str());
+    compute_assembly_fields(pair, ctx, options, part);
+    std::ostringstream summary;
+    print_fields_summary(summary, pair.fields(part));
+    out.say(summary.str());
+  }
+  out.say("[5/7] spectra (from the spectra cache when present) and the query engine\n");
+  const FftLibrary fft;
+  compute_assembly_spectra(pair, ctx, fft, options);
+}
+
+// "[6/7]" with a fixed m': the named strategy's engine, not tuned.
+std::unique_ptr<QueryEngine> fixed_modes_engine(const ComputeContext& ctx, const AssemblyPair& pair,
+                                                const QueryVariant& variant, const JobRequest& request,
+                                                const JobOutput& out, JobRecord& record) {
+  auto engine = make_query_engine(ctx, pair.spectra, variant);
+  record.tuning = pick_modes({TimingPoint{std::min(request.modes, engine->max_modes()), 0, 0, 0, 0}},
+                             pair.scene.frame_budget_ms, request.margin);
+  record.loop_device = ctx.device.info;
+  record.strategy = variant_name(variant);
+  record.strategy_chosen_by = request.strategy == "auto" ? "--modes (not measured)" : "--strategy";
+  out.say("    " + record.strategy + ", m' = " + std::to_string(record.tuning.chosen_modes) + " (--modes; not tuned)\n");
+  return engine;
+}
+
+// "[6/7]" tuned: m' on this device (and the others with no device named), then with
+// strategy "auto" every strategy's error at the budget and the most accurate that fits.
+LoopDevices tuned_loop_devices(const ComputeContext& ctx, const AssemblyPair& pair, const QueryVariant& variant,
+                               const JobRequest& request, const JobOutput& out, JobRecord& record) {
+  const Scene& scene = pair.scene;
+  LoopDeviceOptions tune;
+  tune.margin = request.margin;
+  tune.retune = request.retune;
+  tune.other_devices = device_spec_from(request.device).empty();
+  tune.note = out.note;
+  if (request.progress) {
+    const auto bars = pass_progress_bars();  // one bar per sweep, finished when it ends
+    tune.tune.progress = [bars](std::uint64_t done, std::uint64_t total) { bars("    tuning m'", done, total); };
+  }
+  tune.on_start = [&](const DeviceInfo& info) {
+    if (info.index != ctx.device.info.index) out.say("    also tuning " + describe_device(info) + "\n");
+  };
+  tune.on_tuned = [&](const TunedDevice& d) {
+    out.say("    " + std::string(d.tuning.from_file ? "from the tuning file " : "measured and saved to ") +
+            d.tuning.path + "\n" + tuning_table(d.tuning.result));
+  };
+  LoopDevices devices = tune_loop_devices(ctx, scene, pair.spectra, variant, tune);
+  record.strategy_chosen_by = "--strategy";
+  if (request.strategy == "auto") {
+    AccuracyOptions accuracy;
+    accuracy.budget_ms = scene.frame_budget_ms;
+    accuracy.margin = request.margin;
+    accuracy.retune = request.retune;
+    accuracy.note = out.note;
+    if (request.progress) accuracy.progress = pass_progress_bars();
+    const StrategyChoice choice = choose_query_strategy(devices.loop().ctx, scene, pair.spectra, accuracy);
+    out.say(strategies_text(choice));
+    record.strategies = choice.report;
+    record.strategy_file = choice.path;
+    record.strategy_chosen_by =
+        std::string("lowest error that fits (") + (choice.from_file ? "strategy file" : "measured") + ")";
+    if (variant_name(choice.chosen().variant) != variant_name(variant))
+      use_variant_on_loop_device(devices, scene, pair.spectra, choice.chosen().variant, tune);
+  }
+  const TunedDevice& chosen = devices.loop();
+  record.strategy = variant_name(chosen.engine->variant());
+  if (devices.devices.size() > 1)
+    out.say("    the loop runs on " + chosen.ctx.device.info.name + " (of " + std::to_string(devices.devices.size()) +
+            " tuned devices: " +
+            (chosen.ctx.device.info.runs_in_caller_thread() ? "runs kernels in the loop's own thread, " : "") + "m' " +
+            std::to_string(chosen.tuning.result.chosen_modes) + ", scheduler/device_choice.h)\n");
+  record.tuning = chosen.tuning.result;
+  record.tuning_key = chosen.key.text();
+  record.loop_device = chosen.ctx.device.info;
+  return devices;
+}
+
+}  // namespace
+
+JobResult run_job(const Scene& scene, const JobRequest& request) {
+  const JobOutput out = job_output(request);
+  if (!(request.margin >= 0 && request.margin < 1)) throw Error("margin: must be in [0, 1)");
+  out.say("[2/7] building and validating both parts (in parallel)\n");
+  auto pair = std::make_shared<AssemblyPair>(prepare_assembly_pair(scene));
+  std::ostringstream summary;
+  print_scene_summary(summary, scene, pair->parts, pair->plan);
+  out.say(summary.str());
+  if (uses_vps(scene.method)) return run_vps_job(pair, request, out);
+
+  auto record = std::make_shared<JobRecord>();
+  record->pair = pair;
+  const ComputeContext ctx = open_checked_device(request, out, *record);
+  compute_fields_and_spectra(*pair, ctx, request, out);
+  const QueryVariant variant = named_strategy(scene, request.strategy);
+  const auto& dims = pair->spectra.dims;
+  std::ostringstream fft;
+  fft << "    FFT grid " << dims[0] << " x " << dims[1] << " x " << dims[2]
+      << (pair->spectra_from_cache ? " (cached)" : "") << ", query variant tuned first: " << variant_name(variant)
+      << "\n";
+  out.say(fft.str());
+
+  std::ostringstream step6;
+  step6 << "[6/7] the query strategy and m' for a " << scene.frame_budget_ms << " ms frame on this device\n";
+  out.say(step6.str());
+  std::unique_ptr<QueryEngine> fixed_engine;
+  std::optional<LoopDevices> devices;
+  QueryEngine* loop_engine = nullptr;
+  if (request.modes) {
+    fixed_engine = fixed_modes_engine(ctx, *pair, variant, request, out, *record);
+    loop_engine = fixed_engine.get();
+  } else {
+    devices = tuned_loop_devices(ctx, *pair, variant, request, out, *record);
+    loop_engine = devices->loop().engine.get();
+  }
+  run_session_step(scene, request, out, "m' = " + std::to_string(record->tuning.chosen_modes), *record,
+                   [&](const SessionOptions& session) {
+                     return run_scripted_assembly(scene, pair->part(1).mesh, pair->part(2).mesh,
+                                                  pair->spectra.spacing, *loop_engine, record->tuning, session);
+                   });
+  return job_result(std::move(record));
+}
+
+}  // namespace snapfit
