@@ -18,36 +18,6 @@ void check(int status, const char* what) {
   if (status != MPI_SUCCESS) throw Error(std::string("MPI: ") + what + " failed");
 }
 
-// PairSpectra as doubles: header, then both parts' centres, extents, parities and spectra.
-std::vector<double> pack(const PairSpectra& s) {
-  std::vector<double> v{double(s.dims[0]), double(s.dims[1]), double(s.dims[2]), s.spacing,
-                        s.length.x(),      s.length.y(),      s.length.z()};
-  for (const PartSpectrum* p : {&s.part1, &s.part2}) {
-    v.insert(v.end(), {p->centre.x(), p->centre.y(), p->centre.z(), p->half_extent.x(), p->half_extent.y(),
-                       p->half_extent.z(), double(p->sample_parity), double(p->rho.size())});
-    for (const Complex& c : p->rho) v.insert(v.end(), {c.real(), c.imag()});
-  }
-  return v;
-}
-
-void unpack(const std::vector<double>& v, PairSpectra& s) {
-  std::size_t i = 0;
-  for (int a = 0; a < 3; ++a) s.dims[a] = std::size_t(v[i++]);
-  s.spacing = v[i++];
-  for (int a = 0; a < 3; ++a) s.length[a] = v[i++];
-  for (PartSpectrum* p : {&s.part1, &s.part2}) {
-    for (int a = 0; a < 3; ++a) p->centre[a] = v[i++];
-    for (int a = 0; a < 3; ++a) p->half_extent[a] = v[i++];
-    p->sample_parity = int(v[i++]);
-    p->rho.resize(std::size_t(v[i++]));
-    for (Complex& c : p->rho) {
-      c = Complex(float(v[i]), float(v[i + 1]));
-      i += 2;
-    }
-    p->deconvolved.clear();
-    p->deconvolved_width = 0;
-  }
-}
 #endif
 
 }  // namespace
@@ -70,7 +40,7 @@ SearchRanks::~SearchRanks() {
 #endif
 }
 
-void SearchRanks::checkpoint(const std::string& error) const {
+void SearchRanks::checkpoint(const std::string& error) {
 #ifdef SNAPFIT_WITH_MPI
   if (size_ > 1) {
     // The lowest failed rank (size_ when none), then its message, sent by it alone.
@@ -89,7 +59,7 @@ void SearchRanks::checkpoint(const std::string& error) const {
   if (!error.empty()) throw Error(error);
 }
 
-std::vector<double> SearchRanks::gather(const std::vector<double>& mine) const {
+std::vector<double> SearchRanks::gather(const std::vector<double>& mine) {
 #ifdef SNAPFIT_WITH_MPI
   if (size_ > 1) {
     const int count = int(mine.size());
@@ -109,19 +79,16 @@ std::vector<double> SearchRanks::gather(const std::vector<double>& mine) const {
   return mine;
 }
 
-void SearchRanks::broadcast(PairSpectra& spectra) const {
+void SearchRanks::broadcast(std::vector<double>& values) {
 #ifdef SNAPFIT_WITH_MPI
   if (size_ > 1) {
-    std::vector<double> v;
-    if (root()) v = pack(spectra);
-    unsigned long long n = v.size();
-    check(MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD), "sending the spectra");
-    v.resize(std::size_t(n));
-    check(MPI_Bcast(v.data(), int(n), MPI_DOUBLE, 0, MPI_COMM_WORLD), "sending the spectra");
-    if (!root()) unpack(v, spectra);
+    unsigned long long n = values.size();
+    check(MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD), "broadcasting a count");
+    values.resize(std::size_t(n));
+    check(MPI_Bcast(values.data(), int(n), MPI_DOUBLE, 0, MPI_COMM_WORLD), "broadcasting values");
   }
 #else
-  (void)spectra;
+  (void)values;
 #endif
 }
 

@@ -8,6 +8,7 @@
 //   haptic_device.h  what a haptic device implements (read pose, send wrench, limits)
 //   haptic_loop.h    the fixed-rate loop with virtual coupling, on its own thread
 //   job.h            the main job in one call: parts, device, fields, spectra, m', scripted session
+//   search.h         where part 2 fits part 1 over all rotations (one FFT map each), shared among processes
 //   pose.h, error.h  rigid poses; the one exception type
 //
 // The papers the comments cite:
@@ -26,4 +27,5 @@
 #include "snapfit/pose.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
+#include "snapfit/search.h"
 #include "snapfit/tuning.h"
