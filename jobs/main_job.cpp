@@ -154,6 +154,7 @@ LoopDevices tuned_loop_devices(const ComputeContext& ctx, const AssemblyPair& pa
 JobResult run_job(const Scene& scene, const JobRequest& request) {
   const JobOutput out = job_output(request);
   if (!(request.margin >= 0 && request.margin < 1)) throw Error("margin: must be in [0, 1)");
+  const QueryVariant variant = named_strategy(scene, request.strategy);  // a bad name fails before the work
   out.say("[2/7] building and validating both parts (in parallel)\n");
   auto pair = std::make_shared<AssemblyPair>(prepare_assembly_pair(scene));
   std::ostringstream summary;
@@ -165,7 +166,6 @@ JobResult run_job(const Scene& scene, const JobRequest& request) {
   record->pair = pair;
   const ComputeContext ctx = open_checked_device(request, out, *record);
   compute_fields_and_spectra(*pair, ctx, request, out);
-  const QueryVariant variant = named_strategy(scene, request.strategy);
   const auto& dims = pair->spectra.dims;
   std::ostringstream fft;
   fft << "    FFT grid " << dims[0] << " x " << dims[1] << " x " << dims[2]

@@ -1,5 +1,7 @@
 #include "jobs/search_codec.h"
 
+#include <sstream>
+
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -66,9 +68,11 @@ std::vector<PoseCandidate> decode_candidates(const std::vector<double>& v,
   std::vector<PoseCandidate> cs;
   for (std::size_t i = 0; i + kCandidateValues <= v.size(); i += kCandidateValues) {
     PoseCandidate c;
-    if (!(v[i] >= 0 && v[i] < double(rotations.size())))
-      throw Error("search: a candidate names rotation " + std::to_string(v[i]) + " of " +
-                  std::to_string(rotations.size()));
+    if (!(v[i] >= 0 && v[i] < double(rotations.size()))) {
+      std::ostringstream m;
+      m << "search: a candidate names rotation " << v[i] << " of " << rotations.size();
+      throw Error(m.str());
+    }
     c.rotation = std::size_t(v[i]);
     c.cell = std::size_t(v[i + 1]);
     c.energy = v[i + 2];
