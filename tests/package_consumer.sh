@@ -2,7 +2,7 @@
 # The installed CMake package from a user's side: installs the build into a temporary
 # prefix, builds examples/consumer against it with find_package(snapfit), runs it on
 # the default scene, and checks that its energy and force equal `snapfit query`'s at
-# the same pose and m'.
+# the same pose and m', and that its rotation search finds `snapfit search`'s best pose.
 #   tests/package_consumer.sh BUILD_DIR SNAPFIT_CLI
 set -euo pipefail
 build="$1"
@@ -35,6 +35,20 @@ for key in energy force; do
   awk -v a="$a" -v b="$b" -v k="$key" 'BEGIN {
     d = a - b; if (d < 0) d = -d; s = (b < 0 ? -b : b); if (s < 1e-30) s = 1e-30;
     if (d / s > 1e-9) { printf "package_consumer: %s differs: consumer %s, snapfit query %s\n", k, a, b; exit 1 }
+  }'
+done
+# The rotation search from the library against `snapfit search`: the same best pose
+# and map energy.
+finder_out=$("$work/consumer/snapfit_fit_finder" "$scene" 8 2>/dev/null)
+search_out=$("$cli" search "$scene" --rotations 8 --top 1 --map-fft clfft 2>/dev/null | grep '^{')
+echo "fit finder: $finder_out"
+echo "search:     $search_out"
+for key in energy position; do
+  a=$(field "$finder_out" "$key")
+  b=$(field "$search_out" "$key")
+  awk -v a="$a" -v b="$b" -v k="$key" 'BEGIN {
+    d = a - b; if (d < 0) d = -d; s = (b < 0 ? -b : b); if (s < 1) s = 1;
+    if (d / s > 1e-9) { printf "package_consumer: search %s differs: library %s, snapfit search %s\n", k, a, b; exit 1 }
   }'
 done
 # The installed tree holds the public headers only.
