@@ -232,6 +232,152 @@ void limit_speed(BodyState& part, const Pose& before, const LoopConfig& c, doubl
   }
 }
 
+// What the loop carries from frame to frame.
+struct LoopState {
+  explicit LoopState(const LoopConfig& config) : governor(config.modes, config.budget_ms), passivity(config) {
+    slew.capacity_j = kSlewTankCapacityJ;
+  }
+  ModeGovernor governor;
+  PassivityController passivity;
+  Wrench geometric, external;  // the engine's wrench; with the contact, held over missed ticks
+  ContactWrench contact;
+  ImplicitExtras extra;
+  std::optional<BodyState> last_good_handle;
+  std::optional<Eigen::Vector3d> last_coupling_force;  // the coupling's force on the part last frame
+  SentForceSlew slew;
+};
+
+// 1. The device's pose. A non-finite reading is replaced by the last good one: a NaN
+// must not reach the simulation or the hand.
+BodyState read_handle(HapticDevice& device, double tick_time, const BodyState& part, LoopState& s,
+                      LoopReport& report) {
+  BodyState handle = device.read(tick_time);
+  if (!finite_state(handle)) {
+    ++report.bad_device_reads;
+    handle = s.last_good_handle ? *s.last_good_handle : part;
+  }
+  s.last_good_handle = handle;
+  return handle;
+}
+
+// 2. The geometric wrench at the part's pose (with the loop's gain, torque in N m) and
+// its error estimate; the rigid contact's beside it.
+ErrorEstimate geometric_wrench(const QueryResult& q, const Pose& queried, const LoopConfig& config, LoopState& s,
+                               LoopReport& report) {
+  s.geometric = Wrench{};
+  ErrorEstimate error;
+  if (q.flags == query_ok) {
+    s.geometric.force = config.geometry_gain * q.force;
+    s.geometric.torque = config.geometry_gain * config.coupling.metres_per_unit * q.torque;
+    error = {q.error_estimate.energy, config.geometry_gain * q.error_estimate.force,
+             config.geometry_gain * config.coupling.metres_per_unit * q.error_estimate.torque};
+  } else {
+    ++report.flagged_frames;
+  }
+  // Rigid contact: its own potential and exact stiffness, so it is integrated
+  // implicitly and left out of the observer (which checks the explicit wrench).
+  if (config.contact) s.contact = config.contact(queried);
+  s.external.force = s.geometric.force + s.contact.wrench.force;
+  s.external.torque = s.geometric.torque + s.contact.wrench.torque;
+  return error;
+}
+
+// 3. One fixed step of the part (with the passivity controller's damping, and the
+// force-rate bound's where the coupling's force would change faster than it allows).
+// Returns the energy the rate bound's damping removed, J.
+double step_part(BodyState& part, const BodyState& handle, const Pose& queried, const QueryResult& q,
+                 const LoopConfig& config, double period, LoopState& s, LoopReport& report) {
+  s.passivity.observe(part.pose, q, s.geometric);
+  s.extra = s.passivity.extras(part);
+  s.extra.contact_stiffness = s.contact.stiffness;
+  ImplicitExtras stepped = s.extra;
+  const BodyState before_step = part;
+  step_body(part, handle, s.external, config.coupling, period, stepped);
+  const double max_change = config.max_force_rate_n_per_s * period;
+  if (max_change > 0 && s.last_coupling_force &&
+      (coupling_wrench(part, handle, config.coupling).force - *s.last_coupling_force).norm() > max_change) {
+    if (const double beta = rate_limiting_damping(before_step, handle, s.external, config.coupling, period, s.extra,
+                                                  *s.last_coupling_force, max_change);
+        beta > 0) {
+      stepped.damping += beta;
+      part = before_step;
+      step_body(part, handle, s.external, config.coupling, period, stepped);
+    }
+  }
+  limit_speed(part, queried, config, period);
+  double rate_dissipated_j = 0;
+  if (const double beta = stepped.damping - s.extra.damping; beta > 0) {
+    ++report.rate_limited_frames;
+    rate_dissipated_j = period * beta * (config.coupling.metres_per_unit * part.velocity).squaredNorm();
+    report.rate_limit_dissipated_j += rate_dissipated_j;
+  }
+  if (const double removed = s.passivity.stepped(part, s.extra); removed > 0) {
+    ++report.passivity_frames;
+    report.passivity_dissipated_j += removed;
+  }
+  if (!finite_state(part)) {  // cannot happen with finite inputs; never propagate it
+    ++report.part_resets;
+    part = handle;
+    s.passivity.invalidate();
+  }
+  return rate_dissipated_j;
+}
+
+// 4. The coupling's reaction to the device: slewed within the force-rate bound, clamped
+// to the device's limits.
+Wrench sent_wrench(const BodyState& part, const BodyState& handle, const LoopConfig& config, double period,
+                   const DeviceLimits& limits, double rate_dissipated_j, LoopState& s) {
+  const double max_change = config.max_force_rate_n_per_s * period;
+  const Wrench on_part = coupling_wrench(part, handle, config.coupling);
+  s.last_coupling_force = on_part.force;
+  const Eigen::Vector3d reaction =
+      max_change > 0 ? slewed_sent_force(s.slew, -on_part.force, config.coupling.metres_per_unit * handle.pose.translation,
+                                         max_change, rate_dissipated_j)
+                     : Eigen::Vector3d(-on_part.force);
+  return clamp_to_limits(Wrench{reaction, -on_part.torque}, limits);
+}
+
+// A frame that ended after its deadline: late because the thread woke late, or because
+// its work did not fit (a stall when far beyond the cost model's prediction).
+struct FrameTiming {
+  bool missed = false, compute_miss = false, stall = false;
+};
+
+FrameTiming frame_timing(double end, double tick_time, double compute_ms, double period, const LoopConfig& config,
+                         const ModeGovernor& governor, LoopReport& report) {
+  FrameTiming t;
+  t.missed = end > tick_time + period;
+  // A miss whose own work fit in the headroom share of the budget came from waking
+  // late (the OS), which a smaller m' cannot fix: it is counted, not acted on.
+  t.compute_miss = t.missed && compute_ms > config.modes.up_headroom * config.budget_ms;
+  if (t.missed && !t.compute_miss) ++report.late_wakeup_misses;
+  // Only a work-bound miss asks the cost model (not every frame).
+  if (t.compute_miss && config.modes.stall_factor > 0 && config.modes.predicted_ms) {
+    const double predicted = config.modes.predicted_ms(governor.modes());
+    t.stall = predicted > 0 && compute_ms > config.modes.stall_factor * predicted;
+  }
+  if (t.stall) ++report.stall_misses;
+  return t;
+}
+
+// No catch-up after a miss: the next frame runs at the first tick still ahead; the part
+// moves over the ticks that passed with the held wrench. Returns that tick.
+std::size_t hold_over_missed_ticks(std::size_t tick, double end, BodyState& part, HapticDevice& device,
+                                   const LoopConfig& config, double period, LoopState& s, LoopReport& report) {
+  const std::size_t next = static_cast<std::size_t>(std::floor(end / period)) + 1;
+  for (std::size_t t = tick + 1; t < next; ++t) {
+    if (config.duration_s > 0 && t * period >= config.duration_s - 1e-12) break;
+    const Pose before = part.pose;
+    ImplicitExtras held;
+    held.contact_stiffness = s.contact.stiffness;
+    step_body(part, device.read(t * period), s.external, config.coupling, period, held);
+    limit_speed(part, before, config, period);
+    ++report.skipped_ticks;
+    s.passivity.invalidate();
+  }
+  return next;
+}
+
 }  // namespace
 
 WrenchEvaluator wrench_evaluator(QueryEngine& engine) {
@@ -246,8 +392,8 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
   check_config(config);
   const double period = 1.0 / config.rate_hz;
   const DeviceLimits limits = device.limits();
-  ModeGovernor governor(config.modes, config.budget_ms);
-  if (engine.set_modes) engine.set_modes(governor.modes());
+  LoopState s(config);
+  if (engine.set_modes) engine.set_modes(s.governor.modes());
 
   LoopReport report;
   report.rate_hz = config.rate_hz;
@@ -255,14 +401,6 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
   report.frame_ms.reserve(expected);
   if (config.keep_log) report.log.reserve(expected);
 
-  Wrench geometric, external;  // the engine's wrench; with the contact, held over missed ticks
-  ContactWrench contact;
-  ImplicitExtras extra;
-  PassivityController passivity(config);
-  std::optional<BodyState> last_good_handle;
-  std::optional<Eigen::Vector3d> last_coupling_force;  // the coupling's force on the part last frame
-  SentForceSlew slew;
-  slew.capacity_j = kSlewTankCapacityJ;
   std::size_t tick = 0, frame = 0;
   const double start = clock.now();
   while (true) {
@@ -272,120 +410,33 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     clock.wait_until(start + tick_time);
     const double woke = clock.now() - start;  // later than the tick when the OS wakes us late
 
-    // 1-2. Device pose, geometric wrench at the part's pose. A non-finite reading is
-    // replaced by the last good one: a NaN must not reach the simulation or the hand.
-    BodyState handle = device.read(tick_time);
-    if (!finite_state(handle)) {
-      ++report.bad_device_reads;
-      handle = last_good_handle ? *last_good_handle : part;
-    }
-    last_good_handle = handle;
+    const BodyState handle = read_handle(device, tick_time, part, s, report);
     const Pose queried = part.pose;
     const QueryResult q = engine.evaluate_state ? engine.evaluate_state(part) : engine.evaluate(queried);
-    geometric = Wrench{};
-    ErrorEstimate geometric_error;
-    if (q.flags == query_ok) {
-      geometric.force = config.geometry_gain * q.force;
-      geometric.torque = config.geometry_gain * config.coupling.metres_per_unit * q.torque;
-      geometric_error = {q.error_estimate.energy, config.geometry_gain * q.error_estimate.force,
-                         config.geometry_gain * config.coupling.metres_per_unit * q.error_estimate.torque};
-    } else {
-      ++report.flagged_frames;
-    }
-    // Rigid contact: its own potential and exact stiffness, so it is integrated
-    // implicitly and left out of the observer (which checks the explicit wrench).
-    if (config.contact) contact = config.contact(queried);
-    external.force = geometric.force + contact.wrench.force;
-    external.torque = geometric.torque + contact.wrench.torque;
-    // 3. One fixed step (with the passivity controller's damping); 4. the coupling's
-    // reaction to the device.
-    passivity.observe(part.pose, q, geometric);
-    extra = passivity.extras(part);
-    extra.contact_stiffness = contact.stiffness;
-    ImplicitExtras stepped = extra;
-    const BodyState before_step = part;
-    step_body(part, handle, external, config.coupling, period, stepped);
-    // The force-rate bound: only a frame whose step changes the coupling's force faster
-    // looks for damping, and is stepped again with it.
-    const double max_change = config.max_force_rate_n_per_s * period;
-    if (max_change > 0 && last_coupling_force &&
-        (coupling_wrench(part, handle, config.coupling).force - *last_coupling_force).norm() > max_change) {
-      if (const double beta = rate_limiting_damping(before_step, handle, external, config.coupling, period, extra,
-                                                    *last_coupling_force, max_change);
-          beta > 0) {
-        stepped.damping += beta;
-        part = before_step;
-        step_body(part, handle, external, config.coupling, period, stepped);
-      }
-    }
-    limit_speed(part, queried, config, period);
-    double rate_dissipated_j = 0;
-    if (const double beta = stepped.damping - extra.damping; beta > 0) {
-      ++report.rate_limited_frames;
-      rate_dissipated_j = period * beta * (config.coupling.metres_per_unit * part.velocity).squaredNorm();
-      report.rate_limit_dissipated_j += rate_dissipated_j;
-    }
-    if (const double removed = passivity.stepped(part, extra); removed > 0) {
-      ++report.passivity_frames;
-      report.passivity_dissipated_j += removed;
-    }
-    if (!finite_state(part)) {  // cannot happen with finite inputs; never propagate it
-      ++report.part_resets;
-      part = handle;
-      passivity.invalidate();
-    }
-    const Wrench on_part = coupling_wrench(part, handle, config.coupling);
-    last_coupling_force = on_part.force;
-    const Eigen::Vector3d reaction =
-        max_change > 0 ? slewed_sent_force(slew, -on_part.force, config.coupling.metres_per_unit * handle.pose.translation,
-                                           max_change, rate_dissipated_j)
-                       : Eigen::Vector3d(-on_part.force);
-    const Wrench sent = clamp_to_limits(Wrench{reaction, -on_part.torque}, limits);
+    const ErrorEstimate geometric_error = geometric_wrench(q, queried, config, s, report);
+    const double rate_dissipated_j = step_part(part, handle, queried, q, config, period, s, report);
+    const Wrench sent = sent_wrench(part, handle, config, period, limits, rate_dissipated_j, s);
     device.send(sent, tick_time);
 
     const double end = clock.now() - start;
     const double frame_ms = 1e3 * (end - tick_time);
     const double compute_ms = 1e3 * (end - woke);
-    const bool missed = end > tick_time + period;
-    // A miss whose own work fit in the headroom share of the budget came from waking
-    // late (the OS), which a smaller m' cannot fix: it is counted, not acted on.
-    const bool compute_miss = missed && compute_ms > config.modes.up_headroom * config.budget_ms;
-    if (missed && !compute_miss) ++report.late_wakeup_misses;
-    // Only a work-bound miss asks the cost model (not every frame).
-    bool stall = false;
-    if (compute_miss && config.modes.stall_factor > 0 && config.modes.predicted_ms) {
-      const double predicted = config.modes.predicted_ms(governor.modes());
-      stall = predicted > 0 && compute_ms > config.modes.stall_factor * predicted;
-    }
-    if (stall) ++report.stall_misses;
+    const FrameTiming timing = frame_timing(end, tick_time, compute_ms, period, config, s.governor, report);
     report.frame_ms.push_back(frame_ms);
     report.wake_late_ms.push_back(1e3 * (woke - tick_time));
     if (config.keep_log)
-      report.log.push_back(FrameRecord{tick_time, frame_ms, handle.pose, queried, q.energy, geometric, contact.wrench,
-                                       contact.depth, geometric_error, sent, q.modes, q.flags, missed,
-                                       q.constraint, q.constraint_weight});
+      report.log.push_back(FrameRecord{tick_time, frame_ms, handle.pose, queried, q.energy, s.geometric,
+                                       s.contact.wrench, s.contact.depth, geometric_error, sent, q.modes, q.flags,
+                                       timing.missed, q.constraint, q.constraint_weight});
     ++report.frames;
-    if (missed) ++report.misses;
+    if (timing.missed) ++report.misses;
+    const std::size_t next =
+        timing.missed ? hold_over_missed_ticks(tick, end, part, device, config, period, s, report) : tick + 1;
 
-    // No catch-up: the next frame runs at the first tick still ahead; the part moves
-    // over the ticks that passed with the held wrench.
-    std::size_t next = tick + 1;
-    if (missed) {
-      next = static_cast<std::size_t>(std::floor(end / period)) + 1;
-      for (std::size_t t = tick + 1; t < next; ++t) {
-        if (config.duration_s > 0 && t * period >= config.duration_s - 1e-12) break;
-        const Pose before = part.pose;
-        ImplicitExtras held;
-        held.contact_stiffness = contact.stiffness;
-        step_body(part, device.read(t * period), external, config.coupling, period, held);
-        limit_speed(part, before, config, period);
-        ++report.skipped_ticks;
-        passivity.invalidate();
-      }
-    }
     std::string reason;
-    const std::size_t before = governor.modes();
-    if (const std::size_t m = governor.after_frame(frame, compute_ms, compute_miss && !stall, stall, reason)) {
+    const std::size_t before = s.governor.modes();
+    if (const std::size_t m =
+            s.governor.after_frame(frame, compute_ms, timing.compute_miss && !timing.stall, timing.stall, reason)) {
       report.mode_changes.push_back(ModeChange{tick_time, frame, before, m, reason});
       if (engine.set_modes) engine.set_modes(m);
     }
@@ -394,11 +445,11 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
   }
   report.ticks = report.frames + report.skipped_ticks;
   report.elapsed_s = clock.now() - start;
-  report.rate_slewed_frames = slew.slewed_frames;
-  report.rate_slew_work_j = slew.spent_j;
+  report.rate_slewed_frames = s.slew.slewed_frames;
+  report.rate_slew_work_j = s.slew.spent_j;
   report.measured_rate_hz = report.elapsed_s > 0 ? report.frames / report.elapsed_s : 0;
   report.final_part = part;
-  report.final_modes = governor.modes();
+  report.final_modes = s.governor.modes();
   return report;
 }
 
