@@ -2,9 +2,12 @@
 // What the main job's steps share: the request's text callbacks with their defaults,
 // and the scripted-session step both methods end with.
 #include <functional>
+#include <memory>
 #include <string>
 
+#include "engine/query/query_engine.h"
 #include "jobs/job_record.h"
+#include "scheduler/loop_devices.h"
 #include "snapfit/job.h"
 
 namespace snapfit {
@@ -21,6 +24,24 @@ JobOutput job_output(const JobRequest& request);
 // session; `what` names the method in the step's line.
 void run_session_step(const Scene& scene, const JobRequest& request, const JobOutput& out, const std::string& what,
                       JobRecord& record, const std::function<SessionResult(const SessionOptions&)>& play);
+
+// "[2/7]": both parts built and validated, the scene and plan said; checks the request
+// first (margin, strategy).
+std::shared_ptr<AssemblyPair> prepare_job_parts(const Scene& scene, const JobRequest& request, const JobOutput& out);
+
+// The main job up to the loop ("[3/7]" to "[6/7]"), the snapfit method: the device and
+// its self-check, the fields and spectra, the strategy and m'; the engine the loop
+// renders, with what keeps it alive.
+struct PreparedJob {
+  std::shared_ptr<JobRecord> record;
+  std::shared_ptr<AssemblyPair> pair;
+  std::unique_ptr<ComputeContext> ctx;
+  std::unique_ptr<QueryEngine> fixed_engine;  // with a fixed m'
+  std::unique_ptr<LoopDevices> devices;       // tuned: the loop's device among them
+  QueryEngine* loop_engine = nullptr;
+};
+PreparedJob prepare_job(const Scene& scene, const JobRequest& request, const JobOutput& out,
+                        std::shared_ptr<AssemblyPair> pair);
 
 // The public result: the record's summary, and the record itself for the report.
 JobResult job_result(std::shared_ptr<JobRecord> record);

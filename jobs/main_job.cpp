@@ -151,47 +151,57 @@ LoopDevices tuned_loop_devices(const ComputeContext& ctx, const AssemblyPair& pa
 
 }  // namespace
 
-JobResult run_job(const Scene& scene, const JobRequest& request) {
-  const JobOutput out = job_output(request);
-  if (!(request.margin >= 0 && request.margin < 1)) throw Error("margin: must be in [0, 1)");
+PreparedJob prepare_job(const Scene& scene, const JobRequest& request, const JobOutput& out,
+                        std::shared_ptr<AssemblyPair> pair) {
   const QueryVariant variant = named_strategy(scene, request.strategy);  // a bad name fails before the work
-  out.say("[2/7] building and validating both parts (in parallel)\n");
-  auto pair = std::make_shared<AssemblyPair>(prepare_assembly_pair(scene));
-  std::ostringstream summary;
-  print_scene_summary(summary, scene, pair->parts, pair->plan);
-  out.say(summary.str());
-  if (uses_vps(scene.method)) return run_vps_job(pair, request, out);
-
-  auto record = std::make_shared<JobRecord>();
-  record->pair = pair;
-  const ComputeContext ctx = open_checked_device(request, out, *record);
-  compute_fields_and_spectra(*pair, ctx, request, out);
-  const auto& dims = pair->spectra.dims;
+  PreparedJob job;
+  job.pair = std::move(pair);
+  job.record = std::make_shared<JobRecord>();
+  job.record->pair = job.pair;
+  job.ctx = std::make_unique<ComputeContext>(open_checked_device(request, out, *job.record));
+  compute_fields_and_spectra(*job.pair, *job.ctx, request, out);
+  const auto& dims = job.pair->spectra.dims;
   std::ostringstream fft;
   fft << "    FFT grid " << dims[0] << " x " << dims[1] << " x " << dims[2]
-      << (pair->spectra_from_cache ? " (cached)" : "") << ", query variant tuned first: " << variant_name(variant)
+      << (job.pair->spectra_from_cache ? " (cached)" : "") << ", query variant tuned first: " << variant_name(variant)
       << "\n";
   out.say(fft.str());
 
   std::ostringstream step6;
   step6 << "[6/7] the query strategy and m' for a " << scene.frame_budget_ms << " ms frame on this device\n";
   out.say(step6.str());
-  std::unique_ptr<QueryEngine> fixed_engine;
-  std::optional<LoopDevices> devices;
-  QueryEngine* loop_engine = nullptr;
   if (request.modes) {
-    fixed_engine = fixed_modes_engine(ctx, *pair, variant, request, out, *record);
-    loop_engine = fixed_engine.get();
+    job.fixed_engine = fixed_modes_engine(*job.ctx, *job.pair, variant, request, out, *job.record);
+    job.loop_engine = job.fixed_engine.get();
   } else {
-    devices = tuned_loop_devices(ctx, *pair, variant, request, out, *record);
-    loop_engine = devices->loop().engine.get();
+    job.devices = std::make_unique<LoopDevices>(tuned_loop_devices(*job.ctx, *job.pair, variant, request, out, *job.record));
+    job.loop_engine = job.devices->loop().engine.get();
   }
-  run_session_step(scene, request, out, "m' = " + std::to_string(record->tuning.chosen_modes), *record,
+  return job;
+}
+
+std::shared_ptr<AssemblyPair> prepare_job_parts(const Scene& scene, const JobRequest& request, const JobOutput& out) {
+  if (!(request.margin >= 0 && request.margin < 1)) throw Error("margin: must be in [0, 1)");
+  named_strategy(scene, request.strategy);  // a bad name fails before the work
+  out.say("[2/7] building and validating both parts (in parallel)\n");
+  auto pair = std::make_shared<AssemblyPair>(prepare_assembly_pair(scene));
+  std::ostringstream summary;
+  print_scene_summary(summary, scene, pair->parts, pair->plan);
+  out.say(summary.str());
+  return pair;
+}
+
+JobResult run_job(const Scene& scene, const JobRequest& request) {
+  const JobOutput out = job_output(request);
+  std::shared_ptr<AssemblyPair> pair = prepare_job_parts(scene, request, out);
+  if (uses_vps(scene.method)) return run_vps_job(pair, request, out);
+  PreparedJob job = prepare_job(scene, request, out, pair);
+  run_session_step(scene, request, out, "m' = " + std::to_string(job.record->tuning.chosen_modes), *job.record,
                    [&](const SessionOptions& session) {
                      return run_scripted_assembly(scene, pair->part(1).mesh, pair->part(2).mesh,
-                                                  pair->spectra.spacing, *loop_engine, record->tuning, session);
+                                                  pair->spectra.spacing, *job.loop_engine, job.record->tuning, session);
                    });
-  return job_result(std::move(record));
+  return job_result(std::move(job.record));
 }
 
 }  // namespace snapfit

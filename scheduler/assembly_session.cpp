@@ -42,13 +42,11 @@ Eigen::Vector3d insertion_direction(const Trajectory& trajectory, const Pose& ta
   return Eigen::Vector3d::UnitZ();
 }
 
-SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfig config,
-                                   const WrenchEvaluator& evaluator, const SessionOptions& options) {
-  if (scene.trajectory.keyframes.empty())
-    throw Error(scene.source_path + ": no trajectory: a scripted assembly needs one (or use a real device)");
+SessionResult session_before_loop(const Scene& scene, double spacing, const LoopConfig& config) {
   SessionResult out;
   out.limits = device_limits_for(scene);
-  out.target = scene.assembled_pose.value_or(scene.trajectory.keyframes.back().pose);
+  out.target = scene.assembled_pose.value_or(scene.trajectory.keyframes.empty() ? scene.part2.pose
+                                                                                : scene.trajectory.keyframes.back().pose);
   out.position_tolerance = scene.haptics.success_position.value_or(spacing);  // the descriptors' resolution
   out.angle_tolerance_deg = scene.haptics.success_angle_deg;
   out.coupling = config.coupling;
@@ -56,6 +54,31 @@ SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfi
   out.contact_ms = config.contact_ms;
   out.max_force_rate_n_per_s = config.max_force_rate_n_per_s;
   out.start_modes = config.modes.levels.empty() ? 0 : config.modes.levels.back();
+  return out;
+}
+
+void judge_session_end(SessionResult& out, const Scene& scene) {
+  out.final_error = pose_error(out.loop.final_part.pose, out.target);
+  out.evaluated = scene.assembled_pose.has_value();
+  out.assembled = out.evaluated && out.final_error.within(out.position_tolerance, out.angle_tolerance_deg);
+  out.insertion_direction = insertion_direction(scene.trajectory, out.target);
+  const Eigen::Vector3d d = out.loop.final_part.pose.translation - out.target.translation;
+  out.axial_error = d.dot(out.insertion_direction);
+  out.lateral_error = (d - out.axial_error * out.insertion_direction).norm();
+  if (!out.loop.log.empty()) out.final_force = out.loop.log.back().sent.force;
+}
+
+PriorityRequest loop_priority(const PriorityRequest& request, LoopWait wait) {
+  PriorityRequest priority = request;
+  if (wait == LoopWait::spin) priority.realtime_priority = 0;  // a spinning SCHED_FIFO thread is throttled
+  return priority;
+}
+
+SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfig config,
+                                   const WrenchEvaluator& evaluator, const SessionOptions& options) {
+  if (scene.trajectory.keyframes.empty())
+    throw Error(scene.source_path + ": no trajectory: a scripted assembly needs one (or use a real device)");
+  SessionResult out = session_before_loop(scene, spacing, config);
   const Trajectory& t = scene.trajectory;
   if (options.duration_s) config.duration_s = *options.duration_s;
   config.keep_log = options.keep_log;
@@ -65,9 +88,7 @@ SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfi
   part.pose = device.read(0).pose;  // the part starts in the user's hand
   const bool raise =
       (options.priority.nice_value != 0 || options.priority.realtime_priority > 0) && !options.simulated_time;
-  PriorityRequest priority = options.priority;
-  if (options.wait == LoopWait::spin) priority.realtime_priority = 0;  // a spinning SCHED_FIFO thread is throttled
-  if (raise) out.priority = raise_process_priority(priority);
+  if (raise) out.priority = raise_process_priority(loop_priority(options.priority, options.wait));
   out.wait = options.wait;
   {
     // Warm-up at the loop's m' and the first pose, as a haptics program does before it
@@ -80,14 +101,7 @@ SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfi
     out.loop = loop.join();
   }
   if (raise) restore_process_priority(out.priority);
-  out.final_error = pose_error(out.loop.final_part.pose, out.target);
-  out.evaluated = scene.assembled_pose.has_value();
-  out.assembled = out.evaluated && out.final_error.within(out.position_tolerance, out.angle_tolerance_deg);
-  out.insertion_direction = insertion_direction(scene.trajectory, out.target);
-  const Eigen::Vector3d d = out.loop.final_part.pose.translation - out.target.translation;
-  out.axial_error = d.dot(out.insertion_direction);
-  out.lateral_error = (d - out.axial_error * out.insertion_direction).norm();
-  if (!out.loop.log.empty()) out.final_force = out.loop.log.back().sent.force;
+  judge_session_end(out, scene);
   return out;
 }
 

@@ -64,10 +64,6 @@ struct SessionResult {
 // towards `target`; without one, from the first keyframe to the target (else +z).
 Eigen::Vector3d insertion_direction(const Trajectory& trajectory, const Pose& target);
 
-// The direction part 2 moves in at the end of `trajectory` (its last segment that moves),
-// towards `target`; without one, from the first keyframe to the target (else +z).
-Eigen::Vector3d insertion_direction(const Trajectory& trajectory, const Pose& target);
-
 // Runs the loop on its own thread on the steady clock and waits for it. Throws
 // snapfit::Error when the scene has no trajectory or its haptics cannot be set up.
 // The scene's rigid contact (scheduler/rigid_contact.h) is built from both meshes and
@@ -75,6 +71,19 @@ Eigen::Vector3d insertion_direction(const Trajectory& trajectory, const Pose& ta
 SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part1_mesh, const Mesh& part2_mesh, double spacing,
                                     QueryEngine& engine, const TuningResult& tuning,
                                     const SessionOptions& options = {});
+
+// A session's result before its loop runs: the scene's device limits, target (the
+// assembled pose, else the last keyframe, else part 2's initial pose) and tolerances,
+// and the loop's coupling, gain and bounds.
+SessionResult session_before_loop(const Scene& scene, double spacing, const LoopConfig& config);
+
+// After it (out.loop set): the final pose judged against the target, the error along and
+// across the insertion, the last force sent.
+void judge_session_end(SessionResult& out, const Scene& scene);
+
+// The threads' priority for a loop that waits by `wait`: no SCHED_FIFO for a spinning
+// loop (the kernel throttles a real-time thread that never sleeps).
+PriorityRequest loop_priority(const PriorityRequest& request, LoopWait wait);
 
 // The same for any method's evaluator and loop configuration (a Voxmap PointShell run:
 // scheduler/vps/vps_method.h); `spacing` is the default position tolerance.

@@ -424,10 +424,13 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     const FrameTiming timing = frame_timing(end, tick_time, compute_ms, period, config, s.governor, report);
     report.frame_ms.push_back(frame_ms);
     report.wake_late_ms.push_back(1e3 * (woke - tick_time));
-    if (config.keep_log)
-      report.log.push_back(FrameRecord{tick_time, frame_ms, handle.pose, queried, q.energy, s.geometric,
-                                       s.contact.wrench, s.contact.depth, geometric_error, sent, q.modes, q.flags,
-                                       timing.missed, q.constraint, q.constraint_weight});
+    if (config.keep_log || config.on_frame) {
+      const FrameRecord record{tick_time, frame_ms,      handle.pose,     queried,         q.energy,
+                               s.geometric, s.contact.wrench, s.contact.depth, geometric_error, sent,
+                               q.modes,   q.flags,       timing.missed,   q.constraint,    q.constraint_weight};
+      if (config.keep_log) report.log.push_back(record);
+      if (config.on_frame) config.on_frame(record);
+    }
     ++report.frames;
     if (timing.missed) ++report.misses;
     const std::size_t next =

@@ -110,6 +110,25 @@ struct ContactWrench {
   double depth = 0;        // the deepest point's interpenetration, scene units
 };
 
+struct FrameRecord {
+  double time_s = 0;         // the frame's tick time
+  double frame_ms = 0;       // tick to wrench sent
+  Pose device;               // the device's pose read this frame
+  Pose part;                 // the part's pose the engine was queried at (before this frame's step)
+  double energy = 0;         // engine energy at `part`
+  Wrench geometric;          // scaled to N, N m (the engine's; rigid contact is `contact`)
+  Wrench contact;            // rigid contact (LoopConfig::contact), N, N m
+  double contact_depth = 0;  // its deepest point's interpenetration, scene units
+  // The engine's error estimate for `energy` and `geometric` (same units as they).
+  ErrorEstimate geometric_error;
+  Wrench sent;  // to the device, after clamping
+  std::size_t modes = 0;
+  std::uint32_t flags = 0;  // QueryFlags of the engine
+  bool missed = false;
+  std::uint8_t constraint = 0;   // QueryResult::constraint: the hybrid's engaged constraint
+  double constraint_weight = 0;  // and its blend weight x
+};
+
 struct ModePolicy {
   std::vector<std::size_t> levels;                  // increasing m' values; the last one is the tuned m'
   std::function<double(std::size_t)> predicted_ms;  // cost model for step-up; null: proportional to m'
@@ -133,6 +152,9 @@ struct LoopConfig {
   double max_travel = 0;
   double max_rotation = 0;
   bool keep_log = true;  // one FrameRecord per frame
+  // Called on the loop's thread after each frame with its record (a live display, a
+  // device bridge): keep it short, it runs inside the frame's budget; null: none.
+  std::function<void(const FrameRecord&)> on_frame;
   const std::atomic<bool>* stop = nullptr;
   // Rigid contact at the part's pose, added to the geometric wrench each frame, its
   // stiffness integrated implicitly; null: none (Behandish & Ilies 2016's energy alone).
@@ -142,25 +164,6 @@ struct LoopConfig {
   // a frame that would change it faster damps the part instead (passive: the energy is
   // dissipated, not sent to the hand). See docs/haptics.md.
   double max_force_rate_n_per_s = 0;
-};
-
-struct FrameRecord {
-  double time_s = 0;         // the frame's tick time
-  double frame_ms = 0;       // tick to wrench sent
-  Pose device;               // the device's pose read this frame
-  Pose part;                 // the part's pose the engine was queried at (before this frame's step)
-  double energy = 0;         // engine energy at `part`
-  Wrench geometric;          // scaled to N, N m (the engine's; rigid contact is `contact`)
-  Wrench contact;            // rigid contact (LoopConfig::contact), N, N m
-  double contact_depth = 0;  // its deepest point's interpenetration, scene units
-  // The engine's error estimate for `energy` and `geometric` (same units as they).
-  ErrorEstimate geometric_error;
-  Wrench sent;  // to the device, after clamping
-  std::size_t modes = 0;
-  std::uint32_t flags = 0;  // QueryFlags of the engine
-  bool missed = false;
-  std::uint8_t constraint = 0;   // QueryResult::constraint: the hybrid's engaged constraint
-  double constraint_weight = 0;  // and its blend weight x
 };
 
 struct ModeChange {

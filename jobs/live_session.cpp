@@ -1,0 +1,300 @@
+// snapfit/live.h: the main job's preparation, then the haptic loop on its own thread in
+// segments of a few seconds (each reserves its frames' storage before it starts, so no
+// frame allocates), until stopped. A reset or the start or end of a recording ends the
+// current segment at its next frame and the next one starts at once.
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+#include "jobs/job_steps.h"
+#include "jobs/live_device.h"
+#include "scheduler/haptic_setup.h"
+#include "scheduler/rigid_contact.h"
+#include "scheduler/thread_priority.h"
+#include "snapfit/error.h"
+#include "snapfit/live.h"
+
+namespace snapfit {
+namespace {
+
+constexpr double kSegmentS = 10;  // loop time per segment
+constexpr int kWarmupQueries = 50;
+
+// Appends a segment's report to the recording's.
+void append_segment(LoopReport& all, const LoopReport& segment) {
+  all.rate_hz = segment.rate_hz;
+  all.elapsed_s += segment.elapsed_s;
+  all.ticks += segment.ticks;
+  all.frames += segment.frames;
+  all.misses += segment.misses;
+  all.skipped_ticks += segment.skipped_ticks;
+  all.flagged_frames += segment.flagged_frames;
+  all.bad_device_reads += segment.bad_device_reads;
+  all.part_resets += segment.part_resets;
+  all.passivity_frames += segment.passivity_frames;
+  all.passivity_dissipated_j += segment.passivity_dissipated_j;
+  all.rate_limited_frames += segment.rate_limited_frames;
+  all.rate_limit_dissipated_j += segment.rate_limit_dissipated_j;
+  all.rate_slewed_frames += segment.rate_slewed_frames;
+  all.rate_slew_work_j += segment.rate_slew_work_j;
+  all.late_wakeup_misses += segment.late_wakeup_misses;
+  all.stall_misses += segment.stall_misses;
+  const double offset = all.log.empty() ? 0 : all.log.back().time_s + 1 / segment.rate_hz;
+  all.frame_ms.insert(all.frame_ms.end(), segment.frame_ms.begin(), segment.frame_ms.end());
+  all.wake_late_ms.insert(all.wake_late_ms.end(), segment.wake_late_ms.begin(), segment.wake_late_ms.end());
+  for (FrameRecord f : segment.log) {
+    f.time_s += offset;
+    all.log.push_back(f);
+  }
+  for (ModeChange c : segment.mode_changes) {
+    c.time_s += offset;
+    all.mode_changes.push_back(c);
+  }
+  all.final_part = segment.final_part;
+  all.final_modes = segment.final_modes;
+  all.measured_rate_hz = all.elapsed_s > 0 ? all.frames / all.elapsed_s : 0;
+}
+
+}  // namespace
+
+struct LiveSession::State {
+  Scene scene;
+  JobRequest request;
+  LiveOptions options;
+  JobResult prepared;
+  PreparedJob job;
+  LoopConfig config;
+  SessionResult session;  // the loop's facts, for a recording's result
+  BodyState initial;
+  std::unique_ptr<LiveDevice> device;
+  WrenchEvaluator evaluator;
+
+  std::thread thread;
+  std::atomic<bool> quit{false}, segment_stop{false}, reset_requested{false};
+  std::exception_ptr error;
+
+  // Published by the loop's thread (try_lock: a reader never makes a frame wait).
+  mutable std::mutex frame_mutex;
+  LiveFrame latest;
+  std::uint64_t frames_before_segment = 0;  // frames published so far (the loop's thread only)
+  double time_before_segment = 0;
+
+  // Between the loop's thread and the callers: totals, the recording and its requests.
+  mutable std::mutex mutex;
+  std::condition_variable changed;
+  LiveStatus status;
+  bool record_wanted = false, recording = false;
+  LoopReport recorded;
+  std::uint64_t segments_done = 0;
+  PriorityChange priority;
+
+  void publish(const FrameRecord& f);
+  void run();
+  void after_segment(const LoopReport& segment, BodyState& part);
+};
+
+void LiveSession::State::publish(const FrameRecord& f) {
+  const LiveDevice::Seen& seen = device->seen();
+  LiveFrame frame;
+  frame.frame = ++frames_before_segment;
+  frame.time_s = time_before_segment + f.time_s;
+  frame.sequence = seen.sequence;
+  frame.device = f.device;
+  frame.part = f.part;
+  frame.energy = f.energy;
+  frame.geometric = f.geometric;
+  frame.contact = f.contact;
+  frame.contact_depth = f.contact_depth;
+  frame.sent = seen.sent;
+  frame.fade = seen.fade;
+  frame.late = seen.late;
+  frame.modes = f.modes;
+  frame.frame_ms = f.frame_ms;
+  frame.flags = f.flags;
+  frame.missed = f.missed;
+  if (frame_mutex.try_lock()) {
+    latest = frame;
+    frame_mutex.unlock();
+  }
+  if (options.on_frame) options.on_frame(frame);
+}
+
+void LiveSession::State::after_segment(const LoopReport& segment, BodyState& part) {
+  time_before_segment += segment.elapsed_s;
+  part = segment.final_part;
+  if (reset_requested.exchange(false)) {
+    part = initial;
+    device->reset(initial);
+  }
+  const std::lock_guard<std::mutex> lock(mutex);
+  status.frames += segment.frames;
+  status.misses += segment.misses;
+  status.sanitised = device->sanitised_count();
+  status.elapsed_s = time_before_segment;
+  status.part = part.pose;
+  if (recording) append_segment(recorded, segment);
+  if (record_wanted && !recording) recorded = LoopReport{};
+  recording = record_wanted;
+  status.recording = recording;
+  ++segments_done;
+  changed.notify_all();
+}
+
+void LiveSession::State::run() {
+  try {
+    BodyState part = initial;
+    for (int i = 0; i < kWarmupQueries; ++i) evaluator.evaluate(part.pose);
+    while (!quit) {
+      LoopConfig c = config;
+      c.duration_s = kSegmentS;
+      {
+        const std::lock_guard<std::mutex> lock(mutex);
+        c.keep_log = recording;
+      }
+      c.stop = &segment_stop;
+      c.on_frame = [this](const FrameRecord& f) { publish(f); };
+      const LoopReport segment = run_haptic_loop(*device, evaluator, c, steady_loop_clock(request.loop_wait), part);
+      segment_stop = false;
+      after_segment(segment, part);
+    }
+  } catch (...) {
+    error = std::current_exception();
+    const std::lock_guard<std::mutex> lock(mutex);
+    ++segments_done;
+    changed.notify_all();
+  }
+}
+
+LiveSession::LiveSession(const Scene& scene, const JobRequest& request, const LiveOptions& options)
+    : state_(std::make_unique<State>()) {
+  State& s = *state_;
+  if (uses_vps(scene.method))
+    throw Error("a live session renders the snapfit method; scene method '" + std::string(method_name(scene.method)) +
+                "' runs with `snapfit run`");
+  if (request.simulated_time) throw Error("a live session runs on the steady clock, not simulated time");
+  if (!(options.late_s > 0) || !(options.fade_s >= 0))
+    throw Error("live session: late_s must be > 0 and fade_s >= 0");
+  s.scene = scene;
+  s.request = request;
+  s.options = options;
+  const JobOutput out = job_output(request);
+  s.job = prepare_job(scene, request, out, prepare_job_parts(scene, request, out));
+  const AssemblyPair& pair = *s.job.pair;
+  std::string contact_off;
+  std::shared_ptr<const RigidContactModel> contact =
+      rigid_contact_for(scene, pair.part(1).mesh, pair.part(2).mesh, pair.spectra.spacing, &contact_off);
+  if (!contact_off.empty()) out.note(contact_off);
+  double force_scale = 0;
+  s.config = loop_config_for(scene, pair.part(2).mesh, pair.spectra.spacing, *s.job.loop_engine, s.job.record->tuning,
+                             force_scale, contact);
+  s.session = session_before_loop(scene, pair.spectra.spacing, s.config);
+  s.session.force_scale = force_scale;
+  s.session.contact = contact;
+  s.session.contact_off = contact_off;
+  s.session.wait = request.loop_wait;
+  s.initial.pose = scene.part2.pose;
+  s.device = std::make_unique<LiveDevice>(s.initial, s.session.limits, options.late_s, options.fade_s);
+  s.evaluator = wrench_evaluator(*s.job.loop_engine);
+  s.prepared = job_result(s.job.record);
+  s.latest.part = s.latest.device = s.initial.pose;
+  s.status.part = s.initial.pose;
+}
+
+LiveSession::~LiveSession() {
+  try {
+    stop();
+  } catch (...) {  // a destructor does not throw; stop() is where the error is seen
+  }
+}
+
+const JobResult& LiveSession::prepared() const { return state_->prepared; }
+
+void LiveSession::start() {
+  State& s = *state_;
+  if (s.thread.joinable()) throw Error("live session: already started");
+  s.quit = false;
+  s.priority = raise_process_priority(loop_priority(PriorityRequest{-20, 10}, s.request.loop_wait));
+  s.session.priority = s.priority;
+  s.thread = std::thread([&s] { s.run(); });
+}
+
+LiveStatus LiveSession::stop() {
+  State& s = *state_;
+  if (s.thread.joinable()) {
+    s.quit = true;
+    s.segment_stop = true;
+    s.thread.join();
+    restore_process_priority(s.priority);
+  }
+  if (s.error) std::rethrow_exception(std::exchange(s.error, nullptr));
+  return status();
+}
+
+void LiveSession::set_device_state(const BodyState& state, std::uint32_t sequence) {
+  state_->device->set_state(state, sequence);
+}
+
+void LiveSession::reset() {
+  state_->reset_requested = true;
+  state_->segment_stop = true;
+}
+
+LiveFrame LiveSession::latest() const {
+  const std::lock_guard<std::mutex> lock(state_->frame_mutex);
+  return state_->latest;
+}
+
+LiveStatus LiveSession::status() const {
+  const State& s = *state_;
+  LiveStatus status;
+  {
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    status = s.status;
+  }
+  const LiveFrame frame = latest();
+  if (frame.frame > 0) status.part = frame.part;
+  if (s.scene.assembled_pose) {
+    const PoseError e = pose_error(status.part, *s.scene.assembled_pose);
+    status.evaluated = true;
+    status.position_error = e.position;
+    status.angle_error_deg = e.angle_deg;
+    status.assembled = e.within(s.session.position_tolerance, s.session.angle_tolerance_deg);
+  }
+  return status;
+}
+
+void LiveSession::start_recording() {
+  State& s = *state_;
+  {
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    s.record_wanted = true;
+  }
+  s.segment_stop = true;
+}
+
+JobResult LiveSession::stop_recording() {
+  State& s = *state_;
+  std::unique_lock<std::mutex> lock(s.mutex);
+  if (!s.record_wanted && !s.recording) throw Error("live session: no recording to stop");
+  s.record_wanted = false;
+  if (s.thread.joinable()) {
+    // Wait for the segment that ends the recording (it ends at its next frame).
+    const std::uint64_t after = s.segments_done;
+    s.segment_stop = true;
+    s.changed.wait(lock, [&] { return s.segments_done > after && !s.recording; });
+  }
+  if (s.error) std::rethrow_exception(s.error);
+  auto record = std::make_shared<JobRecord>(*s.job.record);
+  SessionResult session = s.session;
+  session.loop = std::move(s.recorded);
+  s.recorded = LoopReport{};
+  s.recording = false;
+  lock.unlock();
+  judge_session_end(session, s.scene);
+  record->session = std::move(session);
+  return job_result(std::move(record));
+}
+
+}  // namespace snapfit
