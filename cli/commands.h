@@ -15,5 +15,6 @@ void add_search_command(CLI::App& app);
 void add_tune_command(CLI::App& app);
 void add_accuracy_command(CLI::App& app);
 void add_spheres_command(CLI::App& app);
+void add_serve_command(CLI::App& app);
 
 }  // namespace snapfit::cli

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   snapfit::cli::add_accuracy_command(app);
   snapfit::cli::add_spheres_command(app);
   snapfit::cli::add_run_command(app);
+  snapfit::cli::add_serve_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -34,7 +34,8 @@ message(STATUS "report.html and chart pages: bundling report/web with ${SNAPFIT_
 file(GLOB snapfit_web_sources CONFIGURE_DEPENDS ${SNAPFIT_WEB_DIR}/src/*)
 set(snapfit_web_out ${PROJECT_BINARY_DIR}/generated/web)
 set(snapfit_web_bundle ${snapfit_web_out}/run_report.js ${snapfit_web_out}/run_report.css
-                       ${snapfit_web_out}/chart_page.js ${snapfit_web_out}/chart_page.css)
+                       ${snapfit_web_out}/chart_page.js ${snapfit_web_out}/chart_page.css
+                       ${snapfit_web_out}/live_page.js ${snapfit_web_out}/live_page.css)
 add_custom_command(
   OUTPUT ${snapfit_web_bundle}
   COMMAND ${CMAKE_COMMAND} -E rm -rf ${snapfit_web_out}

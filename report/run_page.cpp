@@ -24,22 +24,6 @@ std::string short_number(double v) {
   return buf;
 }
 
-nlohmann::json pose_json(const Pose& p) {
-  const Eigen::Quaterniond q = p.rotation.normalized();
-  return {{"position", {p.translation.x(), p.translation.y(), p.translation.z()}},
-          {"quaternion", {q.w(), q.x(), q.y(), q.z()}}};
-}
-
-// A triangle soup, 9 floats a triangle, for three.js.
-nlohmann::json part_json(const std::string& name, const Mesh& mesh) {
-  std::vector<float> positions;
-  positions.reserve(9 * mesh.triangles.size());
-  for (const Eigen::Vector3i& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k)
-      for (int a = 0; a < 3; ++a) positions.push_back(static_cast<float>(mesh.vertices[t[k]][a]));
-  return {{"name", name}, {"triangles", mesh.triangles.size()}, {"positions", float32_base64(positions)}};
-}
-
 // What m' the loop rendered: the most frequent and the frame-weighted mean over its
 // frames, where it started and ended, and how often it changed.
 nlohmann::json rendered_modes_json(const LoopReport& loop) {
@@ -241,6 +225,22 @@ nlohmann::json timeline_json(const JobRecord& run, const RunPageLimits& limits) 
 }
 
 }  // namespace
+
+nlohmann::json pose_json(const Pose& p) {
+  const Eigen::Quaterniond q = p.rotation.normalized();
+  return {{"position", {p.translation.x(), p.translation.y(), p.translation.z()}},
+          {"quaternion", {q.w(), q.x(), q.y(), q.z()}}};
+}
+
+nlohmann::json part_json(const std::string& name, const Mesh& mesh) {
+  std::vector<float> positions;
+  positions.reserve(9 * mesh.triangles.size());
+  for (const Eigen::Vector3i& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) positions.push_back(static_cast<float>(mesh.vertices[t[k]][a]));
+  return {{"name", name}, {"triangles", mesh.triangles.size()}, {"positions", float32_base64(positions)}};
+}
+
 
 Mesh display_mesh(const Mesh& mesh, double spacing, std::size_t max_triangles) {
   if (mesh.triangles.size() >= max_triangles || !(spacing > 0)) return mesh;

@@ -34,6 +34,12 @@ struct PageFigure {
 // max_triangles; a mesh already above max_triangles as it is.
 Mesh display_mesh(const Mesh& mesh, double spacing, std::size_t max_triangles);
 
+// A pose as {position, quaternion (w, x, y, z)} for the pages' 3D view.
+nlohmann::json pose_json(const Pose& pose);
+
+// A part for the pages' 3D view: a triangle soup, 9 float32 a triangle, in base64.
+nlohmann::json part_json(const std::string& name, const Mesh& mesh);
+
 // The page's data block (report/web/src/run_report.js reads it).
 nlohmann::json run_page_data(const JobRecord& run, const std::vector<PageFigure>& figures,
                              const RunPageLimits& limits = {});

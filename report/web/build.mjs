@@ -1,5 +1,6 @@
 // Bundles the browser code of snapfit's pages with esbuild: for each page (run_report:
-// report.html of `snapfit run`; chart_page: benchmark and tuning charts) one minified
+// report.html of `snapfit run`; chart_page: benchmark and tuning charts; live_page: the
+// page of `snapfit serve`) one minified
 // script and one style sheet in OUT, which CMake embeds into the library
 // (cmake/EmbedWebAssets.cmake). Usage: node build.mjs --out DIR
 import { build } from 'esbuild';
@@ -16,7 +17,7 @@ const outdir = path.resolve(process.argv[at + 1]);
 
 await build({
   absWorkingDir: here,
-  entryPoints: { run_report: 'src/run_report.js', chart_page: 'src/chart_page.js' },
+  entryPoints: { run_report: 'src/run_report.js', chart_page: 'src/chart_page.js', live_page: 'src/live_page.js' },
   outdir,
   bundle: true,
   minify: true,

@@ -142,6 +142,9 @@ export function createViewer(container, parts, path, turns) {
 
   return {
     arrowScale,
+    size,
+    // The three.js objects, for a page that adds its own (the live page's device pose).
+    three: { scene, camera, controls, canvas: renderer.domElement },
     // position [x, y, z], quaternion [w, x, y, z] of part 2 in part 1's frame.
     setPart2Pose(position, quaternion) {
       part2.position.set(position[0], position[1], position[2]);

@@ -1,0 +1,26 @@
+#include "report/live_page.h"
+
+#include "jobs/job_record.h"
+#include "report/html_page.h"
+#include "report/run_page.h"
+
+namespace snapfit {
+
+std::string live_page_html(const JobResult& prepared, const LivePageInfo& info) {
+  const AssemblyPair& pair = *prepared.record->pair;
+  const Scene& scene = pair.scene;
+  const RunPageLimits limits;
+  const nlohmann::json data = {
+      {"kind", "live"},
+      {"title", "snapfit serve: " + scene.name},
+      {"parts",
+       {part_json(scene.part1.name, display_mesh(pair.part(1).mesh, pair.grids.spacing, limits.display_triangles)),
+        part_json(scene.part2.name, display_mesh(pair.part(2).mesh, pair.grids.spacing, limits.display_triangles))}},
+      {"start_pose", pose_json(scene.part2.pose)},
+      {"units", scene.units},
+      {"bridge_port", info.bridge_port},
+      {"state_hz", info.state_hz}};
+  return html_page("live_page", data["title"].get<std::string>(), data);
+}
+
+}  // namespace snapfit

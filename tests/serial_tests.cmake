@@ -1,0 +1,4 @@
+# Tests that need a core of their own (a live loop spinning at 1 kHz beside a client):
+# CTest runs them alone. Read by CTest after the discovered doctest cases.
+set_tests_properties("live bridge: a 1 kHz client for 10 s, a silent one, malformed datagrams and a second client"
+                     PROPERTIES RUN_SERIAL TRUE)
