@@ -3,6 +3,7 @@
 // browser's mouse, a device program through the bridge) is what the loop reads. A state
 // older than `late` is held at rest, and the wrench sent back fades linearly to zero
 // over `fade` after it; a wrench that is not finite is sent as zero and counted.
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <mutex>
@@ -48,7 +49,7 @@ class LiveDevice final : public HapticDevice {
   Clock::time_point stamp_;
   Seen seen_;
   double age_s_ = 0;  // of the state the last read returned
-  std::size_t sanitised_ = 0;
+  std::atomic<std::size_t> sanitised_{0};  // read from other threads
 };
 
 }  // namespace snapfit

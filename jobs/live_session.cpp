@@ -79,6 +79,7 @@ struct LiveSession::State {
   mutable std::mutex frame_mutex;
   LiveFrame latest;
   std::uint64_t frames_before_segment = 0;  // frames published so far (the loop's thread only)
+  std::atomic<std::uint64_t> misses{0};     // frames that ended after their deadline
   double time_before_segment = 0;
 
   // Between the loop's thread and the callers: totals, the recording and its requests.
@@ -114,6 +115,7 @@ void LiveSession::State::publish(const FrameRecord& f) {
   frame.frame_ms = f.frame_ms;
   frame.flags = f.flags;
   frame.missed = f.missed;
+  if (f.missed) ++misses;
   if (frame_mutex.try_lock()) {
     latest = frame;
     frame_mutex.unlock();
@@ -129,10 +131,6 @@ void LiveSession::State::after_segment(const LoopReport& segment, BodyState& par
     device->reset(initial);
   }
   const std::lock_guard<std::mutex> lock(mutex);
-  status.frames += segment.frames;
-  status.misses += segment.misses;
-  status.sanitised = device->sanitised_count();
-  status.elapsed_s = time_before_segment;
   status.part = part.pose;
   if (recording) append_segment(recorded, segment);
   if (record_wanted && !recording) recorded = LoopReport{};
@@ -254,6 +252,10 @@ LiveStatus LiveSession::status() const {
     status = s.status;
   }
   const LiveFrame frame = latest();
+  status.frames = frame.frame;
+  status.elapsed_s = frame.time_s;
+  status.misses = s.misses;
+  status.sanitised = s.device->sanitised_count();
   if (frame.frame > 0) status.part = frame.part;
   if (s.scene.assembled_pose) {
     const PoseError e = pose_error(status.part, *s.scene.assembled_pose);

@@ -9,6 +9,8 @@
 //   haptic_loop.h    the fixed-rate loop with virtual coupling, on its own thread
 //   job.h            the main job in one call: parts, device, fields, spectra, m', scripted session
 //   search.h         where part 2 fits part 1 over all rotations (one FFT map each), shared among processes
+//   live.h           a live session: the loop until stopped, driven from another thread (a mouse, a device)
+//   bridge.h         the device bridge: its UDP datagrams, and the session's end of it
 //   pose.h, error.h  rigid poses; the one exception type
 //
 // The papers the comments cite:
@@ -20,10 +22,12 @@
 //                           virtual product assembly", PhD thesis, Iowa State University, 2010
 // docs/*.md are installed with the headers' package under share/doc/snapfit.
 #include "snapfit/assembly.h"
+#include "snapfit/bridge.h"
 #include "snapfit/error.h"
 #include "snapfit/haptic_device.h"
 #include "snapfit/haptic_loop.h"
 #include "snapfit/job.h"
+#include "snapfit/live.h"
 #include "snapfit/pose.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
