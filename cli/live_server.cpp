@@ -61,11 +61,10 @@ nlohmann::json state_json(const LiveFrame& f, const LiveStatus& s, const BridgeS
 }
 
 // `count` finite numbers under `key`, or why not.
-bool read_numbers(const nlohmann::json& body, const char* key, std::size_t count, double* out, bool required,
-                  std::string& why) {
+bool read_numbers(const nlohmann::json& body, const char* key, std::size_t count, double* out, std::string& why) {
   if (!body.contains(key)) {
-    if (required) why = std::string("'") + key + "' is missing";
-    return !required;
+    why = std::string("'") + key + "' is missing";
+    return false;
   }
   const nlohmann::json& v = body[key];
   if (!v.is_array() || v.size() != count) {
@@ -82,28 +81,25 @@ bool read_numbers(const nlohmann::json& body, const char* key, std::size_t count
   return true;
 }
 
-// The device's state from POST /device's body, or why it is not one.
-std::optional<BodyState> device_state(const std::string& text, std::string& why) {
+// The device's pose from POST /device's body, or why it is not one.
+std::optional<Pose> device_pose(const std::string& text, std::string& why) {
   const nlohmann::json body = nlohmann::json::parse(text, nullptr, false);
   if (body.is_discarded() || !body.is_object()) {
     why = "the body is not a JSON object";
     return std::nullopt;
   }
-  double p[3], q[4], v[3] = {0, 0, 0}, w[3] = {0, 0, 0};
-  if (!read_numbers(body, "position", 3, p, true, why) || !read_numbers(body, "quaternion", 4, q, true, why) ||
-      !read_numbers(body, "velocity", 3, v, false, why) || !read_numbers(body, "angular_velocity", 3, w, false, why))
+  double p[3], q[4];
+  if (!read_numbers(body, "position", 3, p, why) || !read_numbers(body, "quaternion", 4, q, why))
     return std::nullopt;
   const Eigen::Quaterniond turn(q[0], q[1], q[2], q[3]);
   if (!(turn.norm() > 1e-9)) {
     why = "'quaternion' is zero";
     return std::nullopt;
   }
-  BodyState state;
-  state.pose.translation = Eigen::Vector3d(p[0], p[1], p[2]);
-  state.pose.rotation = turn.normalized();
-  state.velocity = Eigen::Vector3d(v[0], v[1], v[2]);
-  state.angular_velocity = Eigen::Vector3d(w[0], w[1], w[2]);
-  return state;
+  Pose pose;
+  pose.translation = Eigen::Vector3d(p[0], p[1], p[2]);
+  pose.rotation = turn.normalized();
+  return pose;
 }
 
 void reply(httplib::Response& res, int status, const nlohmann::json& body) {
@@ -135,14 +131,15 @@ void LiveHttpServer::State::routes() {
   server.Get("/", [this](const httplib::Request&, httplib::Response& res) {
     res.set_content(page, "text/html; charset=utf-8");
   });
+  server.Get("/favicon.ico", [](const httplib::Request&, httplib::Response& res) { res.status = 204; });
   server.Get("/state", [this](const httplib::Request&, httplib::Response& res) {
     reply(res, 200, state_json(session.latest(), session.status(), bridge.stats()));
   });
   server.Post("/device", [this](const httplib::Request& req, httplib::Response& res) {
     std::string why;
-    const std::optional<BodyState> state = device_state(req.body, why);
-    if (!state) return reply(res, 400, {{"error", "POST /device: " + why}});
-    session.set_device_state(*state);
+    const std::optional<Pose> pose = device_pose(req.body, why);
+    if (!pose) return reply(res, 400, {{"error", "POST /device: " + why}});
+    session.hold_device_pose(*pose);  // a mouse's pose holds until the next
     reply(res, 200, {{"ok", true}});
   });
   server.Post("/reset", [this](const httplib::Request&, httplib::Response& res) {

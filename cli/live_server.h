@@ -3,7 +3,7 @@
 // latest frame as JSON, the mouse's device pose, reset, recording and quit.
 //   GET  /              the page (report/live_page.h)
 //   GET  /state         {frame, status, bridge}: the loop's latest frame and the totals
-//   POST /device        {position [x,y,z], quaternion [w,x,y,z], velocity?, angular_velocity?}
+//   POST /device        {position [x,y,z], quaternion [w,x,y,z]}: the mouse's device pose, held until the next
 //   POST /reset         part 2 and the device back to the scene's initial pose
 //   POST /record/start  keep the frames from now on
 //   POST /record/stop   write them as a report folder (loop.csv, report.html, ...): {folder, files}

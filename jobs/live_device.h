@@ -17,8 +17,11 @@ class LiveDevice final : public HapticDevice {
   using Clock = std::chrono::steady_clock;
   LiveDevice(const BodyState& initial, const DeviceLimits& limits, double late_s, double fade_s);
 
-  // Any thread: the device's state now, with the sender's sequence number.
-  void set_state(const BodyState& state, std::uint32_t sequence, Clock::time_point now = Clock::now());
+  // Any thread: the device's state now, with the sender's sequence number. A streamed
+  // state (a device program's, every frame) goes late when the next does not follow; a
+  // held one (a mouse's pose) stays valid until the next.
+  void set_state(const BodyState& state, std::uint32_t sequence, Clock::time_point now = Clock::now(),
+                 bool streamed = true);
   // Any thread: the state `initial` as if just sent (a reset).
   void reset(const BodyState& initial, Clock::time_point now = Clock::now());
 
@@ -43,10 +46,11 @@ class LiveDevice final : public HapticDevice {
  private:
   DeviceLimits limits_;
   double late_s_, fade_s_;
-  mutable std::mutex mutex_;  // guards the three below
+  mutable std::mutex mutex_;  // guards the four below
   BodyState latest_;
   std::uint32_t sequence_ = 0;
   Clock::time_point stamp_;
+  bool streamed_ = true;
   Seen seen_;
   double age_s_ = 0;  // of the state the last read returned
   std::atomic<std::size_t> sanitised_{0};  // read from other threads

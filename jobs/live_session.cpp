@@ -234,6 +234,12 @@ void LiveSession::set_device_state(const BodyState& state, std::uint32_t sequenc
   state_->device->set_state(state, sequence);
 }
 
+void LiveSession::hold_device_pose(const Pose& pose) {
+  BodyState state;
+  state.pose = pose;
+  state_->device->set_state(state, 0, LiveDevice::Clock::now(), false);
+}
+
 void LiveSession::reset() {
   state_->reset_requested = true;
   state_->segment_stop = true;

@@ -9,13 +9,12 @@ namespace snapfit {
 std::string live_page_html(const JobResult& prepared, const LivePageInfo& info) {
   const AssemblyPair& pair = *prepared.record->pair;
   const Scene& scene = pair.scene;
-  const RunPageLimits limits;
+  // The meshes as they are: a live view redraws at the display's rate and colours no
+  // contact, so it needs no refinement.
   const nlohmann::json data = {
       {"kind", "live"},
       {"title", "snapfit serve: " + scene.name},
-      {"parts",
-       {part_json(scene.part1.name, display_mesh(pair.part(1).mesh, pair.grids.spacing, limits.display_triangles)),
-        part_json(scene.part2.name, display_mesh(pair.part(2).mesh, pair.grids.spacing, limits.display_triangles))}},
+      {"parts", {part_json(scene.part1.name, pair.part(1).mesh), part_json(scene.part2.name, pair.part(2).mesh)}},
       {"start_pose", pose_json(scene.part2.pose)},
       {"units", scene.units},
       {"bridge_port", info.bridge_port},

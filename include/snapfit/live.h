@@ -78,8 +78,11 @@ class LiveSession {
   LiveStatus stop();   // ends the loop; rethrows an error of the loop's thread
 
   // Any thread: the device's state now (part 1's frame, scene units), and the sender's
-  // sequence number, echoed in the frames that read it.
+  // sequence number, echoed in the frames that read it. A device program streams one a
+  // frame: when the next is late the pose is held and the wrench fades.
   void set_device_state(const BodyState& state, std::uint32_t sequence = 0);
+  // Any thread: a pose that holds until the next one (a mouse), never late.
+  void hold_device_pose(const Pose& pose);
   // Any thread: part 2 and the device back to the scene's initial pose, at rest.
   void reset();
   LiveFrame latest() const;
