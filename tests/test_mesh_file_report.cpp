@@ -14,7 +14,7 @@ using namespace snapfit;
 TEST_CASE("inspect_mesh_file: a box's counts, area and volume, at a scale") {
   const test::TempDir dir;
   const std::string path = dir.file("box.stl");
-  write_stl(box_mesh(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 3)), path);
+  write_stl(test::box_mesh(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 3)), path);
   MeshFileRequest request;
   request.file = path;
   request.scale = 2;

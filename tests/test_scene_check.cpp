@@ -25,7 +25,7 @@ TEST_CASE("check_scene: the parts' reports and the compute plan of a shipped sce
       CHECK(c.mesh.enclosed_volume == doctest::Approx(fresh.enclosed_volume));
       CHECK(c.mesh.watertight());
       CHECK(c.seconds >= 0);
-      CHECK(c.cad.has_value() == scene.part1.mesh_path.has_value());
+      CHECK(c.cad.has_value() == (part == 1 ? scene.part1 : scene.part2).mesh_path.has_value());
     }
     CHECK(!check.plan.empty());
   }
