@@ -1,7 +1,7 @@
 // `snapfit accuracy SCENE [--budget MS] [--device D]`: what the frame budget buys for this
 // scene on this machine. Picks the loop's device as `snapfit run` does (or the one named),
 // tunes each query strategy for the budget there, times it, and compares it with the
-// exact-rotation reference at the trajectory's poses (scheduler/accuracy.h). Prints one
+// exact-rotation reference at the trajectory's poses (include/snapfit/accuracy.h). Prints one
 // JSON object on stdout: the loop's strategy at the top level, every strategy under
 // "strategies", and which one has the lowest error within the budget.
 #include <cmath>
@@ -12,14 +12,12 @@
 
 #include "cli/commands.h"
 #include "cli/parse_options.h"
-#include "core/progress.h"
-#include "pipeline/assembly_pair.h"
 #include "report/accuracy_json.h"
-#include "scheduler/accuracy.h"
-#include "scheduler/loop_devices.h"
-#include "scheduler/query_strategy.h"
-#include "scheduler/strategy_file.h"
+#include "snapfit/accuracy.h"
+#include "snapfit/assembly.h"
+#include "snapfit/devices.h"
 #include "snapfit/error.h"
+#include "snapfit/progress.h"
 
 namespace snapfit::cli {
 namespace {
@@ -35,60 +33,14 @@ struct AccuracyCommandOptions {
   std::vector<double> turning_deg_per_s = {0, 30, 90, 180};
 };
 
-void run_accuracy(const AccuracyCommandOptions& opt) {
-  const Scene scene = load_scene(opt.scene);
-  const double budget = opt.budget_ms.value_or(scene.frame_budget_ms);
-  if (!(budget > 0)) throw Error("--budget: must be > 0 ms");
-  if (opt.poses < 2) throw Error("--poses: at least 2");
-  const auto note = [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; };
-  const Device device = select_device(device_spec_from(opt.device));
-  const FftLibrary fft;
-  const ComputeContext ctx = make_compute_context(device);
-  PairOptions pair_options;
-  pair_options.descriptors.progress = pass_progress_bars();
-  pair_options.note = note;
-  const AssemblyPair pair = build_assembly_pair(scene, ctx, fft, pair_options);
-
-  // The loop's device, as `snapfit run` picks it (the named one, else the best tuned).
-  LoopDeviceOptions loop_options;
-  loop_options.margin = opt.margin;
-  loop_options.retune = opt.retune;
-  loop_options.other_devices = device_spec_from(opt.device).empty();
-  loop_options.note = note;
-  const auto bars = pass_progress_bars();
-  loop_options.tune.progress = [bars](std::uint64_t done, std::uint64_t total) { bars("tuning m'", done, total); };
-  Scene timed = scene;
-  timed.frame_budget_ms = budget;
-  const LoopDevices devices =
-      tune_loop_devices(ctx, timed, pair.spectra, query_variant_for(scene, Interpolation::tricubic), loop_options);
-  const ComputeContext& loop_ctx = devices.loop().ctx;
-
-  AccuracyOptions options;
-  options.budget_ms = budget;
-  options.margin = opt.margin;
-  options.poses = opt.poses;
-  options.retune = opt.retune;
-  options.repetitions = opt.repetitions;
-  for (double w : opt.turning_deg_per_s)
-    if (!(std::isfinite(w) && w >= 0)) throw Error("--turning: speeds must be >= 0 deg/s");
-  options.turning_deg_per_s = opt.turning_deg_per_s;
-  options.note = note;
-  options.progress = pass_progress_bars();
-  const AccuracyReport report = measure_accuracy(loop_ctx, scene, pair.spectra, options);
-  // `snapfit run` renders what this measured (scheduler/query_strategy.h).
-  Scene at_budget = scene;
-  at_budget.frame_budget_ms = budget;
-  const std::string key = strategy_key(loop_ctx.device.info, at_budget, pair.spectra, options);
-  try {
-    save_strategy(key, report);
-  } catch (const Error& e) {
-    note(std::string("the strategy was not saved: ") + e.what());
-  }
-
-  const StrategyAccuracy& loop = report.strategies[report.loop];
-  nlohmann::json j = strategy_accuracy_json(loop);
+// The report as one JSON object: the loop's strategy at the top level, every strategy
+// under "strategies".
+nlohmann::json accuracy_json(const AccuracyCommandOptions& opt, const Scene& scene, double budget,
+                             const BudgetAccuracy& measured) {
+  const AccuracyReport& report = measured.report;
+  nlohmann::json j = strategy_accuracy_json(report.strategies[report.loop]);
   j["scene"] = opt.scene;
-  j["device"] = loop_ctx.device.info.name;
+  j["device"] = measured.device;
   j["budget_ms"] = budget;
   j["margin"] = opt.margin;
   j["poses"] = report.poses;
@@ -103,8 +55,36 @@ void run_accuracy(const AccuracyCommandOptions& opt) {
   j["strategies"] = all;
   j["lowest_error_within_budget"] = report.strategies[report.best].name;
   j["why"] = report.why;
-  j["strategy_file"] = strategy_file_path(key);
-  std::cout << j.dump() << std::endl;
+  j["strategy_file"] = measured.strategy_file;
+  return j;
+}
+
+void run_accuracy(const AccuracyCommandOptions& opt) {
+  const Scene scene = load_scene(opt.scene);
+  const double budget = opt.budget_ms.value_or(scene.frame_budget_ms);
+  if (!(budget > 0)) throw Error("--budget: must be > 0 ms");
+  if (opt.poses < 2) throw Error("--poses: at least 2");
+  for (double w : opt.turning_deg_per_s)
+    if (!(std::isfinite(w) && w >= 0)) throw Error("--turning: speeds must be >= 0 deg/s");
+  const auto note = [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; };
+  AssemblyOptions assembly_options;
+  assembly_options.device = opt.device;
+  assembly_options.progress = true;
+  assembly_options.note = note;
+  const Assembly assembly(scene, assembly_options);
+
+  BudgetAccuracyRequest request;
+  request.budget_ms = budget;
+  request.margin = opt.margin;
+  request.poses = opt.poses;
+  request.repetitions = opt.repetitions;
+  request.retune = opt.retune;
+  request.turning_deg_per_s = opt.turning_deg_per_s;
+  // The loop's device, as `snapfit run` picks it: the one named, else the best tuned.
+  request.other_devices = !names_device(opt.device);
+  request.note = note;
+  request.progress = pass_progress_bars();
+  std::cout << accuracy_json(opt, scene, budget, measure_budget_accuracy(assembly, request)).dump() << std::endl;
 }
 
 }  // namespace

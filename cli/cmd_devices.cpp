@@ -5,9 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "engine/runtime/device.h"
-#include "engine/runtime/device_check.h"
 #include "report/device_json.h"
+#include "snapfit/devices.h"
 #include "snapfit/error.h"
 
 namespace snapfit::cli {
@@ -18,55 +17,32 @@ struct DevicesOptions {
   bool json = false;
 };
 
-const char* origin_name(ProgramOrigin o) {
-  switch (o) {
-    case ProgramOrigin::compiled:
-      return "compiled";
-    case ProgramOrigin::cache_hit:
-      return "cache hit";
-    case ProgramOrigin::recompiled_after_bad_cache:
-      return "recompiled (bad cache entry)";
-  }
-  return "?";
-}
-
-nlohmann::json check_json(const DeviceCheckResult& r) {
-  return {{"precision", r.precision},
-          {"passed", r.passed},
-          {"relative_error", r.relative_error},
-          {"tolerance", r.tolerance},
-          {"program", origin_name(r.origin)},
-          {"build_ms", r.build_ms},
-          {"kernel_ms", r.kernel_ms}};
+nlohmann::json check_json(const DeviceCheck& c) {
+  return {{"precision", c.precision}, {"passed", c.passed},   {"relative_error", c.relative_error},
+          {"tolerance", c.tolerance}, {"program", c.program}, {"build_ms", c.build_ms},
+          {"kernel_ms", c.kernel_ms}};
 }
 
 void run_devices(const DevicesOptions& opt) {
-  const std::vector<Device> devices = enumerate_devices();
-  if (devices.empty()) throw Error("no OpenCL device found: install an OpenCL driver (Debian: pocl-opencl-icd)");
-  std::vector<DeviceInfo> infos;
-  for (const Device& d : devices) infos.push_back(d.info);
-  const std::size_t chosen = select_device_index(infos, device_spec_from(""));
+  DeviceListRequest request;
+  request.check = opt.check;
+  const DeviceList list = list_devices(request);
   bool all_passed = true;
-  for (const Device& d : devices) {
+  for (const ListedDevice& d : list.devices) {
     const DeviceInfo& i = d.info;
     nlohmann::json checks = nlohmann::json::array();
-    if (opt.check) {
-      const ComputeContext ctx = make_compute_context(d);
-      for (bool dbl : {false, true}) {
-        if (dbl && !i.fp64) continue;
-        const DeviceCheckResult r = run_device_check(ctx, dbl);
-        all_passed = all_passed && r.passed;
-        checks.push_back(check_json(r));
-      }
+    for (const DeviceCheck& c : d.checks) {
+      all_passed = all_passed && c.passed;
+      checks.push_back(check_json(c));
     }
     if (opt.json) {
       nlohmann::json j = device_json(i);
-      j["selected"] = static_cast<std::size_t>(i.index) == chosen;
+      j["selected"] = d.selected;
       if (opt.check) j["check"] = checks;
       std::cout << j.dump() << "\n";
       continue;
     }
-    std::cout << (static_cast<std::size_t>(i.index) == chosen ? "* " : "  ") << describe_device(i) << "\n"
+    std::cout << (d.selected ? "* " : "  ") << describe_device(i) << "\n"
               << "      compute units " << i.compute_units << ", global memory " << std::fixed << std::setprecision(1)
               << i.global_memory_bytes / 1073741824.0 << " GiB (max alloc " << i.max_alloc_bytes / 1073741824.0
               << " GiB), local memory " << i.local_memory_bytes / 1024 << " KiB, max work-group "

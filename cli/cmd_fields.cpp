@@ -1,23 +1,15 @@
 // `snapfit fields SCENE`: compute (or load from the cache) the descriptor fields of a
 // scene's parts and export them: VTK image data for ParaView, and a PNG slice like
 // seed 000 Fig. 2 and Fig. 5 (top row).
-#include <algorithm>
 #include <cstdio>
-#include <filesystem>
-#include <iomanip>
 #include <iostream>
 
 #include "cli/commands.h"
 #include "cli/parse_options.h"
-#include "core/progress.h"
-#include "engine/fields/descriptors.h"
-#include "io/png_export.h"
-#include "io/vti_export.h"
-#include "mesh/mesh_slice.h"
-#include "pipeline/assembly_pair.h"
-#include "pipeline/scene_summary.h"
 #include "report/slice_figure.h"
 #include "snapfit/error.h"
+#include "snapfit/export.h"
+#include "snapfit/fields.h"
 
 namespace snapfit::cli {
 namespace {
@@ -62,31 +54,50 @@ std::string number(double v) {
   return buf;
 }
 
+// The slice as a figure with the part's outline, written to --png.
+void write_figure(const FieldsOptions& opt, const Scene& scene, const ScenePartFields& part) {
+  const DescriptorFields& f = part.result.fields;
+  const std::vector<float> rho = affinity_imaginary(f);
+  const std::vector<float>& values = pick_field(f, rho, opt.field);
+  const ColorMap map = opt.field == "bound" || (opt.field == "rho" && f.skeletal_density.empty()) ? ColorMap::sequential
+                                                                                                  : ColorMap::diverging;
+  const char axis = opt.slice[0];
+  const char* axis_name = axis == 'x' ? "x" : axis == 'y' ? "y" : "z";
+  const double plane = part.slice_plane;
+  SliceFigureOptions figure;
+  figure.title = field_title(opt.field) + " of part " + opt.part + " '" +
+                 (opt.part == "1" ? scene.part1.name : scene.part2.name) + "' at " + axis_name + " = " + number(plane) +
+                 " " + scene.units;
+  figure.units = scene.units;
+  figure.value_label = opt.field;
+  figure.outline = part.outline;
+  figure.pixels_per_point = opt.pixels;
+  const SliceFigure fig =
+      write_slice_figure(opt.png, part.grid, values.data(), axis, part.slice_index, map, figure, true);
+  std::cout << "wrote " << opt.png << " (" << fig.image.width << " x " << fig.image.height << " pixels, " << opt.field
+            << " at " << axis_name << " = " << plane << ", colour range [" << fig.image.value_min << ", "
+            << fig.image.value_max << "], the part's outline in black)\n";
+}
+
 void run_fields(const FieldsOptions& opt) {
-  namespace fs = std::filesystem;
   const Scene scene = load_scene(opt.scene);
   if (opt.part != "1" && opt.part != "2") throw Error("--part: expected 1 or 2 (got '" + opt.part + "')");
-  const auto [axis, coordinate] = parse_slice(opt.slice);
-  const int which = opt.part == "1" ? 1 : 2;
-  AssemblyPair pair = prepare_assembly_pair(scene);
-  const Mesh& mesh = pair.part(which).mesh;
-  const GridSpec& grid = pair.grid(which);
-  const int slice = slice_index_for(grid, axis, coordinate);  // fail before the long work
+  PartFieldsRequest request;
+  request.part = opt.part == "1" ? 1 : 2;
+  request.slice = parse_slice(opt.slice);
+  request.device = opt.device;
+  request.progress = true;
+  request.use_cache = !opt.no_cache;
+  const ScenePartFields part = scene_part_fields(scene, request);
+  const GridSpec& grid = part.grid;
+  std::cout << "part " << opt.part << ": " << part.triangles << " triangles, grid " << grid.dims.x() << " x "
+            << grid.dims.y() << " x " << grid.dims.z() << " = " << grid.count() << " points at spacing " << grid.spacing
+            << " " << scene.units << ", on " << part.device << "\n";
+  std::cout << fields_summary_text(part.result);
 
-  const ComputeContext ctx = make_compute_context(select_device(device_spec_from(opt.device)));
-  std::cout << "part " << opt.part << ": " << mesh.triangles.size() << " triangles, grid " << grid.dims.x() << " x "
-            << grid.dims.y() << " x " << grid.dims.z() << " = " << grid.count() << " points at spacing "
-            << pair.grids.spacing << " " << scene.units << ", on " << ctx.device.info.name << "\n";
-  PairOptions options;
-  options.descriptors.progress = pass_progress_bars();
-  options.use_cache = !opt.no_cache;
-  compute_assembly_fields(pair, ctx, options, which);
-  const PartFieldsResult& result = pair.fields(which);
-  const DescriptorFields& f = result.fields;
-  print_fields_summary(std::cout, result);
-
-  const std::vector<float> rho = affinity_imaginary(f);
+  const DescriptorFields& f = part.result.fields;
   if (!opt.vti.empty()) {
+    const std::vector<float> rho = affinity_imaginary(f);
     std::vector<GridField> out = {{"w", f.winding.data()}, {"rho_imag", rho.data()}};
     if (!f.skeletal_density.empty()) {
       out.push_back({"xi", f.signed_distance.data()});
@@ -96,30 +107,7 @@ void run_fields(const FieldsOptions& opt) {
     write_vti(opt.vti, grid, out);
     std::cout << "wrote " << opt.vti << "\n";
   }
-  if (!opt.png.empty()) {
-    const std::vector<float>& values = pick_field(f, rho, opt.field);
-    const ColorMap map = opt.field == "bound" || (opt.field == "rho" && f.skeletal_density.empty())
-                             ? ColorMap::sequential
-                             : ColorMap::diverging;
-    const char* axis_name = axis == 'x' ? "x" : axis == 'y' ? "y" : "z";
-    const double plane = grid.origin[axis - 'x'] + grid.spacing * slice;
-    SliceFigureOptions figure;
-    figure.title = field_title(opt.field) + " of part " + opt.part + " '" +
-                   (which == 1 ? scene.part1.name : scene.part2.name) + "' at " + axis_name + " = " + number(plane) +
-                   " " + scene.units;
-    figure.units = scene.units;
-    figure.value_label = opt.field;
-    figure.outline = mesh_slice_outline(mesh, axis, plane);
-    figure.pixels_per_point = opt.pixels;
-    const SliceFigure fig = render_slice_figure(grid, values.data(), axis, slice, map, figure);
-    write_png(opt.png, fig.image,
-              {{"Title", "snapfit " + figure.title},
-               {"value_min", std::to_string(fig.image.value_min)},
-               {"value_max", std::to_string(fig.image.value_max)}});
-    std::cout << "wrote " << opt.png << " (" << fig.image.width << " x " << fig.image.height << " pixels, " << opt.field
-              << " at " << axis_name << " = " << plane << ", colour range [" << fig.image.value_min << ", "
-              << fig.image.value_max << "], the part's outline in black)\n";
-  }
+  if (!opt.png.empty()) write_figure(opt, scene, part);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // `snapfit map SCENE --rotation ...`: the energy for every translation of part 2 at
-// one rotation (a C-space slice, seed 000 Fig. 5 bottom row), as a PNG slice and/or a
+// one rotation (a C-space slice, Behandish & Ilies 2016 Fig. 5 bottom row), as a PNG slice and/or a
 // .vti volume.
 #include <cstdio>
 #include <iostream>
@@ -7,13 +7,11 @@
 
 #include "cli/commands.h"
 #include "cli/parse_options.h"
-#include "core/progress.h"
-#include "engine/maps/full_map.h"
-#include "io/png_export.h"
-#include "io/vti_export.h"
-#include "pipeline/assembly_pair.h"
 #include "report/slice_figure.h"
+#include "snapfit/assembly.h"
 #include "snapfit/error.h"
+#include "snapfit/export.h"
+#include "snapfit/maps.h"
 
 namespace snapfit::cli {
 namespace {
@@ -49,12 +47,14 @@ void run_map(const MapOptions& opt) {
   const Scene scene = load_scene(opt.scene);
   const Eigen::Matrix3d R = parse_rotation(opt.rotation);
   const auto [axis, coordinate] = parse_slice(opt.slice);
-  const FftLibrary fft;
-  const ComputeContext ctx = make_compute_context(select_device(device_spec_from(opt.device)));
-  PairOptions options;
-  options.descriptors.progress = pass_progress_bars();
-  const AssemblyPair pair = build_assembly_pair(scene, ctx, fft, options);
-  const TranslationMap map = translational_energy_map(fft, ctx, pair.spectra, R, Interpolation::tricubic, opt.modes);
+  AssemblyOptions options;
+  options.device = opt.device;
+  options.progress = true;
+  const Assembly assembly(scene, options);
+  TranslationMapRequest request;
+  request.rotation = R;
+  request.modes = opt.modes;
+  const TranslationMap map = translational_energy_map(assembly, request);
   std::cout << "map of " << map.grid.count() << " translations (" << map.grid.dims.x() << " x " << map.grid.dims.y()
             << " x " << map.grid.dims.z() << ", spacing " << map.grid.spacing << " " << scene.units << ") in "
             << map.seconds << " s\n";
@@ -75,8 +75,8 @@ void run_map(const MapOptions& opt) {
     figure.units = scene.units;
     figure.value_label = "-E (red: fit)";
     figure.pixels_per_point = opt.pixels;
-    const SliceFigure fig = render_slice_figure(map.grid, score.data(), axis, index, ColorMap::diverging, figure);
-    write_png(opt.png, fig.image, {{"Title", "snapfit " + figure.title}});
+    const SliceFigure fig =
+        write_slice_figure(opt.png, map.grid, score.data(), axis, index, ColorMap::diverging, figure);
     std::cout << "wrote " << opt.png << " (-E at " << opt.slice
               << ": red = fit, blue = collision or separation; range [" << fig.image.value_min << ", "
               << fig.image.value_max << "], magenta = aliased)\n";

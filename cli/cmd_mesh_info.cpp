@@ -5,10 +5,8 @@
 #include <optional>
 
 #include "cli/commands.h"
-#include "io/cad_load.h"
-#include "io/mesh_load.h"
-#include "mesh/mesh_report.h"
 #include "snapfit/error.h"
+#include "snapfit/inspect.h"
 
 namespace snapfit::cli {
 namespace {
@@ -30,16 +28,34 @@ struct MeshInfoOptions {
   double angular_deflection_deg = kDefaultAngularDeflectionDeg;
 };
 
-void print(const MeshInfoOptions& opt, const Mesh& mesh, const std::optional<CadFacts>& cad) {
-  const MeshReport report = validate_mesh(mesh);
+void print(const MeshInfoOptions& opt, const MeshFileReport& report) {
   if (opt.json) {
-    nlohmann::json j = nlohmann::json::parse(mesh_report_json(report));
-    if (cad) j["cad"] = nlohmann::json::parse(cad_facts_json(*cad));
+    nlohmann::json j = nlohmann::json::parse(mesh_report_json(report.mesh));
+    if (report.cad) j["cad"] = nlohmann::json::parse(cad_facts_json(*report.cad));
     std::cout << j.dump() << "\n";
   } else {
-    std::cout << opt.file << "\n" << format_mesh_report(report);
-    if (cad) std::cout << format_cad_facts(*cad);
+    std::cout << opt.file << "\n" << format_mesh_report(report.mesh);
+    if (report.cad) std::cout << format_cad_facts(*report.cad);
   }
+}
+
+MeshFileRequest mesh_file_request(const MeshInfoOptions& opt) {
+  MeshFileRequest request;
+  request.file = opt.file;
+  request.scale = opt.scale;
+  if (is_cad_file(opt.file)) {  // the units matter to STEP and IGES files alone
+    try {
+      request.metres_per_unit = metres_per_unit(opt.units);
+    } catch (const Error& e) {
+      throw Error(std::string("--units: ") + e.what());
+    }
+  }
+  request.solid = opt.solid;
+  request.deflection = opt.deflection;
+  request.spacing = opt.spacing;
+  request.resolution = opt.resolution;
+  request.angular_deflection_deg = opt.angular_deflection_deg;
+  return request;
 }
 
 }  // namespace
@@ -63,29 +79,7 @@ void add_mesh_info_command(CLI::App& app) {
                   "Without --spacing: the spacing of a grid of this many points along the solid's longest side")
       ->group(group);
   cmd->add_option("--angular-deflection", opt->angular_deflection_deg, "Angular deflection in degrees")->group(group);
-  cmd->callback([opt] {
-    if (!is_cad_file(opt->file)) {
-      print(*opt, load_mesh(opt->file, opt->scale), std::nullopt);
-      return;
-    }
-    CadImportOptions options;
-    try {
-      options.metres_per_unit = metres_per_unit(opt->units);
-    } catch (const Error& e) {
-      throw Error(std::string("--units: ") + e.what());
-    }
-    options.scale = opt->scale;
-    if (!opt->solid.empty()) options.solid = opt->solid;
-    options.linear_deflection = opt->deflection;
-    options.angular_deflection_deg = opt->angular_deflection_deg;
-    if (opt->spacing) {
-      options.grid.spacing = *opt->spacing;
-    } else {
-      options.grid.resolution = opt->resolution;  // load_cad_mesh checks it
-    }
-    const CadMesh cad = load_cad_mesh(opt->file, options);
-    print(*opt, cad.mesh, cad.facts);
-  });
+  cmd->callback([opt] { print(*opt, inspect_mesh_file(mesh_file_request(*opt))); });
 }
 
 }  // namespace snapfit::cli

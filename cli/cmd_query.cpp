@@ -7,10 +7,8 @@
 
 #include "cli/commands.h"
 #include "cli/parse_options.h"
-#include "core/progress.h"
-#include "engine/query/collision_predicate.h"
-#include "engine/query/query_engine.h"
-#include "pipeline/assembly_pair.h"
+#include "snapfit/assembly.h"
+#include "snapfit/collision.h"
 #include "snapfit/error.h"
 
 namespace snapfit::cli {
@@ -77,7 +75,7 @@ nlohmann::json result_json(const Pose& pose, const QueryResult& r, std::size_t b
       {"batch_mean_ms", r.seconds * 1e3},
       {"batch_poses", batch_poses}};
   if (tails) {
-    // Seed 001's predicate is one-sided: an overlap above its truncation bound proves a
+    // The predicate is one-sided: an overlap above its truncation bound proves a
     // collision; below it the truncated sum cannot tell a touch from a small overlap.
     const CollisionVerdict v = collision_verdict(r, *tails);
     j["collides"] = v.collides ? nlohmann::json(true) : nlohmann::json("unknown");
@@ -105,15 +103,14 @@ void run_query(const QueryOptions& opt) {
   if (poses.empty()) poses.push_back(scene.part2.pose);  // the scene's initial pose
   const Interpolation interpolation = parse_interpolation(opt.interpolation);
 
-  const FftLibrary fft;
-  const ComputeContext ctx = make_compute_context(select_device(device_spec_from(opt.device)));
-  PairOptions options;
-  options.descriptors.progress = pass_progress_bars();
-  const AssemblyPair pair = build_assembly_pair(scene, ctx, fft, options);
-  auto engine = make_query_engine(ctx, pair.spectra, query_variant_for(scene, interpolation));
+  AssemblyOptions options;
+  options.device = opt.device;
+  options.progress = true;
+  const Assembly assembly(scene, options);
+  auto engine = assembly.make_query_engine(assembly.query_variant(interpolation));
   engine->set_modes(opt.modes);
   const std::vector<QueryResult> results = engine->query_batch(poses);
-  const TruncationTails tails = opt.collision ? truncation_tails(pair.spectra) : TruncationTails{};
+  const TruncationTails tails = opt.collision ? truncation_tails(assembly) : TruncationTails{};
   for (std::size_t i = 0; i < poses.size(); ++i)
     std::cout << result_json(poses[i], results[i], poses.size(), opt.collision ? &tails : nullptr).dump() << "\n";
 }

@@ -3,8 +3,7 @@
 #include <iostream>
 
 #include "cli/commands.h"
-#include "pipeline/assembly_pair.h"
-#include "pipeline/scene_summary.h"
+#include "snapfit/inspect.h"
 
 namespace snapfit::cli {
 
@@ -15,8 +14,7 @@ void add_scene_check_command(CLI::App& app) {
   cmd->add_option("scene", *file, "Scene file (JSON, see docs/scenes.md)")->required();
   cmd->callback([file] {
     const Scene scene = load_scene(*file);
-    const AssemblyPair pair = prepare_assembly_pair(scene);
-    print_scene_summary(std::cout, scene, pair.parts, pair.plan);
+    std::cout << scene_summary_text(scene, check_scene(scene));
     std::cout << "scene is valid\n";
   });
 }

@@ -6,13 +6,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "core/progress.h"
-#include "engine/fields/ball_union_error.h"
-#include "engine/runtime/device.h"
-#include "engine/fields/sphere_decomposition.h"
-#include "io/vtp_export.h"
-#include "pipeline/assembly_pair.h"
 #include "snapfit/error.h"
+#include "snapfit/export.h"
+#include "snapfit/spheres.h"
 
 namespace snapfit::cli {
 namespace {
@@ -49,50 +45,53 @@ nlohmann::json decomposition_json(int part, const SphereDecomposition& d, const 
           {"error_seconds", e.seconds}};
 }
 
+void print_level(const SpheresOptions& opt, const Scene& scene, int which, const SpheresAtTolerance& level) {
+  const SphereDecomposition& d = level.decomposition;
+  const BallUnionError& e = level.error;
+  if (opt.json) {
+    std::cout << decomposition_json(which, d, e).dump() << std::endl;
+    return;
+  }
+  std::cout << "part " << which << " at tolerance " << level.tolerance << " " << scene.units << ": " << d.balls.size()
+            << " balls (" << d.sampled_balls << " before reduction) from " << d.inside_nodes << " of " << d.grid_nodes
+            << " grid nodes; volume error " << e.volume_error << " " << scene.units << "^3 (95% [" << e.volume_error_low
+            << ", " << e.volume_error_high << "], " << 100.0 * e.volume_error / e.solid_volume
+            << "% of the solid); Hausdorff <= " << d.epsilon << " (sampled " << e.hausdorff_sampled << "); "
+            << d.seconds << " s" << std::endl;
+}
+
+// One piece per tolerance: the balls' centres with their radius and the tolerance.
+PointPiece ball_piece(const SpheresAtTolerance& level) {
+  PointPiece piece;
+  PointScalars radius{"radius", {}}, tol{"tolerance", {}};
+  for (const Ball& b : level.decomposition.balls) {
+    piece.points.push_back(b.centre);
+    radius.values.push_back(b.radius);
+    tol.values.push_back(level.tolerance);
+  }
+  piece.scalars = {radius, tol};
+  return piece;
+}
+
 void run_spheres(const SpheresOptions& opt) {
   if (opt.part != "1" && opt.part != "2") throw Error("--part: expected 1 or 2 (got '" + opt.part + "')");
   if (opt.order != "sdf" && opt.order != "distance")
     throw Error("--order: expected sdf or distance (got '" + opt.order + "')");
   if (opt.samples == 0) throw Error("--samples: must be at least 1");
   const Scene scene = load_scene(opt.scene);
-  const int which = opt.part == "1" ? 1 : 2;
-  const AssemblyPair pair = prepare_assembly_pair(scene);
-  const Mesh& mesh = pair.part(which).mesh;
-  std::vector<double> tolerances = opt.tolerances;
-  if (tolerances.empty()) tolerances.push_back(pair.grids.spacing);                      // the scene's own resolution
-  for (std::size_t i = 0; i < tolerances.size(); ++i) sphere_grid(mesh, tolerances[i]);  // fail before the work
-  const ComputeContext ctx = make_compute_context(select_device(device_spec_from(opt.device)));
-  std::vector<PointPiece> pieces;
-  for (double tolerance : tolerances) {
-    SphereDecompositionParams params;
-    params.tolerance = tolerance;
-    params.protrusion = opt.protrusion;
-    params.order = opt.order == "sdf" ? BallOrder::skeletal_density : BallOrder::distance;
-    DescriptorOptions options;
-    options.progress = pass_progress_bars();
-    const SphereDecomposition d = decompose_part(ctx, mesh, scene.descriptor, params, options);
-    const BallUnionError e = ball_union_error(ctx, mesh, d.balls, opt.samples);
-    if (opt.json) {
-      std::cout << decomposition_json(which, d, e).dump() << std::endl;
-    } else {
-      std::cout << "part " << which << " at tolerance " << tolerance << " " << scene.units << ": " << d.balls.size()
-                << " balls (" << d.sampled_balls << " before reduction) from " << d.inside_nodes << " of "
-                << d.grid_nodes << " grid nodes; volume error " << e.volume_error << " " << scene.units << "^3 (95% ["
-                << e.volume_error_low << ", " << e.volume_error_high << "], " << 100.0 * e.volume_error / e.solid_volume
-                << "% of the solid); Hausdorff <= " << d.epsilon << " (sampled " << e.hausdorff_sampled << "); "
-                << d.seconds << " s" << std::endl;
-    }
-    PointPiece piece;
-    PointScalars radius{"radius", {}}, tol{"tolerance", {}};
-    for (const Ball& b : d.balls) {
-      piece.points.push_back(b.centre);
-      radius.values.push_back(b.radius);
-      tol.values.push_back(tolerance);
-    }
-    piece.scalars = {radius, tol};
-    pieces.push_back(std::move(piece));
-  }
+  PartSpheresRequest request;
+  request.part = opt.part == "1" ? 1 : 2;
+  request.tolerances = opt.tolerances;
+  request.protrusion = opt.protrusion;
+  request.order = opt.order == "sdf" ? BallOrder::skeletal_density : BallOrder::distance;
+  request.samples = opt.samples;
+  request.device = opt.device;
+  request.progress = true;
+  const PartSpheres spheres = decompose_part_spheres(
+      scene, request, [&](const SpheresAtTolerance& level) { print_level(opt, scene, request.part, level); });
   if (!opt.vtp.empty()) {
+    std::vector<PointPiece> pieces;
+    for (const SpheresAtTolerance& level : spheres.levels) pieces.push_back(ball_piece(level));
     write_points_vtp(opt.vtp, pieces);
     if (!opt.json) std::cout << "wrote " << opt.vtp << " (one piece per tolerance; point data radius, tolerance)\n";
   }

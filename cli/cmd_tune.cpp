@@ -1,5 +1,5 @@
 // `snapfit tune SCENE [--budget MS]`: measures per-query time against m' on the chosen
-// device for the scene's query variant (scheduler/mode_tuning.h), prints the table, saves
+// device for the scene's query variant (include/snapfit/tuning.h), prints the table, saves
 // the tuning file that `snapfit run` reuses, and writes a page with a chart of the sweep.
 #include <iostream>
 #include <memory>
@@ -7,16 +7,14 @@
 
 #include "cli/commands.h"
 #include "cli/parse_options.h"
-#include "core/progress.h"
-#include "engine/runtime/device.h"
-#include "engine/query/query_engine.h"
-#include "pipeline/assembly_pair.h"
 #include "report/chart_spec.h"
 #include "report/haptic_report.h"
 #include "report/web_assets.h"
-#include "scheduler/engine_tuning.h"
-#include "scheduler/loop_devices.h"
+#include "snapfit/assembly.h"
+#include "snapfit/devices.h"
 #include "snapfit/error.h"
+#include "snapfit/progress.h"
+#include "snapfit/tuning.h"
 
 namespace snapfit::cli {
 namespace {
@@ -32,36 +30,36 @@ struct TuneCommandOptions {
 };
 
 void run_tune(const TuneCommandOptions& opt) {
-  const Scene scene = load_scene(opt.scene);
+  Scene scene = load_scene(opt.scene);
   const double budget = opt.budget_ms.value_or(scene.frame_budget_ms);
   if (!(budget > 0)) throw Error("--budget: must be > 0 ms");
   if (!opt.html.empty()) web_asset("chart_page.js");  // a build without the web report fails before measuring
-  const Device device = select_device(device_spec_from(opt.device));
-  std::cout << "device " << describe_device(device.info) << "\n";
-  const FftLibrary fft;
-  const ComputeContext ctx = make_compute_context(device);
-  PairOptions pair_options;
-  pair_options.descriptors.progress = pass_progress_bars();
-  const AssemblyPair pair = build_assembly_pair(scene, ctx, fft, pair_options);
-  const QueryVariant variant = query_variant_for(scene, parse_interpolation(opt.interpolation));
-  auto engine = make_query_engine(ctx, pair.spectra, variant);
+  const DeviceInfo device = find_device(opt.device);
+  std::cout << "device " << describe_device(device) << "\n";
+  scene.frame_budget_ms = budget;  // what auto_tune tunes for
+  AssemblyOptions assembly_options;
+  assembly_options.device = opt.device;
+  assembly_options.progress = true;
+  const Assembly assembly(scene, assembly_options);
+  const QueryVariant variant = assembly.query_variant(parse_interpolation(opt.interpolation));
+  auto engine = assembly.make_query_engine(variant);
   std::cout << "variant " << variant_name(variant) << ", " << engine->max_modes() << " modes available, budget "
             << budget << " ms, margin " << opt.margin * 100 << " %\n";
 
-  const std::vector<Pose> poses = tuning_poses(scene);
-  TuneOptions tune;
+  AutoTuneOptions tune;
+  tune.margin = opt.margin;
+  tune.retune = true;
   tune.repetitions = opt.repetitions;
   const auto bars = pass_progress_bars();  // one bar, finished when the sweep ends
   tune.progress = [bars](std::uint64_t done, std::uint64_t total) { bars("tuning m'", done, total); };
-  const TuningKey key = tuning_key_for(device.info, variant, pair.spectra, budget, opt.margin, scene.loop_rate_hz);
-  const EngineTuning tuned =
-      tune_engine(*engine, key, poses, tune, true, [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; });
-  std::cout << tuning_table(tuned.result) << "saved to " << tuned.path << "\n";
+  tune.note = [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; };
+  const TuningResult tuned = auto_tune(assembly, *engine, tune);
+  std::cout << tuning_table(tuned) << "saved to " << tuned.file << "\n";
   if (!opt.html.empty()) {
     write_chart_page(opt.html, "snapfit tune: " + scene.name,
-                     {"Scene " + scene.source_path + ", device " + device.info.name + ", " + variant_name(variant) +
-                      ", measured " + tuned.result.created},
-                     {tuning_chart(tuned.result, device.info.name)});
+                     {"Scene " + scene.source_path + ", device " + device.name + ", " + variant_name(variant) +
+                      ", measured " + tuned.created},
+                     {tuning_chart(tuned, device.name)});
     std::cout << "chart page " << opt.html << "\n";
   }
 }

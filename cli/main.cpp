@@ -4,7 +4,7 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "engine/runtime/device.h"
+#include "snapfit/devices.h"
 #include "snapfit/error.h"
 
 int main(int argc, char** argv) {

@@ -6,30 +6,10 @@
 #include <cstddef>
 #include <vector>
 
+#include "snapfit/grid.h"
 #include "snapfit/scene.h"
 
 namespace snapfit {
-
-struct GridSpec {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  double spacing = 1.0;
-  Eigen::Vector3i dims = Eigen::Vector3i::Zero();
-
-  std::size_t count() const {
-    return static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(dims.z());
-  }
-  std::size_t index(int i, int j, int k) const {
-    return static_cast<std::size_t>(i) +
-           static_cast<std::size_t>(dims.x()) *
-               (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(k));
-  }
-  Eigen::Vector3d point(int i, int j, int k) const { return origin + spacing * Eigen::Vector3d(i, j, k); }
-  // The point of grid index `id` (the inverse of index()).
-  Eigen::Vector3d point(std::size_t id) const {
-    const std::size_t nx = static_cast<std::size_t>(dims.x()), ny = static_cast<std::size_t>(dims.y());
-    return point(static_cast<int>(id % nx), static_cast<int>(id / nx % ny), static_cast<int>(id / (nx * ny)));
-  }
-};
 
 // The grid that covers `box` grown by `params.padding` on every side, with
 // params.spacing, or with params.resolution points along the longest padded axis.

@@ -17,6 +17,8 @@
 #include <mutex>
 #include <string>
 
+#include "snapfit/progress.h"
+
 namespace snapfit {
 
 // Durations for people: "0.0s" to "59.9s" (tenths), then "1m05s", then "1h02m03s"
@@ -74,10 +76,5 @@ class Progress {
   std::size_t last_width_ = 0;  // terminal: the last line's length, to blank leftovers
   std::string rate_unit_;       // empty: no rate shown
 };
-
-// A callback for work done in named passes that each report (done, total): one
-// progress bar per pass, started when its name first appears and finished when it
-// reaches its total (or when the next pass starts).
-std::function<void(const std::string&, std::uint64_t, std::uint64_t)> pass_progress_bars(std::ostream& out = std::cerr);
 
 }  // namespace snapfit

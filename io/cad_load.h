@@ -18,7 +18,6 @@ namespace snapfit {
 // angle between the normals of neighbouring triangles of one face, and between a
 // triangle and the surface). docs/scenes.md "CAD parts" gives the measurements behind them.
 constexpr double kDefaultDeflectionPerSpacing = 0.025;
-constexpr double kDefaultAngularDeflectionDeg = 30.0;
 
 struct CadImportOptions {
   // The output's length unit (snapfit/scene.h metres_per_unit): the file's own unit is

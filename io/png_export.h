@@ -62,9 +62,4 @@ void write_png(const std::string& path, const SliceImage& image,
 std::vector<unsigned char> png_bytes(const SliceImage& image,
                                      const std::vector<std::pair<std::string, std::string>>& text = {});
 
-// The grid index along `axis` nearest to world coordinate `coordinate`. Throws
-// snapfit::Error when it lies outside the grid ("z=12.5 is outside the grid, which
-// spans z in [0, 10]") or the axis is not 'x', 'y' or 'z'.
-int slice_index_for(const GridSpec& grid, char axis, double coordinate);
-
 }  // namespace snapfit

@@ -7,21 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "snapfit/export.h"
+
 namespace snapfit {
-
-struct PointScalars {
-  std::string name;
-  std::vector<double> values;  // one per point
-};
-
-struct PointPiece {
-  std::vector<Eigen::Vector3d> points;
-  std::vector<PointScalars> scalars;  // the same names in every piece
-};
-
-// Throws snapfit::Error naming `path` for no pieces, a non-finite coordinate or value,
-// scalars whose count differs from the points', pieces whose scalar names differ, and
-// for I/O failures.
-void write_points_vtp(const std::string& path, const std::vector<PointPiece>& pieces);
 
 }  // namespace snapfit

@@ -6,12 +6,9 @@
 #include <vector>
 
 #include "mesh/mesh.h"
+#include "snapfit/fields.h"
 
 namespace snapfit {
-
-struct OutlineSegment {
-  Eigen::Vector2d a, b;  // (u, v) in the mesh's units
-};
 
 // One segment for every triangle that crosses the plane {p[axis] = value}. A vertex on
 // the plane counts as above it, so a crossing is found once and a triangle that only

@@ -24,6 +24,7 @@
 #include "pipeline/compute_plan.h"
 #include "pipeline/part_fields.h"
 #include "pipeline/prepare_parts.h"
+#include "snapfit/collision.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
 
@@ -68,10 +69,6 @@ void compute_assembly_spectra(AssemblyPair& pair, const ComputeContext& ctx, con
 // All three stages.
 AssemblyPair build_assembly_pair(const Scene& scene, const ComputeContext& ctx, const FftLibrary& fft,
                                  const PairOptions& options = {});
-
-// The scene with the indicator descriptor (seed 000 eq. 1): its query energy is the overlap
-// volume of the two parts, what the collision predicate (engine/query/collision_predicate.h) thresholds.
-Scene indicator_scene(const Scene& scene);
 
 // The query variant a scene needs: its outputs and motion, with the given interpolation.
 QueryVariant query_variant_for(const Scene& scene, Interpolation interpolation = Interpolation::tricubic);

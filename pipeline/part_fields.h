@@ -8,11 +8,6 @@
 
 namespace snapfit {
 
-struct PartFieldsResult {
-  DescriptorFields fields;
-  bool from_cache = false;
-};
-
 // `note` receives cache messages (stale or corrupt entries, write failures).
 PartFieldsResult part_fields(const ComputeContext& ctx, const Mesh& mesh, const GridSpec& grid,
                              const DescriptorParams& params, const DescriptorOptions& options, bool use_cache,

@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <sstream>
+
+#include "pipeline/scene_check.h"
 
 namespace snapfit {
 namespace {
 
-void print_part(std::ostream& out, const char* role, const PartSpec& spec, const PreparedPart& part,
+void print_part(std::ostream& out, const char* role, const PartSpec& spec, const PartCheck& part,
                 const std::string& units) {
-  const MeshReport& r = part.report;
+  const MeshReport& r = part.mesh;
   out << role << " '" << spec.name
       << "': " << (spec.mesh_path ? *spec.mesh_path : "procedural " + spec.procedural->type) << "\n"
       << "    " << r.triangle_count << " triangles, box [" << r.bbox_min.transpose() << "] .. ["
@@ -33,16 +36,20 @@ void print_part(std::ostream& out, const char* role, const PartSpec& spec, const
 }  // namespace
 
 void print_scene_summary(std::ostream& out, const Scene& scene, const PreparedParts& parts, const ComputePlan& plan) {
+  print_scene_summary(out, scene, scene_check_of(parts, plan));
+}
+
+void print_scene_summary(std::ostream& out, const Scene& scene, const SceneCheck& check) {
   out << "scene '" << scene.name << "' (" << scene.source_path << "), units " << scene.units << "\n";
-  print_part(out, "part 1 (fixed)", scene.part1, parts.part1, scene.units);
-  print_part(out, "part 2 (moving)", scene.part2, parts.part2, scene.units);
+  print_part(out, "part 1 (fixed)", scene.part1, check.part1, scene.units);
+  print_part(out, "part 2 (moving)", scene.part2, check.part2, scene.units);
   out << "motion " << (scene.motion == Motion::six_dof ? "6-DOF" : "translation only") << ", frame budget "
       << scene.frame_budget_ms << " ms at " << scene.loop_rate_hz << " Hz, " << scene.trajectory.keyframes.size()
       << " trajectory keyframes";
   if (!scene.trajectory.keyframes.empty()) out << " over " << scene.trajectory.keyframes.back().time_s << " s";
   out << "\nplan:\n";
-  for (const std::string& line : plan.lines) out << "  - " << line << "\n";
-  for (const std::string& warning : plan.warnings) out << "warning: " << warning << "\n";
+  for (const std::string& line : check.plan) out << "  - " << line << "\n";
+  for (const std::string& warning : check.warnings) out << "warning: " << warning << "\n";
 }
 
 void print_fields_summary(std::ostream& out, const PartFieldsResult& result) {
@@ -66,6 +73,18 @@ void print_fields_summary(std::ostream& out, const PartFieldsResult& result) {
         << *std::max_element(f.density_bound.begin(), f.density_bound.end()) << "\n";
   }
   out.precision(precision);
+}
+
+std::string scene_summary_text(const Scene& scene, const SceneCheck& check) {
+  std::ostringstream out;
+  print_scene_summary(out, scene, check);
+  return out.str();
+}
+
+std::string fields_summary_text(const PartFieldsResult& result) {
+  std::ostringstream out;
+  print_fields_summary(out, result);
+  return out.str();
 }
 
 }  // namespace snapfit

@@ -5,10 +5,12 @@
 #include "pipeline/compute_plan.h"
 #include "pipeline/part_fields.h"
 #include "pipeline/prepare_parts.h"
+#include "snapfit/inspect.h"
 #include "snapfit/scene.h"
 
 namespace snapfit {
 
+void print_scene_summary(std::ostream& out, const Scene& scene, const SceneCheck& check);
 void print_scene_summary(std::ostream& out, const Scene& scene, const PreparedParts& parts, const ComputePlan& plan);
 
 // Where a part's fields came from, how long they took, and their error bounds.

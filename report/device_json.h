@@ -3,7 +3,7 @@
 // and the benchmarks' reports carry.
 #include <nlohmann/json.hpp>
 
-#include "engine/runtime/device.h"
+#include "snapfit/devices.h"
 
 namespace snapfit {
 

@@ -236,4 +236,16 @@ SliceFigure render_slice_figure(const GridSpec& grid, const float* values, char 
   return fig;
 }
 
+SliceFigure write_slice_figure(const std::string& path, const GridSpec& grid, const float* values, char axis, int index,
+                               ColorMap map, const SliceFigureOptions& options, bool range_text) {
+  const SliceFigure figure = render_slice_figure(grid, values, axis, index, map, options);
+  std::vector<std::pair<std::string, std::string>> text = {{"Title", "snapfit " + options.title}};
+  if (range_text) {
+    text.emplace_back("value_min", std::to_string(figure.image.value_min));
+    text.emplace_back("value_max", std::to_string(figure.image.value_max));
+  }
+  write_png(path, figure.image, text);
+  return figure;
+}
+
 }  // namespace snapfit

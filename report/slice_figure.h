@@ -45,4 +45,10 @@ std::string figure_font_problem();
 SliceFigure render_slice_figure(const GridSpec& grid, const float* values, char axis, int index, ColorMap map,
                                 const SliceFigureOptions& options);
 
+// render_slice_figure written as a PNG at `path` with the text "Title" = "snapfit " + the
+// title, and with `range_text` the colour bar's ends as "value_min" and "value_max".
+// Throws snapfit::Error as render_slice_figure and write_png do.
+SliceFigure write_slice_figure(const std::string& path, const GridSpec& grid, const float* values, char axis, int index,
+                               ColorMap map, const SliceFigureOptions& options, bool range_text = false);
+
 }  // namespace snapfit

@@ -16,6 +16,7 @@
 #include "engine/runtime/compute_context.h"
 #include "engine/spectra/spectra.h"
 #include "scheduler/mode_tuning.h"
+#include "snapfit/accuracy.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
 
@@ -39,46 +40,6 @@ struct AccuracyOptions {
   std::vector<double> turning_deg_per_s;
   std::function<void(const std::string& stage, std::uint64_t done, std::uint64_t total)> progress;
   std::function<void(const std::string&)> note;
-};
-
-// The error of a strategy while part 2 turns (the exact product with background updates
-// lags the rotation): relative errors as above at the end of 0.2 s of queries at the loop
-// rate along a rotation at `deg_per_s`.
-struct TurningAccuracy {
-  double deg_per_s = 0;
-  double energy_error = 0, force_error = 0, torque_error = 0;
-  // At the same final poses with the product made for each (no lag): the turning
-  // ends elsewhere at each speed, so this is what each speed's errors compare with.
-  double at_rest_energy_error = 0, at_rest_force_error = 0, at_rest_torque_error = 0;
-};
-
-struct StrategyAccuracy {
-  std::string name;  // variant_name(): "6dof energy force torque tricubic", ...
-  QueryVariant variant;
-  std::size_t modes = 0;  // m' tuned for the budget
-  bool fits = false;      // the tuner fitted its p99 within the margin, and the frame p99 below is within the budget
-  double frame_ms_p50 = 0, frame_ms_p99 = 0;
-  double energy_error = 0, force_error = 0, torque_error = 0;
-  // The per-query error estimate (QueryResult::error_estimate) against the true error
-  // |x - x_ref| at each pose, per output (0 energy, 1 force, 2 torque): the share of poses
-  // where it is at least the true error, and the median of estimate / true error.
-  double estimate_coverage[3] = {0, 0, 0};
-  double estimate_ratio_median[3] = {0, 0, 0};
-  // exact_product only: the time to make one product at `modes` (how far behind the
-  // current rotation the background product can be); the errors above are with the
-  // product made for each pose's rotation (a part at rest).
-  double product_ms = 0;
-  std::vector<TurningAccuracy> turning;  // exact_product with background updates, when asked for
-};
-
-struct AccuracyReport {
-  std::size_t poses = 0;
-  std::size_t reference_modes = 0;
-  double reference_seconds = 0;
-  std::vector<StrategyAccuracy> strategies;
-  std::size_t best = 0;  // lowest_error_that_fits(strategies)
-  std::size_t loop = 0;  // the strategy snapfit run's loop uses: the best
-  std::string why;       // strategy_reason(strategies, best)
 };
 
 // The loop's variant of `scene` the strategies start from: energy and force, the torque

@@ -16,7 +16,9 @@ TuningResult auto_tune(const Assembly& assembly, QueryEngine& engine, const Auto
   TuneOptions sweep;
   sweep.repetitions = options.repetitions;
   sweep.progress = options.progress;
-  return tune_engine(engine, key, tuning_poses(scene), sweep, options.retune, nullptr).result;
+  EngineTuning tuned = tune_engine(engine, key, tuning_poses(scene), sweep, options.retune, options.note);
+  tuned.result.file = tuned.path;
+  return tuned.result;
 }
 
 }  // namespace snapfit

@@ -16,16 +16,6 @@
 
 namespace snapfit {
 
-struct BallUnionError {
-  double volume_error = 0;                             // |S xor U|, scene units^3
-  double volume_error_low = 0, volume_error_high = 0;  // 95 % Wilson interval
-  double solid_volume = 0;                             // |S| from the mesh (divergence theorem)
-  double sample_box_volume = 0;
-  double hausdorff_sampled = 0;  // lower estimate of d_H(S, U)
-  std::size_t samples = 0, mismatched = 0;
-  double seconds = 0;
-};
-
 // Lists, for each sample point, whether it lies in the union; a uniform bucket grid over
 // the balls keeps it near O(points) for many balls.
 std::vector<char> inside_ball_union(const std::vector<Ball>& balls, const std::vector<Eigen::Vector3d>& points);

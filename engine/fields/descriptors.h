@@ -18,6 +18,7 @@
 #include "engine/runtime/compute_context.h"
 #include "engine/runtime/program_cache.h"
 #include "mesh/mesh.h"
+#include "snapfit/fields.h"
 #include "snapfit/scene.h"
 
 namespace snapfit {
@@ -55,25 +56,6 @@ struct DescriptorOptions {
   std::function<void(const std::string&, std::uint64_t, std::uint64_t)> progress;
 };
 
-struct DescriptorFields {
-  GridSpec grid;
-  DescriptorParams params;
-  std::vector<float> winding;           // w
-  std::vector<float> winding_bound;     // bound on |w error|
-  std::vector<float> signed_distance;   // xi, scene units (empty for the indicator kind)
-  std::vector<float> skeletal_density;  // s (empty for the indicator kind)
-  std::vector<float> density_bound;     // bound on |s error| (empty for the indicator kind)
-  // How w was computed: "sign propagation" (closed mesh: the kernel at one seed per
-  // component, engine/fields/winding_propagation.h) or "full" (the kernel at every point).
-  std::string winding_method = "full";
-  int density_lanes = 0;                       // points per density work item (0: not computed here)
-  std::size_t winding_kernel_points = 0;       // points where the winding kernel ran (not known from the cache)
-  double seconds = 0;                          // wall time of the computation
-  double refine_seconds = 0, bvh_seconds = 0;  // host work on TBB
-  double distance_seconds = 0, winding_seconds = 0, density_seconds = 0;  // kernels (incl. build)
-  std::size_t refined_triangles = 0;
-};
-
 // Computes every field the descriptor kind needs. Throws snapfit::Error for an empty
 // mesh or grid, or a device failure (naming the device).
 DescriptorFields compute_descriptors(const ComputeContext& ctx, const Mesh& mesh, const GridSpec& grid,
@@ -88,10 +70,5 @@ DescriptorFields descriptors_at_points(const ComputeContext& ctx, const Mesh& me
                                        const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin,
                                        double spacing, const DescriptorParams& params,
                                        const DescriptorOptions& options = {});
-
-// The affinity rho = i * lambda * s (docs/design.md): its imaginary part lambda * s, with
-// lambda = lambda_in where w >= 1/2 and lambda_out elsewhere. For the indicator kind,
-// the indicator itself (1 inside, 0 outside), real-valued.
-std::vector<float> affinity_imaginary(const DescriptorFields& fields);
 
 }  // namespace snapfit

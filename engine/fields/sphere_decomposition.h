@@ -18,22 +18,12 @@
 #include <vector>
 
 #include "core/grid.h"
-#include "engine/runtime/compute_context.h"
 #include "engine/fields/descriptors.h"
+#include "engine/runtime/compute_context.h"
 #include "mesh/mesh.h"
+#include "snapfit/spheres.h"
 
 namespace snapfit {
-
-struct Ball {
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  double radius = 0;
-};
-
-// Which field orders the greedy selection.
-enum class BallOrder {
-  skeletal_density,  // seed 001 (B&I): the SDF, ridges on the medial structure
-  distance,          // largest ball first, as Weller & Zachmann's inner sphere packing
-};
 
 struct SphereDecompositionParams {
   // The Hausdorff bound epsilon of Propositions 1-3 (scene units): the grid spacing is
@@ -41,17 +31,6 @@ struct SphereDecompositionParams {
   double tolerance = 1.0;
   double protrusion = 0.25;  // mu of (A.1); seed 001 recommends 0.25-0.30
   BallOrder order = BallOrder::skeletal_density;
-};
-
-struct SphereDecomposition {
-  std::vector<Ball> balls;        // A3
-  std::size_t sampled_balls = 0;  // n1 = n2 = |A1|
-  std::size_t grid_nodes = 0;     // m = |G|
-  std::size_t inside_nodes = 0;   // |X| = |G n S|
-  double spacing = 0;             // of G
-  double epsilon = 0;             // Hausdorff bound (Proposition 3): half a cell's diagonal
-  double field_seconds = 0;       // distance, winding and skeletal density on G (OpenCL)
-  double seconds = 0;             // everything, fields included
 };
 
 // Algorithm 1 on given fields of G (grid order): a node is inside where winding >= 1/2,

@@ -13,15 +13,10 @@
 #include "engine/maps/map_minima.h"
 #include "engine/runtime/program_cache.h"
 #include "engine/spectra/spectra.h"
+#include "snapfit/maps.h"
 #include "snapfit/query.h"
 
 namespace snapfit {
-
-struct TranslationMap {
-  GridSpec grid;              // translations t of part 2 (part 1's frame), regular order
-  std::vector<float> energy;  // E(R, t) = -Re f; NaN where the periodic sum would alias
-  double seconds = 0;
-};
 
 // Seconds of each stage of one map, run one after the other (TranslationMapper::time_stages
 // and time_minima_stages).

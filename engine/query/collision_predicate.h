@@ -14,27 +14,11 @@
 #include <vector>
 
 #include "engine/spectra/spectra.h"
+#include "snapfit/collision.h"
 #include "snapfit/query.h"
 
 namespace snapfit {
 
-// The tails of both spectra along the query engine's mode order.
-struct TruncationTails {
-  std::vector<double> tail1, tail2;  // tail_i[m] = sum over the modes after the first m of |S_i|^2 (size modes + 1)
-  double dw = 0;                     // 1 / (L_x L_y L_z)
-  // B(m'): the bound on |g - g_m'| (scene units^3); 0 at m' = every mode.
-  double bound(std::size_t modes) const;
-};
-
 TruncationTails truncation_tails(const PairSpectra& spectra);
-
-struct CollisionVerdict {
-  bool collides = false;
-  double overlap = 0;  // g_m', the truncated overlap volume (the query's energy)
-  double bound = 0;    // B(m')
-};
-
-// The verdict for a query of an indicator pair (the energy is the overlap volume).
-CollisionVerdict collision_verdict(const QueryResult& result, const TruncationTails& tails);
 
 }  // namespace snapfit

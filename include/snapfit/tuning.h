@@ -37,6 +37,7 @@ struct TuningResult {
   bool fits = false;  // the chosen m' meets the budget with margin
   double budget_ms = 0, margin = 0;
   std::string created;  // UTC date and time of the measurement
+  std::string file;     // the tuning file it was read from or saved to (auto_tune)
   double target_ms() const { return budget_ms * (1.0 - margin); }
 };
 
@@ -45,6 +46,7 @@ struct AutoTuneOptions {
   bool retune = false;            // measure even when the tuning file matches
   std::size_t repetitions = 400;  // timed queries per m' level
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;
+  std::function<void(const std::string&)> note;  // a tuning file that could not be saved
 };
 
 // m' for the assembly's frame budget on its device, for `engine`'s variant, timed at the
