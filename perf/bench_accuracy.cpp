@@ -143,11 +143,7 @@ void measure_strategy(const ComputeContext& ctx, const PairSpectra& s, const Inp
   const std::string scheme_name = exact ? "exact-product" : strategy == 0 ? "trilinear" : "tricubic";
   QueryVariant variant = scene_variant;
   variant.interpolation = scheme;
-  if (exact) {
-    variant.rotation = RotationMethod::exact_product;
-    variant.product_update = ProductUpdate::each_query;
-    variant.product_modes = exact_ladder;
-  }
+  if (exact) variant = bench::exact_reference_variant(variant, exact_ladder);
   auto engine = make_query_engine(ctx, s, variant);
   std::vector<std::size_t> ladder;
   for (std::size_t m = 1024; m <= std::min(exact ? exact_ladder : max_ladder, engine->max_modes()); m *= 2)
@@ -187,11 +183,8 @@ void measure_strategy(const ComputeContext& ctx, const PairSpectra& s, const Inp
 Chart error_chart(const char* name, double Row::*err, const std::vector<Row>& rows,
                   const std::vector<double>& oversamplings, const std::string& device_name, std::size_t tuned_modes,
                   nlohmann::json& front_json) {
-  Chart c;
-  c.title = std::string("Relative ") + name + " error against time per query (" + device_name + ")";
-  c.x_label = "ms per query (p50)";
-  c.y_label = std::string("relative ") + name + " error";
-  c.log_x = c.log_y = true;
+  Chart c = bench::make_chart(std::string("Relative ") + name + " error against time per query (" + device_name + ")",
+                              "ms per query (p50)", std::string("relative ") + name + " error", true, true);
   for (double os : oversamplings)
     for (const char* scheme : {"trilinear", "tricubic", "exact-product"})
       for (const char* precision : {"float", "double"}) {
@@ -283,112 +276,108 @@ std::vector<QueryResult> exact_reference(const ComputeContext& ctx, const PairSp
   return reference;
 }
 
-int main(int argc, char** argv) try {
-  std::string scene_path = "scenes/default.json", out_dir = "results/bench_accuracy";
-  bool quick = false;
-  CLI::App app{
-      "Error against run time of every engine setting, against a reference exact in rotation, and "
-      "`snapfit accuracy`'s summary",
-      "bench_accuracy"};
-  bench::add_quick_and_out(app, quick, out_dir, "oversampling 2 only, 3 poses, m' <= 16384, fewer repeats");
-  app.add_option("--scene", scene_path, "scene (needs a trajectory)");
-  bench::parse(app, argc, argv);
-  const std::string load_start = bench::read_loadavg();
-  const Scene scene = load_scene(scene_path);
-  if (scene.trajectory.keyframes.empty()) throw Error(scene_path + ": needs a trajectory for its poses");
-  const Device device = select_device(device_spec_from(""));
-  std::cout << "device " << describe_device(device.info) << "\n";
-  const FftLibrary fft;
-  const ComputeContext ctx = make_compute_context(device);
-  const AssemblyPair pair = build_assembly_pair(scene, ctx, fft);
-  const QueryVariant scene_variant = query_variant_for(scene, Interpolation::tricubic);
-  const bool torque = scene_variant.torque;
+int main(int argc, char** argv) {
+  return bench::guarded_main("bench_accuracy", [&] {
+    std::string scene_path = "scenes/default.json", out_dir = "results/bench_accuracy";
+    bool quick = false;
+    CLI::App app{
+        "Error against run time of every engine setting, against a reference exact in rotation, and "
+        "`snapfit accuracy`'s summary",
+        "bench_accuracy"};
+    bench::add_quick_and_out(app, quick, out_dir, "oversampling 2 only, 3 poses, m' <= 16384, fewer repeats");
+    app.add_option("--scene", scene_path, "scene (needs a trajectory)");
+    bench::parse(app, argc, argv);
+    const std::string load_start = bench::read_loadavg();
+    const Scene scene = load_scene(scene_path);
+    if (scene.trajectory.keyframes.empty()) throw Error(scene_path + ": needs a trajectory for its poses");
+    const Device device = select_device(device_spec_from(""));
+    std::cout << "device " << describe_device(device.info) << "\n";
+    const FftLibrary fft;
+    const ComputeContext ctx = make_compute_context(device);
+    const AssemblyPair pair = build_assembly_pair(scene, ctx, fft);
+    const QueryVariant scene_variant = query_variant_for(scene, Interpolation::tricubic);
+    const bool torque = scene_variant.torque;
 
-  // Poses: along the trajectory, every 0.5 s (3 of them with --quick), all in the grid.
-  std::vector<Pose> poses;
-  const Trajectory& t = scene.trajectory;
-  for (double s = t.keyframes.front().time_s + 0.5; s <= t.keyframes.back().time_s + 1e-9; s += quick ? 1.5 : 0.5)
-    poses.push_back(trajectory_pose(t, s));
-  const std::vector<double> oversamplings = quick ? std::vector<double>{2.0} : std::vector<double>{1.5, 2.0, 3.0};
-  const std::size_t max_ladder = quick ? 16384 : 262144;
-  const int repeats = quick ? 30 : 200;
+    // Poses: along the trajectory, every 0.5 s (3 of them with --quick), all in the grid.
+    std::vector<Pose> poses;
+    const Trajectory& t = scene.trajectory;
+    for (double s = t.keyframes.front().time_s + 0.5; s <= t.keyframes.back().time_s + 1e-9; s += quick ? 1.5 : 0.5)
+      poses.push_back(trajectory_pose(t, s));
+    const std::vector<double> oversamplings = quick ? std::vector<double>{2.0} : std::vector<double>{1.5, 2.0, 3.0};
+    const std::size_t max_ladder = quick ? 16384 : 262144;
+    const int repeats = quick ? 30 : 200;
 
-  const std::map<double, PairSpectra> spectra = spectra_per_oversampling(pair, ctx, fft, oversamplings);
-  const auto ref_start = std::chrono::steady_clock::now();
-  const std::vector<QueryResult> reference = exact_reference(ctx, pair.spectra, scene_variant, poses);
-  const double ref_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ref_start).count();
-  ReferenceOptions ref_options;
-  ref_options.force = scene.outputs.force;
-  ref_options.torque = torque;
+    const std::map<double, PairSpectra> spectra = spectra_per_oversampling(pair, ctx, fft, oversamplings);
+    const auto ref_start = std::chrono::steady_clock::now();
+    const std::vector<QueryResult> reference = exact_reference(ctx, pair.spectra, scene_variant, poses);
+    const double ref_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ref_start).count();
+    ReferenceOptions ref_options;
+    ref_options.force = scene.outputs.force;
+    ref_options.torque = torque;
 
-  // The auto-tuner's point for the scene's budget (tricubic, oversampling 2, float).
-  auto tuned_engine = make_query_engine(ctx, pair.spectra, scene_variant);
-  const TuningKey key =
-      tuning_key_for(device.info, scene_variant, pair.spectra, scene.frame_budget_ms, 0.25, scene.loop_rate_hz);
-  TuneOptions tune;
-  if (quick) tune.repetitions = 100;
-  const EngineTuning tuned = tune_engine(*tuned_engine, key, sample_trajectory(t, 100.0), tune, false, nullptr);
-  std::cout << "auto-tuner: m' = " << tuned.result.chosen_modes << (tuned.from_file ? " (tuning file)" : " (measured)")
-            << "\n";
+    // The auto-tuner's point for the scene's budget (tricubic, oversampling 2, float).
+    auto tuned_engine = make_query_engine(ctx, pair.spectra, scene_variant);
+    const TuningKey key =
+        tuning_key_for(device.info, scene_variant, pair.spectra, scene.frame_budget_ms, 0.25, scene.loop_rate_hz);
+    TuneOptions tune;
+    if (quick) tune.repetitions = 100;
+    const EngineTuning tuned = tune_engine(*tuned_engine, key, sample_trajectory(t, 100.0), tune, false, nullptr);
+    std::cout << "auto-tuner: m' = " << tuned.result.chosen_modes
+              << (tuned.from_file ? " (tuning file)" : " (measured)") << "\n";
 
-  std::vector<Row> rows;
-  nlohmann::json flagged_settings = nlohmann::json::array();
-  const Inputs in{poses, reference, ref_options, repeats};
-  for (double os : oversamplings)
-    for (int strategy = 0; strategy < 3; ++strategy)
-      measure_strategy(ctx, spectra.at(os), in, scene_variant, os, strategy, max_ladder, tuned.result.chosen_modes,
-                       rows, flagged_settings);
+    std::vector<Row> rows;
+    nlohmann::json flagged_settings = nlohmann::json::array();
+    const Inputs in{poses, reference, ref_options, repeats};
+    for (double os : oversamplings)
+      for (int strategy = 0; strategy < 3; ++strategy)
+        measure_strategy(ctx, spectra.at(os), in, scene_variant, os, strategy, max_ladder, tuned.result.chosen_modes,
+                         rows, flagged_settings);
 
-  fs::create_directories(out_dir);
-  std::ostringstream csv;
-  csv << "oversampling,interpolation,precision,modes,ms_p50,err_energy,err_force,err_torque\n";
-  nlohmann::json jrows = nlohmann::json::array();
-  for (const Row& r : rows) {
-    csv << r.oversampling << ',' << r.interpolation << ',' << r.precision << ',' << r.modes << ',' << r.ms << ','
-        << r.err_energy << ',' << r.err_force << ',' << r.err_torque << '\n';
-    jrows.push_back({{"oversampling", r.oversampling},
-                     {"interpolation", r.interpolation},
-                     {"precision", r.precision},
-                     {"modes", r.modes},
-                     {"ms_p50", r.ms},
-                     {"err_energy", r.err_energy},
-                     {"err_force", r.err_force},
-                     {"err_torque", r.err_torque}});
-  }
-  std::ofstream(fs::path(out_dir) / "accuracy.csv") << csv.str();
+    fs::create_directories(out_dir);
+    std::ostringstream csv;
+    csv << "oversampling,interpolation,precision,modes,ms_p50,err_energy,err_force,err_torque\n";
+    nlohmann::json jrows = nlohmann::json::array();
+    for (const Row& r : rows) {
+      csv << r.oversampling << ',' << r.interpolation << ',' << r.precision << ',' << r.modes << ',' << r.ms << ','
+          << r.err_energy << ',' << r.err_force << ',' << r.err_torque << '\n';
+      jrows.push_back({{"oversampling", r.oversampling},
+                       {"interpolation", r.interpolation},
+                       {"precision", r.precision},
+                       {"modes", r.modes},
+                       {"ms_p50", r.ms},
+                       {"err_energy", r.err_energy},
+                       {"err_force", r.err_force},
+                       {"err_torque", r.err_torque}});
+    }
+    std::ofstream(fs::path(out_dir) / "accuracy.csv") << csv.str();
 
-  const std::array<std::pair<const char*, double Row::*>, 3> quantities = {
-      {{"energy", &Row::err_energy}, {"force", &Row::err_force}, {"torque", &Row::err_torque}}};
-  nlohmann::json fronts;
-  std::vector<Chart> charts;
-  for (const auto& [name, err] : quantities) {
-    if (std::string(name) == "torque" && !torque) continue;
-    charts.push_back(
-        error_chart(name, err, rows, oversamplings, device.info.name, tuned.result.chosen_modes, fronts[name]));
-  }
-  const nlohmann::json budget = at_budget(ctx, scene, pair.spectra, device.info.name, quick);
-  const nlohmann::json report = {{"command", bench::command_line(argc, argv)},
-                                 {"date", bench::now_iso()},
-                                 {"device", device.info.name},
-                                 {"scene", scene_path},
-                                 {"poses", poses.size()},
-                                 {"reference",
-                                  {{"method", "exact-rotation product, every mode, made for each pose's rotation"},
-                                   {"oversampling", 2.0},
-                                   {"modes", reference.front().modes},
-                                   {"seconds_total", ref_seconds}}},
-                                 {"at_budget", budget},
-                                 {"tuned_modes", tuned.result.chosen_modes},
-                                 {"rows", jrows},
-                                 {"outside_alias_free_box", flagged_settings},
-                                 {"pareto", fronts},
-                                 {"load_average", {{"start", load_start}, {"end", bench::read_loadavg()}}}};
-  std::ofstream(fs::path(out_dir) / "accuracy.json") << report.dump(2) << "\n";
-  const std::string page = bench::write_charts(out_dir, "bench_accuracy: error against time per query",
-                                               bench::command_line(argc, argv), charts);
-  std::cout << "wrote " << out_dir << "/accuracy.csv, accuracy.json and " << page << "\n";
-  return 0;
-} catch (const std::exception& e) {
-  std::cerr << "bench_accuracy: error: " << e.what() << "\n";
-  return 1;
+    const std::array<std::pair<const char*, double Row::*>, 3> quantities = {
+        {{"energy", &Row::err_energy}, {"force", &Row::err_force}, {"torque", &Row::err_torque}}};
+    nlohmann::json fronts;
+    std::vector<Chart> charts;
+    for (const auto& [name, err] : quantities) {
+      if (std::string(name) == "torque" && !torque) continue;
+      charts.push_back(
+          error_chart(name, err, rows, oversamplings, device.info.name, tuned.result.chosen_modes, fronts[name]));
+    }
+    const nlohmann::json budget = at_budget(ctx, scene, pair.spectra, device.info.name, quick);
+    nlohmann::json report = bench::run_record(argc, argv, device.info.name, load_start);
+    report.update({{"scene", scene_path},
+                   {"poses", poses.size()},
+                   {"reference",
+                    {{"method", "exact-rotation product, every mode, made for each pose's rotation"},
+                     {"oversampling", 2.0},
+                     {"modes", reference.front().modes},
+                     {"seconds_total", ref_seconds}}},
+                   {"at_budget", budget},
+                   {"tuned_modes", tuned.result.chosen_modes},
+                   {"rows", jrows},
+                   {"outside_alias_free_box", flagged_settings},
+                   {"pareto", fronts}});
+    std::ofstream(fs::path(out_dir) / "accuracy.json") << report.dump(2) << "\n";
+    const std::string page = bench::write_charts(out_dir, "bench_accuracy: error against time per query",
+                                                 bench::command_line(argc, argv), charts);
+    std::cout << "wrote " << out_dir << "/accuracy.csv, accuracy.json and " << page << "\n";
+    return 0;
+  });
 }

@@ -529,11 +529,9 @@ nlohmann::json summarise(const Summary& s, std::ofstream& scsv, std::ostringstre
 
 Chart depth_chart(const std::string& what, const std::string& unit, double depth_clearance,
                   const std::map<std::string, std::vector<std::pair<double, double>>>& data) {
-  Chart c;
-  c.title = what + " sent to the user against insertion depth, trial 0 at clearance " +
-            bench::fixed(depth_clearance, 2) + " mm (depth 0: the peg's tip at the hole's entry)";
-  c.x_label = "depth (mm)";
-  c.y_label = what + " (" + unit + ")";
+  Chart c = bench::make_chart(what + " sent to the user against insertion depth, trial 0 at clearance " +
+                                  bench::fixed(depth_clearance, 2) + " mm (depth 0: the peg's tip at the hole's entry)",
+                              "depth (mm)", what + " (" + unit + ")");
   for (const auto& [name, points] : data) {
     Series s;
     s.label = name;
@@ -606,26 +604,20 @@ int main(int argc, char** argv) {
               << " s; load average " << load_start << " -> " << load_end << "\n";
     std::ofstream(fs::path(o.out_dir) / "summary.md") << md.str();
 
-    Chart success;
-    success.title = "Imprecise-user insertions of the peg: success rate against clearance (" +
-                    std::to_string(o.trials) + " trials per point; clearance 0 drawn at 0.01 mm)";
-    success.x_label = "clearance (mm)";
-    success.y_label = "success (%)";
-    success.log_x = true;
+    Chart success = bench::make_chart("Imprecise-user insertions of the peg: success rate against clearance (" +
+                                          std::to_string(o.trials) + " trials per point; clearance 0 drawn at 0.01 mm)",
+                                      "clearance (mm)", "success (%)", true);
     for (auto& [name, series] : success_series) success.series.push_back(series);
     success.y_min = 0, success.y_max = 100;
     const std::vector<Chart> charts = {success, depth_chart("|force|", "N", out.depth_clearance, out.force_depth),
                                        depth_chart("|torque|", "N m", out.depth_clearance, out.torque_depth)};
-    const nlohmann::json report = {{"command", bench::command_line(argc, argv)},
-                                   {"date", bench::now_iso()},
-                                   {"device", device_name},
-                                   {"trials", o.trials},
-                                   {"seed", o.seed},
-                                   {"modes", o.modes},
-                                   {"penetration_stride", o.stride},
-                                   {"seconds", seconds},
-                                   {"load_average", {{"start", load_start}, {"end", load_end}}},
-                                   {"cells", cells_json}};
+    nlohmann::json report = bench::run_record(argc, argv, device_name, load_start);
+    report.update({{"trials", o.trials},
+                   {"seed", o.seed},
+                   {"modes", o.modes},
+                   {"penetration_stride", o.stride},
+                   {"seconds", seconds},
+                   {"cells", cells_json}});
     std::ofstream(fs::path(o.out_dir) / "summary.json") << report.dump(2) << "\n";
     const std::string page = bench::write_charts(o.out_dir, "bench_assembly: imprecise-user insertions",
                                                  bench::command_line(argc, argv), charts);

@@ -33,20 +33,18 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "core/progress.h"
 #include "engine/query/collision_predicate.h"
-#include "engine/runtime/compute_context.h"
-#include "engine/runtime/device.h"
-#include "engine/spectra/fft3d.h"
 #include "engine/query/query_engine.h"
+#include "engine/runtime/device.h"
 #include "mesh/mesh_distance.h"
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
+#include "perf/bench_poses.h"
 #include "perf/fcl_peer.h"
 #include "pipeline/assembly_pair.h"
 #include "snapfit/error.h"
@@ -60,9 +58,8 @@ using namespace snapfit;
 using bench::fixed;
 using bench::pad;
 using bench::padr;
-using Clock = std::chrono::steady_clock;
-
 using bench::percentile;
+using Clock = std::chrono::steady_clock;
 
 // The deepest vertex of `a` (placed by pose_a) inside `b_index` (b at the identity): >= 0.
 double deepest_vertex(const Mesh& a, const Pose& pose_a, const MeshDistanceIndex& b_index) {
@@ -149,10 +146,8 @@ std::vector<Pose> scene_poses(const Scene& scene, QueryEngine& engine, std::size
   if (!rotates)  // part 2's orientation is in its mesh (pipeline/assembly_pair.h)
     for (Pose& p : candidates) p.rotation = Eigen::Quaterniond::Identity();
   engine.set_modes(kModes.front());
-  std::vector<Pose> poses;
-  const std::vector<QueryResult> first = engine.query_batch(candidates);
-  for (std::size_t i = 0; i < candidates.size(); ++i)
-    if (first[i].flags == query_ok) poses.push_back(candidates[i]);
+  std::size_t rejected = 0;
+  const std::vector<Pose> poses = bench::usable_poses(engine, candidates, rejected);
   std::cout << "  FFT grid " << pair.spectra.dims[0] << "x" << pair.spectra.dims[1] << "x" << pair.spectra.dims[2]
             << ", h " << h << "; poses " << poses.size() << " of " << candidates.size() << " inside the padded box\n";
   return poses;
@@ -296,16 +291,10 @@ void write_results(const std::string& out, const std::vector<Row>& rows, const s
 }
 
 std::vector<Chart> charts(const std::vector<Row>& totals) {
-  Chart agreement;
-  agreement.title = "Collision verdicts against fcl::collide, all scenes";
-  agreement.x_label = "m' (retained modes)";
-  agreement.y_label = "rate";
-  agreement.log_x = true;
-  Chart timing;
-  timing.title = "Energy-only query time per pose (slowest scene)";
-  timing.x_label = "m' (retained modes)";
-  timing.y_label = "microseconds";
-  timing.log_x = true;
+  Chart agreement =
+      bench::make_chart("Collision verdicts against fcl::collide, all scenes", "m' (retained modes)", "rate", true);
+  Chart timing =
+      bench::make_chart("Energy-only query time per pose (slowest scene)", "m' (retained modes)", "microseconds", true);
   timing.hlines.push_back({1000.0, "1 ms"});
   Series tp50{"median", {}, {}, Series::Style::line_points, ""}, tp99{"p99", {}, {}, Series::Style::line_points, ""};
   for (const std::string pred : {"bound", "estimate", "zero"}) {
@@ -329,9 +318,8 @@ std::vector<Chart> charts(const std::vector<Row>& totals) {
 
 int run(int argc, char** argv) {
   const Options o = parse_options(argc, argv);
-  const std::string load_start = bench::read_loadavg();
-  std::cout << "bench_collision: " << bench::command_line(argc, argv) << "\n  date " << bench::now_iso()
-            << ", load average at start: " << load_start << "\n";
+  const bench::RunSpan span;
+  span.announce("bench_collision", bench::command_line(argc, argv));
 
   const FftLibrary fft;
   const ComputeContext ctx = make_compute_context(select_device(device_spec_from(o.device)));
@@ -368,7 +356,7 @@ int run(int argc, char** argv) {
     measure_modes(file, *engine, tails, h, poses, truth, poses_csv, rows);
   }
   const std::vector<Row> totals = totals_of(rows);
-  nlohmann::json record = bench::run_record(argc, argv, describe_device(ctx.device.info), load_start);
+  nlohmann::json record = bench::run_record(argc, argv, describe_device(ctx.device.info), span.load_start);
   record["quick"] = o.quick;
   write_results(o.out, rows, totals, record);
   const std::string page = bench::write_charts(o.out, "bench_collision: seed 001's collision predicate against FCL",

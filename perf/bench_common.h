@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +15,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <sys/resource.h>
+#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -154,9 +155,36 @@ inline std::string padr(const std::string& s, std::size_t w) {
 inline double percentile(const std::vector<double>& v, double q) {
   return v.empty() ? std::numeric_limits<double>::quiet_NaN() : quantile(v, q);
 }
+inline double median(const std::vector<double>& v) { return percentile(v, 0.5); }
 
 // A finite number as JSON, anything else as null (JSON has no NaN or Inf).
 inline nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// User + system CPU seconds of this process, all its threads (PoCL's workers included).
+inline double process_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_utime.tv_usec * 1e-6 + u.ru_stime.tv_sec + u.ru_stime.tv_usec * 1e-6;
+}
+
+// `j` indented by `indent` into `path`; throws snapfit::Error when it cannot be written.
+inline void write_json(const std::filesystem::path& path, const nlohmann::json& j, int indent = 2) {
+  std::ofstream f(path);
+  f << j.dump(indent) << "\n";
+  if (!f) throw Error(path.string() + ": cannot write");
+}
+
+// A chart with its title, axis labels and log axes; series, markers and lines come after.
+inline Chart make_chart(const std::string& title, const std::string& x_label, const std::string& y_label,
+                        bool log_x = false, bool log_y = false) {
+  Chart c;
+  c.title = title;
+  c.x_label = x_label;
+  c.y_label = y_label;
+  c.log_x = log_x;
+  c.log_y = log_y;
+  return c;
+}
 
 // The device's record in a report: `snapfit devices --json`'s fields (report/device_json.h)
 // and two more the benchmarks report: driver (as driver_version) and platform_version.
@@ -166,6 +194,43 @@ inline nlohmann::json device_record(const DeviceInfo& info) {
   j["platform_version"] = info.platform_version;
   return j;
 }
+
+// A run from construction to stop(): its date, the load average and the cores other
+// processes kept busy, for the console and the report's header.
+struct RunSpan {
+  std::string date = now_iso(), load_start = read_loadavg(), load_end;
+  CpuSample start = cpu_sample();
+  double total_s = 0, others_run = 0;
+
+  // "NAME: COMMAND", then the date and the load average at the start.
+  void announce(const std::string& name, const std::string& command) const {
+    std::cout << name << ": " << command << "\n  date " << date << ", load average at start: " << load_start << "\n";
+  }
+  void stop() {
+    const CpuSample end = cpu_sample();
+    load_end = read_loadavg();
+    others_run = other_cores(start, end);
+    total_s = std::chrono::duration<double>(end.at - start.at).count();
+  }
+  // "\nload average at end: E (start: S), total T s; ", before the benchmark's own summary.
+  std::string end_text() const {
+    return "\nload average at end: " + load_end + " (start: " + load_start + "), total " + fixed(total_s, 0) + " s; ";
+  }
+  // benchmark, command_line, date, quick, total_seconds, loadavg_start, loadavg_end, nproc
+  // and the device's record (device_record above).
+  nlohmann::json header(const std::string& name, const std::string& command, bool quick,
+                        const DeviceInfo& device) const {
+    return {{"benchmark", name},
+            {"command_line", command},
+            {"date", date},
+            {"quick", quick},
+            {"total_seconds", total_s},
+            {"loadavg_start", load_start},
+            {"loadavg_end", load_end},
+            {"nproc", std::thread::hardware_concurrency()},
+            {"device", device_record(device)}};
+  }
+};
 
 // The variant of the exact reference: every one of `modes` modes of the exact-rotation
 // product, made for each pose's own rotation (scheduler/accuracy.h); translation-only

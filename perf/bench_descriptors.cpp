@@ -18,8 +18,7 @@
 // --only takes a comma-separated list of those names (default: all). --quick runs
 // small sizes only (well under a minute). Output: tables on stdout, DIR/descriptors.csv
 // and DIR/descriptors.json (default DIR results/bench_descriptors), and DIR/charts.html
-// with log-log charts of time against m and against n (--plots-only redraws it from an
-// existing DIR/descriptors.json without measuring).
+// with log-log charts of time against m and against n.
 //
 // Grids: the part's box grown by PADDING on every side (pipeline/part_fields.h part_grid)
 // at the spacing that gives the wanted number of points, then shifted by less than half
@@ -33,8 +32,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -45,13 +42,11 @@
 #include <set>
 #include <sstream>
 #include <string>
-#include <sys/resource.h>
 #include <thread>
 #include <vector>
 
 #include "core/grid.h"
 #include "core/progress.h"
-#include "engine/runtime/compute_context.h"
 #include "engine/fields/descriptors.h"
 #include "engine/runtime/device.h"
 #include "mesh/mesh.h"
@@ -76,14 +71,10 @@ constexpr double kPadding = 3.0;  // mm on every side of the part's box
 
 struct Args {
   bool quick = false;
-  bool plots_only = false;
   std::string device;
   std::string out = "results/bench_descriptors";
   std::set<std::string> only;
   std::string command_line;
-  int headline_side = 0;          // 0: 128 (24 with --quick)
-  double headline_triangles = 0;  // 0: 2e5 (1e4 with --quick)
-  int density_lanes = 0;          // DescriptorOptions::density_lanes (0: the device's default)
 };
 
 const std::set<std::string> kCases = {"m_sweep", "n_sweep", "brute", "headline", "tolerance"};
@@ -101,14 +92,6 @@ Args parse_args(int argc, char** argv) {
   app.add_option("--only", only, "comma-separated subset of m_sweep,n_sweep,brute,headline,tolerance")
       ->delimiter(',')
       ->check(CLI::IsMember(kCases));
-  app.add_flag("--plots-only", a.plots_only, "redraw the charts from DIR/descriptors.json, measure nothing");
-  app.add_option("--headline-side", a.headline_side, "headline grid of about S^3 points (0: 128, --quick 24)")
-      ->check(CLI::Range(2, std::numeric_limits<int>::max()));
-  app.add_option("--headline-triangles", a.headline_triangles, "headline triangle target (0: 2e5, --quick 1e4)")
-      ->check(CLI::Range(100.0, std::numeric_limits<double>::max()));
-  app.add_option("--density-lanes", a.density_lanes,
-                 "grid points per density work item, 1, 4, 8 or 16 (0: 8 on CPU devices, 1 elsewhere)")
-      ->check(CLI::IsMember({1, 4, 8, 16}));
   snapfit::bench::parse(app, argc, argv);
   a.only.insert(only.begin(), only.end());
   return a;
@@ -225,14 +208,8 @@ std::string dims_string(const GridSpec& g) {
 
 // ---------------------------------------------------------------- measurements
 
-// User + system CPU seconds of this process, PoCL's worker threads included.
-double process_cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_utime.tv_sec + u.ru_utime.tv_usec * 1e-6 + u.ru_stime.tv_sec + u.ru_stime.tv_usec * 1e-6;
-}
-
-double load_average() { return snapfit::bench::load1(); }
+using snapfit::bench::load1;
+using snapfit::bench::process_cpu_seconds;
 
 struct Row {
   std::string case_name;
@@ -260,13 +237,12 @@ struct Measured {
 
 Measured measure(const snapfit::ComputeContext& ctx, const std::string& case_name, const std::string& m_label,
                  const Mesh& mesh, int segments, const Grid& grid, double tolerance, double sigma, bool brute,
-                 int lanes, bool progress, bool quiet_repeat = false) {
+                 bool progress, bool quiet_repeat = false) {
   DescriptorParams params;
   params.tolerance = tolerance;
   params.sigma = sigma;
   DescriptorOptions options;
   options.brute_force_density = brute;
-  options.density_lanes = lanes;
   if (progress) options.progress = snapfit::pass_progress_bars(std::cerr);
 
   // Kernels are compiled with the BVH depth in their flags (STACK_SIZE), which depends on
@@ -280,7 +256,7 @@ Measured measure(const snapfit::ComputeContext& ctx, const std::string& case_nam
     snapfit::compute_descriptors(ctx, mesh, tiny, params, warm);
   }
   Measured best;
-  best.row.load_before = load_average();
+  best.row.load_before = load1();
   double spent = 0;
   int runs = 0;
   // Short cases: up to 3 runs or about 1 s, keeping the fastest.
@@ -295,7 +271,7 @@ Measured measure(const snapfit::ComputeContext& ctx, const std::string& case_nam
   }
   const DescriptorFields& f = best.fields;
   Row& r = best.row;
-  r.load_after = load_average();
+  r.load_after = load1();
   r.runs = runs;
   r.case_name = case_name;
   r.m_label = m_label;
@@ -492,8 +468,6 @@ void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) 
   if (!f) throw snapfit::Error(path.string() + ": cannot write");
 }
 
-using snapfit::bench::now_iso;
-
 // ---------------------------------------------------------------- charts
 
 // Log-log charts of the m sweep and the n sweep from the JSON rows, on DIR/charts.html.
@@ -510,11 +484,7 @@ std::string write_plots(const std::filesystem::path& dir, const nlohmann::json& 
                                     {"refine_s", "refine + BVH (host)"}};
   auto chart_for = [&](const std::string& case_name, const std::string& x_key, const std::string& title,
                        const std::string& x_label) {
-    snapfit::Chart c;
-    c.title = title;
-    c.x_label = x_label;
-    c.y_label = "seconds";
-    c.log_x = c.log_y = true;
+    snapfit::Chart c = snapfit::bench::make_chart(title, x_label, "seconds", true, true);
     for (const Pass& p : passes) {
       snapfit::Series s;
       s.label = p.label;
@@ -578,7 +548,7 @@ void m_sweep(Cases& c, std::vector<Row>& rows) {
     const Grid g = grid_for(mesh, side);
     std::cerr << "m_sweep: " << label(side) << " (" << dims_string(g.spec) << "), n " << mesh.triangles.size() << "\n";
     m_rows.push_back(measure(c.ctx, "m_sweep", label(side), mesh, seg, g, kDefaultTolerance, kSigma, false,
-                             c.args.density_lanes, long_case(c.args, g.spec.count(), mesh.triangles.size()))
+                             long_case(c.args, g.spec.count(), mesh.triangles.size()))
                          .row);
   }
   print_rows("a. time against grid points m (n = " + std::to_string(mesh.triangles.size()) + " triangles, tolerance " +
@@ -599,7 +569,7 @@ void n_sweep(Cases& c, std::vector<Row>& rows) {
     const Grid g = grid_for(mesh, side);
     std::cerr << "n_sweep: n " << mesh.triangles.size() << " (segments " << seg << "), " << dims_string(g.spec) << "\n";
     n_rows.push_back(measure(c.ctx, "n_sweep", label(side), mesh, seg, g, kDefaultTolerance, kSigma, false,
-                             c.args.density_lanes, long_case(c.args, g.spec.count(), mesh.triangles.size()))
+                             long_case(c.args, g.spec.count(), mesh.triangles.size()))
                          .row);
   }
   print_rows(
@@ -622,10 +592,10 @@ void brute_force(Cases& c, std::vector<Row>& rows, std::vector<BruteComparison>&
     const Mesh& mesh = c.parts.with_segments(seg);
     const Grid g = grid_for(mesh, s.side);
     std::cerr << "brute: " << label(s.side) << " (" << dims_string(g.spec) << "), n " << mesh.triangles.size() << "\n";
-    const Measured h = measure(c.ctx, "brute_vs_hier", label(s.side), mesh, seg, g, kDefaultTolerance, kSigma, false,
-                               c.args.density_lanes, false);
+    const Measured h =
+        measure(c.ctx, "brute_vs_hier", label(s.side), mesh, seg, g, kDefaultTolerance, kSigma, false, false);
     const Measured b = measure(c.ctx, "brute_vs_hier", label(s.side), mesh, seg, g, kDefaultTolerance, kSigma, true,
-                               c.args.density_lanes, !c.args.quick, true);
+                               !c.args.quick, true);
     comparisons.push_back(compare(h, b));
     b_rows.push_back(h.row);
     b_rows.push_back(b.row);
@@ -647,16 +617,16 @@ void brute_force(Cases& c, std::vector<Row>& rows, std::vector<BruteComparison>&
 
 // d. the headline; returns its row as JSON.
 nlohmann::json headline(Cases& c, std::vector<Row>& rows) {
-  const int side = c.args.headline_side > 0 ? c.args.headline_side : c.args.quick ? 24 : 128;
-  const double n_target = c.args.headline_triangles > 0 ? c.args.headline_triangles : c.args.quick ? 1e4 : 2e5;
+  const int side = c.args.quick ? 24 : 128;
+  const double n_target = c.args.quick ? 1e4 : 2e5;
   const int seg = c.parts.segments_for(n_target);
   const Mesh& mesh = c.parts.with_segments(seg);
   const Grid g = grid_for(mesh, side);
   std::cerr << "headline: " << label(side) << " (" << dims_string(g.spec) << " = " << g.spec.count()
             << " points, spacing " << g.spec.spacing << " mm), n " << mesh.triangles.size() << " (segments " << seg
             << "), tolerance " << kDefaultTolerance << ", sigma " << kSigma << "\n";
-  const Measured m = measure(c.ctx, "headline", label(side), mesh, seg, g, kDefaultTolerance, kSigma, false,
-                             c.args.density_lanes, !c.args.quick, true);
+  const Measured m =
+      measure(c.ctx, "headline", label(side), mesh, seg, g, kDefaultTolerance, kSigma, false, !c.args.quick, true);
   const Row& r = m.row;
   print_rows("d. headline: m = " + label(side) + " points, n ~ " + fmt(n_target) + " triangles", {r});
   std::cout << "   grid " << dims_string(r.grid) << " = " << r.grid.count() << " points, spacing "
@@ -673,7 +643,7 @@ nlohmann::json headline(Cases& c, std::vector<Row>& rows) {
             << fmt(r.median_bound) << "; mean |s| " << fmt(r.mean_abs_s) << "; mean bound / mean |s| "
             << fmt(r.mean_bound / r.mean_abs_s) << "\n"
             << "   winding bound: max " << fmt(r.max_winding_bound) << ", mean " << fmt(r.mean_winding_bound) << "\n";
-  if (!c.args.quick && side == 128 && n_target == 2e5)
+  if (!c.args.quick)
     std::cout << "   target (m = 128^3, n = 2e5 in <= 60 s): " << (r.seconds <= 60 ? "met" : "NOT met") << " ("
               << fixed(r.seconds, 1) << " s, load " << fixed(r.load_before, 1) << " -> " << fixed(r.load_after, 1)
               << ")\n";
@@ -691,8 +661,7 @@ void tolerance_sweep(Cases& c, std::vector<Row>& rows) {
   std::vector<Row> t_rows;
   for (double tol : {0.2, 0.1, 0.05}) {
     std::cerr << "tolerance: " << tol << ", " << dims_string(g.spec) << ", n " << mesh.triangles.size() << "\n";
-    t_rows.push_back(
-        measure(c.ctx, "tolerance", label(side), mesh, seg, g, tol, kSigma, false, c.args.density_lanes, false).row);
+    t_rows.push_back(measure(c.ctx, "tolerance", label(side), mesh, seg, g, tol, kSigma, false, false).row);
   }
   print_rows("e. tolerance sweep (m = " + label(side) + ", n = " + std::to_string(mesh.triangles.size()) + ")", t_rows);
   rows.insert(rows.end(), t_rows.begin(), t_rows.end());
@@ -710,21 +679,6 @@ void warm_up(const snapfit::ComputeContext& ctx, Parts& parts) {
   snapfit::compute_descriptors(ctx, m, g.spec, p, o);
   std::cout << "warm-up (program build or cache load, both variants): "
             << fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count()) << " s\n";
-}
-
-// --plots-only: the charts again from DIR/descriptors.json.
-int redraw_plots(const Args& args) {
-  const std::filesystem::path path = std::filesystem::path(args.out) / "descriptors.json";
-  std::ifstream in(path);
-  if (!in) throw snapfit::Error(path.string() + ": cannot read");
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const std::exception& e) {
-    throw snapfit::Error(path.string() + ": " + e.what());
-  }
-  std::cout << write_plots(args.out, j.at("rows"), j.value("command_line", std::string("bench_descriptors"))) << "\n";
-  return 0;
 }
 
 nlohmann::json comparison_json(const BruteComparison& c) {
@@ -748,12 +702,11 @@ nlohmann::json comparison_json(const BruteComparison& c) {
 }
 
 int run(const Args& args) {
-  if (args.plots_only) return redraw_plots(args);
   const auto wall_start = std::chrono::steady_clock::now();
   const snapfit::Device device = snapfit::select_device(snapfit::device_spec_from(args.device));
   const snapfit::ComputeContext ctx = snapfit::make_compute_context(device);
   const auto& info = device.info;
-  const double load_start = load_average();
+  const double load_start = load1();
   std::cout << "bench_descriptors" << (args.quick ? " (quick)" : "") << "\n"
             << "device: " << snapfit::describe_device(info) << "\n"
             << "driver: " << info.driver_version << ", " << info.platform_version << ", " << info.compute_units
@@ -787,12 +740,12 @@ int run(const Args& args) {
   nlohmann::json j;
   j["benchmark"] = "bench_descriptors";
   j["command_line"] = args.command_line;
-  j["date"] = now_iso();
+  j["date"] = snapfit::bench::now_iso();
   j["quick"] = args.quick;
   j["device"] = snapfit::bench::device_record(info);
   j["host"] = {{"hardware_threads", std::thread::hardware_concurrency()},
                {"load_average_start", load_start},
-               {"load_average_end", load_average()}};
+               {"load_average_end", load1()}};
   j["part"] = {{"type", "three_peg_base"},
                {"parameters", "scenes/three_pegs.json part1, segments varied"},
                {"padding_mm", kPadding}};
@@ -802,12 +755,10 @@ int run(const Args& args) {
   for (const auto& c : comparisons) j["brute_force_comparison"].push_back(comparison_json(c));
   if (!headline_json.is_null()) j["headline"] = headline_json;
   j["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  std::ofstream jf(dir / "descriptors.json");
-  jf << j.dump(2) << "\n";
-  if (!jf) throw snapfit::Error((dir / "descriptors.json").string() + ": cannot write");
+  snapfit::bench::write_json(dir / "descriptors.json", j);
   std::cout << "\nwrote " << (dir / "descriptors.csv").string() << " and " << (dir / "descriptors.json").string()
             << " (" << fixed(j["wall_seconds"].get<double>(), 1) << " s in all; load average " << fixed(load_start)
-            << " -> " << fixed(load_average()) << ")\n"
+            << " -> " << fixed(load1()) << ")\n"
             << write_plots(dir, j["rows"], j.value("command_line", std::string("bench_descriptors"))) << "\n";
   return 0;
 }

@@ -77,8 +77,6 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
-#include <map>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
@@ -98,7 +96,6 @@
 #include "perf/bench_spectra.h"
 #include "perf/quiet_guard.h"
 #include "pipeline/assembly_pair.h"
-#include "pipeline/part_fields.h"
 #include "snapfit/error.h"
 #include "snapfit/scene.h"
 
@@ -149,8 +146,7 @@ std::string sci(double v, int prec = 2) {
   return os.str();
 }
 
-using snapfit::bench::percentile;
-double median(const std::vector<double>& v) { return percentile(v, 0.5); }
+using snapfit::bench::median;
 double minimum(const std::vector<double>& v) {
   return v.empty() ? std::numeric_limits<double>::quiet_NaN() : *std::min_element(v.begin(), v.end());
 }
@@ -344,93 +340,73 @@ std::vector<TransformRow> bench_transforms(const snapfit::FftLibrary& lib, const
   const std::vector<cd> ref_fwd = reference_fft(d, x, FFTW_FORWARD);
   const std::vector<cd> ref_inv = reference_fft(d, x, FFTW_BACKWARD);
   const std::vector<cd>* refs[2] = {&ref_fwd, &ref_inv};
-  const char* dir_name[2] = {"forward", "inverse"};
   std::vector<TransformRow> rows;
   const std::size_t bytes = sizeof(cf) * n;
-
-  // clFFT
-  {
+  // A row per direction k: `transform(k)` runs one transform and returns its seconds,
+  // `output(k)` reads its result.
+  auto measure_both = [&](const std::string& library, double plan_s, auto&& transform, auto&& output) {
+    for (int k = 0; k < 2; ++k) {
+      TransformRow r;
+      r.library = library;
+      r.direction = k == 0 ? "forward" : "inverse";
+      r.dims = d;
+      r.plan_s = plan_s;
+      quiet_measure(r, library + " " + dims_text(d), [&](TransformRow& q) {
+        for (int i = 0; i < warmup; ++i) transform(k);
+        for (int i = 0; i < repeats; ++i) q.times_s.push_back(transform(k));
+      });
+      r.max_rel_diff = max_rel_diff(output(k), *refs[k]);
+      finish_row(r);
+      rows.push_back(r);
+    }
+  };
+  auto read = [&](const cl::Buffer& b) {
+    std::vector<cf> y(n);
+    ctx.queue.enqueueReadBuffer(b, CL_TRUE, 0, bytes, y.data());
+    return y;
+  };
+  {  // clFFT
     const auto t0 = Clock::now();
     const snapfit::Fft3d fft(lib, ctx, d);
     const double plan_s = seconds_since(t0);
     cl::Buffer in(ctx.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, x.data());
     cl::Buffer out(ctx.context, CL_MEM_READ_WRITE, bytes);
-    for (int k = 0; k < 2; ++k) {
-      const auto dir = k == 0 ? snapfit::FftDirection::forward : snapfit::FftDirection::inverse;
-      TransformRow r;
-      r.library = "clfft";
-      r.direction = dir_name[k];
-      r.dims = d;
-      r.plan_s = plan_s;
-      quiet_measure(r, "clfft " + dims_text(d), [&](TransformRow& q) {
-        for (int i = 0; i < warmup; ++i) fft.transform(dir, in, out);
-        for (int i = 0; i < repeats; ++i) {
+    measure_both(
+        "clfft", plan_s,
+        [&](int k) {
           const auto t = Clock::now();
-          fft.transform(dir, in, out);
-          q.times_s.push_back(seconds_since(t));
-        }
-      });
-      std::vector<cf> y(n);
-      ctx.queue.enqueueReadBuffer(out, CL_TRUE, 0, bytes, y.data());
-      r.max_rel_diff = max_rel_diff(y, *refs[k]);
-      finish_row(r);
-      rows.push_back(r);
-    }
+          fft.transform(k == 0 ? snapfit::FftDirection::forward : snapfit::FftDirection::inverse, in, out);
+          return seconds_since(t);
+        },
+        [&](int) { return read(out); });
   }
-  // VkFFT
-  {
+  {  // VkFFT overwrites its input: each transform reads a fresh copy, made untimed
     cl::Buffer pristine(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, x.data());
     cl::Buffer input(ctx.context, CL_MEM_READ_WRITE, bytes), buffer(ctx.context, CL_MEM_READ_WRITE, bytes);
     VkfftPlan plan(ctx, d, input, buffer);
-    for (int k = 0; k < 2; ++k) {
-      TransformRow r;
-      r.library = "vkfft";
-      r.direction = dir_name[k];
-      r.dims = d;
-      r.plan_s = plan.plan_s;
-      cl::Buffer& src = k == 0 ? input : buffer;  // what the transform reads (and overwrites)
-      cl::Buffer& dst = k == 0 ? buffer : input;
-      quiet_measure(r, "vkfft " + dims_text(d), [&](TransformRow& q) {
-        auto once = [&](bool timed) {
-          ctx.queue.enqueueCopyBuffer(pristine, src, 0, 0, bytes);
+    measure_both(
+        "vkfft", plan.plan_s,
+        [&](int k) {
+          ctx.queue.enqueueCopyBuffer(pristine, k == 0 ? input : buffer, 0, 0, bytes);
           ctx.queue.finish();
           const auto t = Clock::now();
           plan.run(k);
-          if (timed) q.times_s.push_back(seconds_since(t));
-        };
-        for (int i = 0; i < warmup; ++i) once(false);
-        for (int i = 0; i < repeats; ++i) once(true);
-      });
-      std::vector<cf> y(n);
-      ctx.queue.enqueueReadBuffer(dst, CL_TRUE, 0, bytes, y.data());
-      r.max_rel_diff = max_rel_diff(y, *refs[k]);
-      finish_row(r);
-      rows.push_back(r);
-    }
+          return seconds_since(t);
+        },
+        [&](int k) { return read(k == 0 ? buffer : input); });
   }
   // FFTW (planning with FFTW_MEASURE overwrites the arrays: the input is set afterwards)
   {
     FftwPlans plans(d, FFTW_MEASURE);
     plans.set_input(x);
-    for (int k = 0; k < 2; ++k) {
-      fftwf_plan p = k == 0 ? plans.forward : plans.inverse;
-      TransformRow r;
-      r.library = "fftw";
-      r.direction = dir_name[k];
-      r.dims = d;
-      r.plan_s = plans.plan_s;
-      quiet_measure(r, "fftw " + dims_text(d), [&](TransformRow& q) {
-        for (int i = 0; i < warmup; ++i) fftwf_execute(p);
-        for (int i = 0; i < repeats; ++i) {
+    measure_both(
+        "fftw", plans.plan_s,
+        [&](int k) {
           const auto t = Clock::now();
-          fftwf_execute(p);
-          q.times_s.push_back(seconds_since(t));
-        }
-      });
-      r.max_rel_diff = max_rel_diff(plans.output(), *refs[k]);
-      finish_row(r);
-      rows.push_back(r);
-    }
+          fftwf_execute(k == 0 ? plans.forward : plans.inverse);
+          return seconds_since(t);
+        },
+        [&](int) { return plans.output(); });
   }
   return rows;
 }
@@ -692,20 +668,13 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
                   {"other_cores", r.other_cores},
                   {"attempts", r.attempts}});
   j["maps"] = mj;
-  {
-    std::ofstream f(dir / "fft.json");
-    f << j.dump(2) << "\n";
-    if (!f) throw snapfit::Error((dir / "fft.json").string() + ": cannot write");
-  }
+  snapfit::bench::write_json(dir / "fft.json", j);
   const std::vector<std::string> libs = {"clfft", "vkfft", "fftw"};
   std::vector<snapfit::Chart> charts;
   for (const bool gflops : {false, true}) {
-    snapfit::Chart c;
-    c.title = gflops ? "3D C2C FFT throughput (5 n log2 n / p50)" : "3D C2C FFT time per transform (p50)";
-    c.x_label = "points n (64^3, 128^3, scene grid)";
-    c.y_label = gflops ? "GFLOP/s" : "ms per transform";
-    c.log_x = true;
-    c.log_y = !gflops;
+    snapfit::Chart c = snapfit::bench::make_chart(
+        gflops ? "3D C2C FFT throughput (5 n log2 n / p50)" : "3D C2C FFT time per transform (p50)",
+        "points n (64^3, 128^3, scene grid)", gflops ? "GFLOP/s" : "ms per transform", true, !gflops);
     for (const auto& lib : libs)
       for (const std::string dir : {"forward", "inverse"}) {
         snapfit::Series s;
@@ -720,11 +689,9 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
     charts.push_back(c);
   }
   {
-    snapfit::Chart c;
-    c.title = "full translational maps: rotations per second (product + inverse FFT)";
-    c.x_label = "FFT grid points n";
-    c.y_label = "rotations per second (median)";
-    c.log_x = c.log_y = true;
+    snapfit::Chart c =
+        snapfit::bench::make_chart("full translational maps: rotations per second (product + inverse FFT)",
+                                   "FFT grid points n", "rotations per second (median)", true, true);
     for (const std::string lib : {"clfft", "vkfft", "fftw", "full_map"}) {
       snapfit::Series s;
       s.label = lib == "full_map" ? "translational_energy_map (clFFT, real path)" : "product + " + lib + " inverse";
@@ -797,17 +764,14 @@ void print_map_row(const MapRow& r) {
 }
 
 int run(const Args& args) {
-  const std::string load_start = snapfit::bench::read_loadavg();
-  const std::string date = snapfit::bench::now_iso();
-  const auto t_start = Clock::now();
+  snapfit::bench::RunSpan span;
   const int repeats = args.repeats > 0 ? args.repeats : (args.quick ? 5 : 30);
   const int warmup = 2;
   const int map_rotations = args.quick ? 3 : 20;
   const int map_warm_real = args.quick ? 2 : 5;
   const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   g_quiet.enabled = !args.quick;  // --quick only records the contention
-  std::cout << "bench_fft: " << args.command_line << "\n  date " << date << ", load average at start: " << load_start
-            << "\n";
+  span.announce("bench_fft", args.command_line);
 
   if (!fftwf_init_threads()) throw snapfit::Error("FFTW: fftwf_init_threads failed");
   fftwf_plan_with_nthreads(int(threads));
@@ -868,18 +832,9 @@ int run(const Args& args) {
 
   const std::string verdict = verdict_text(sizes, map_sizes, transforms, maps);
 
-  const std::string load_end = snapfit::bench::read_loadavg();
-  const double total_s = seconds_since(t_start);
-  nlohmann::json meta;
-  meta["benchmark"] = "bench_fft";
-  meta["command_line"] = args.command_line;
-  meta["date"] = date;
-  meta["quick"] = args.quick;
-  meta["total_seconds"] = total_s;
-  meta["loadavg_start"] = load_start;
-  meta["loadavg_end"] = load_end;
+  span.stop();
+  nlohmann::json meta = span.header("bench_fft", args.command_line, args.quick, info);
   meta["nproc"] = threads;
-  meta["device"] = snapfit::bench::device_record(info);
   meta["quiet_guard"] = {{"enabled", g_quiet.enabled},
                          {"threshold_cores", g_quiet.threshold},
                          {"max_retries", g_quiet.max_retries},
@@ -904,8 +859,7 @@ int run(const Args& args) {
        "full_map = engine/maps/full_map.h translational_energy_map, all modes, trilinear, warm median"}};
   const std::filesystem::path dir(args.out);
   write_outputs(dir, args, transforms, maps, meta, verdict);
-  std::cout << "\nload average at end: " << load_end << " (start: " << load_start << "), total " << fixed(total_s, 0)
-            << " s; " << g_quiet.retries << " rows re-measured after waiting " << fixed(g_quiet.waited_s, 0)
+  std::cout << span.end_text() << g_quiet.retries << " rows re-measured after waiting " << fixed(g_quiet.waited_s, 0)
             << " s for other processes\nwrote " << (dir / "fft.csv").string()
             << ", maps.csv, fft.json, charts.html\nverdict: " << verdict << "\n";
   return 0;

@@ -10,12 +10,11 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <sys/resource.h>
 
 #include "core/quantile.h"
-#include "engine/runtime/device.h"
 #include "engine/query/query_engine.h"
+#include "engine/runtime/device.h"
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
@@ -162,10 +161,8 @@ int main(int argc, char** argv) {
 
     fs::create_directories(o.out_dir);
     nlohmann::json report = loop_json(loop);
-    report.update({{"command", bench::command_line(argc, argv)},
-                   {"date", bench::now_iso()},
-                   {"device", device.info.name},
-                   {"driver", device.info.driver_version},
+    report.update(bench::run_record(argc, argv, device.info.name, load_start));
+    report.update({{"driver", device.info.driver_version},
                    {"scene", o.scene_path},
                    {"variant", variant_name(variant)},
                    {"seconds", o.seconds},
@@ -186,8 +183,7 @@ int main(int argc, char** argv) {
                     {{"threads_raised", run.priority.threads},
                      {"realtime", run.priority.realtime},
                      {"failed", run.priority.failed},
-                     {"described", run.priority.describe()}}},
-                   {"load_average", {{"start", load_start}, {"end", load_end}}}});
+                     {"described", run.priority.describe()}}}});
     std::ofstream(fs::path(o.out_dir) / "haptic_loop.json") << report.dump(2) << "\n";
     Chart hist = histogram_chart("Haptic loop frame time, " + std::to_string(loop.frames) +
                                      " frames, m' = " + std::to_string(tuned.result.chosen_modes),

@@ -148,11 +148,8 @@ int main(int argc, char** argv) {
       node[i] = box_node(lines, k[0], k[1], k[2]);
     }
     // The engine's all-mode exact query, to check the host sums against.
-    QueryVariant exact = query_variant_for(scene, Interpolation::tricubic);
-    exact.rotation = RotationMethod::exact_product;
-    exact.product_update = ProductUpdate::each_query;
-    exact.product_modes = M;
-    auto engine = make_query_engine(ctx, sp, exact);
+    auto engine = make_query_engine(
+        ctx, sp, bench::exact_reference_variant(query_variant_for(scene, Interpolation::tricubic), M));
     engine->set_modes(engine->max_modes());
 
     const std::size_t L = levels.size();

@@ -16,7 +16,6 @@
 // Output in DIR (default results/bench_ndft_crossover): crossover.csv (per lattice and k),
 // crossover.json, charts.html.
 #include <Eigen/Geometry>
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -27,11 +26,11 @@
 #include <vector>
 
 #include "core/quantile.h"
-#include "engine/spectra/ball_spectrum.h"
+#include "engine/fields/sphere_decomposition.h"
 #include "engine/runtime/compute_context.h"
 #include "engine/runtime/device.h"
+#include "engine/spectra/ball_spectrum.h"
 #include "engine/spectra/fft3d.h"
-#include "engine/fields/sphere_decomposition.h"
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
@@ -150,11 +149,8 @@ int run(int argc, char** argv) {
   report["points"] = jpoints;
   report["crossings"] = crossings;
   std::ofstream(fs::path(out) / "crossover.json") << report.dump(2) << "\n";
-  Chart chart;
-  chart.title = "Ball spectrum onto n^3 modes: direct NDFT and NUFFT against the ball count";
-  chart.x_label = "balls";
-  chart.y_label = "seconds";
-  chart.log_x = chart.log_y = true;
+  Chart chart = bench::make_chart("Ball spectrum onto n^3 modes: direct NDFT and NUFFT against the ball count", "balls",
+                                  "seconds", true, true);
   for (std::size_t n : sizes)
     for (const std::string method : {"direct", "nufft"}) {
       Series s{method + " " + std::to_string(n) + "^3", {}, {}, Series::Style::line_points, ""};

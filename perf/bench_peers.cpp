@@ -52,42 +52,30 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <map>
-#include <memory>
 #include <nlohmann/json.hpp>
-#include <random>
-#include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "core/progress.h"
-#include "engine/runtime/compute_context.h"
-#include "engine/runtime/device.h"
-#include "engine/spectra/fft3d.h"
 #include "engine/query/query_engine.h"
-#include "engine/spectra/spectra.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/spectra/fft3d.h"
 #include "mesh/triangle_refine.h"
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
+#include "perf/bench_poses.h"
 #include "perf/fcl_peer.h"
 #include "pipeline/assembly_pair.h"
-#include "pipeline/part_fields.h"
 #include "snapfit/error.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
 
 namespace {
 
-using snapfit::bench::fixed;
-using snapfit::bench::num;
-using snapfit::bench::pad;
-using snapfit::bench::padr;
-using snapfit::bench::seconds_since;
-
+using namespace snapfit::bench;  // perf/*.h: tables, contention, poses, FCL
 using Clock = std::chrono::steady_clock;
 using snapfit::Mesh;
 using snapfit::Pose;
@@ -108,26 +96,23 @@ struct Args {
 
 Args parse_args(int argc, char** argv) {
   Args a;
-  a.command_line = snapfit::bench::command_line(argc, argv);
+  a.command_line = command_line(argc, argv);
   bool no_cache = false;
   CLI::App app{
       "snapfit against exact mesh collision (FCL) on the same part pair at the same poses: query time against "
       "triangle count, and agreement of the collision verdicts against m'",
       "bench_peers"};
-  snapfit::bench::add_common_options(
-      app, a.quick, a.device, a.out,
-      "1e3 and 1e4 triangles, 60 poses, 3 m' values, grid spacing doubled (about a minute)");
-  app.add_option("--scene", a.scene, "scene")->check(snapfit::bench::non_empty());
+  add_common_options(app, a.quick, a.device, a.out,
+                     "1e3 and 1e4 triangles, 60 poses, 3 m' values, grid spacing doubled (about a minute)");
+  app.add_option("--scene", a.scene, "scene")->check(non_empty());
   app.add_option("--poses", a.poses, "poses along the trajectory (0: 400, --quick 60)")->check(CLI::Range(2, 1000000));
   app.add_flag("--no-cache", no_cache, "recompute the descriptor fields (cold precompute times)");
-  snapfit::bench::parse(app, argc, argv);
+  parse(app, argc, argv);
   a.use_cache = !no_cache;
   return a;
 }
 
-// ---------------------------------------------------------------- small helpers
-
-using snapfit::bench::percentile;
+// ---------------------------------------------------------------- refinement
 
 double surface_area(const Mesh& m) {
   double a = 0;
@@ -135,10 +120,6 @@ double surface_area(const Mesh& m) {
     a += 0.5 * (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
   return a;
 }
-
-// ---------------------------------------------------------------- poses
-
-// ---------------------------------------------------------------- refinement
 
 struct Level {
   std::string label;       // "1e3" ...
@@ -174,11 +155,6 @@ Level make_level(const snapfit::PreparedParts& parts, std::size_t target, const 
   return L;
 }
 
-// ---------------------------------------------------------------- FCL
-
-using snapfit::bench::fcl_model;
-using snapfit::bench::fcl_transform;
-
 // ---------------------------------------------------------------- per level results
 
 struct Stat {
@@ -195,6 +171,11 @@ Stat stat_us(const std::vector<double>& s) {
   r.p99 = percentile(us, 0.99);
   r.max = *std::max_element(us.begin(), us.end());
   return r;
+}
+
+// p50_us, p99_us, max_us (null when not run) and n.
+nlohmann::json stat_json(const Stat& s) {
+  return {{"p50_us", num(s.p50)}, {"p99_us", num(s.p99)}, {"max_us", num(s.max)}, {"n", s.n}};
 }
 
 struct SnapLatency {
@@ -219,6 +200,12 @@ struct LevelResult {
   std::map<std::size_t, std::vector<double>> energy;  // verdict variant, per m', per pose
   double other_cores_fcl = 0, other_cores_snap = 0;
   double load_before = 0, load_after = 0;
+  // snapfit's latency of `variant` at m' (nullptr: not timed).
+  const Stat* snap_stat(const std::string& variant, std::size_t m) const {
+    for (const auto& s : snap)
+      if (s.variant == variant && s.modes == m) return &s.stat;
+    return nullptr;
+  }
 };
 
 struct AgreementRow {
@@ -292,40 +279,25 @@ snapfit::Scene peers_scene(const snapfit::Scene& base_scene, bool quick) {
 // snapfit's precompute at the level: the pipeline's stages with the level's meshes in
 // place of the scene's (the same surface split finer: the same boxes, so the same grids).
 snapfit::PairSpectra precompute(Peers& b, const Level& L, LevelResult& R) {
-  const auto& scene = b.scene;
-  const auto& ctx = b.ctx;
-  const auto& popt = b.popt;
-  const auto& fft = b.fft;
-  snapfit::PairSpectra spectra;
-  {
-    const auto t0 = Clock::now();
-    // The pipeline's stages, with the level's meshes in place of the scene's (the same
-    // surface split finer: the same boxes, so the same grids).
-    snapfit::AssemblyPair pair = snapfit::prepare_assembly_pair(scene);
-    if (L.radius > 0) {
-      pair.parts.part1.mesh = L.part1;
-      pair.parts.part2.mesh = L.part2;
-    }
-    snapfit::compute_assembly_fields(pair, ctx, popt);
-    R.fields_cached = pair.fields1.from_cache && pair.fields2.from_cache;
-    R.fields_s = seconds_since(t0);
-    const auto t1 = Clock::now();
-    snapfit::compute_assembly_spectra(pair, ctx, fft, popt);
-    R.spectra_s = pair.spectra_from_cache ? 0.0 : seconds_since(t1);
-    spectra = std::move(pair.spectra);
+  const auto t0 = Clock::now();
+  snapfit::AssemblyPair pair = snapfit::prepare_assembly_pair(b.scene);
+  if (L.radius > 0) {
+    pair.parts.part1.mesh = L.part1;
+    pair.parts.part2.mesh = L.part2;
   }
-  return spectra;
+  snapfit::compute_assembly_fields(pair, b.ctx, b.popt);
+  R.fields_cached = pair.fields1.from_cache && pair.fields2.from_cache;
+  R.fields_s = seconds_since(t0);
+  const auto t1 = Clock::now();
+  snapfit::compute_assembly_spectra(pair, b.ctx, b.fft, b.popt);
+  R.spectra_s = pair.spectra_from_cache ? 0.0 : seconds_since(t1);
+  return std::move(pair.spectra);
 }
 
 // At the first level: the poses snapfit accepts (inside its padded box).
 void select_poses(Peers& b, QueryEngine& engine_ef) {
   engine_ef.set_modes(1024);
-  const auto res = engine_ef.query_batch(b.all_poses);
-  for (std::size_t i = 0; i < b.all_poses.size(); ++i)
-    if (res[i].flags == snapfit::query_ok)
-      b.poses.push_back(b.all_poses[i]);
-    else
-      ++b.dropped;
+  b.poses = usable_poses(engine_ef, b.all_poses, b.dropped);
   if (b.poses.empty()) throw snapfit::Error("no pose inside snapfit's padded box");
   std::cout << "  poses: " << b.poses.size() << " (" << b.dropped << " of " << b.all_poses.size()
             << " outside snapfit's padded box dropped)\n";
@@ -341,7 +313,6 @@ void time_snapfit(Peers& b, QueryEngine& engine_eft, QueryEngine& engine_ef, Lev
       e->set_modes(m);
       for (int i = 0; i < b.plan.warmup; ++i) sink += e->query(poses[std::size_t(i) % poses.size()]).energy;
       std::vector<double> s;
-      std::vector<double> energies;
       for (const Pose& p : poses) {
         const auto t = Clock::now();
         const auto q = e->query(p);
@@ -421,9 +392,9 @@ LevelResult measure_level(Peers& b, const snapfit::PreparedParts& parts, const s
             << (L.radius > 0 ? " (split to radius " + fixed(L.radius, 3) + ", " + fixed(L.refine_s, 1) + " s)"
                              : " (the scene's meshes)")
             << "\n";
-  R.load_before = snapfit::bench::load1();
+  R.load_before = load1();
 
-  const auto cs0 = snapfit::bench::cpu_sample();
+  const auto cs0 = cpu_sample();
   const snapfit::PairSpectra spectra = precompute(b, L, R);
   R.fft_dims = spectra.dims;
   spacing = spectra.spacing;
@@ -436,16 +407,16 @@ LevelResult measure_level(Peers& b, const snapfit::PreparedParts& parts, const s
   auto engine_ef = make_query_engine(b.ctx, spectra, kEf);
   if (b.poses.empty()) select_poses(b, *engine_ef);
   time_snapfit(b, *engine_eft, *engine_ef, R);
-  R.other_cores_snap = snapfit::bench::other_cores(cs0, snapfit::bench::cpu_sample());
+  R.other_cores_snap = other_cores(cs0, cpu_sample());
   for (const auto& s : R.snap)
     std::cout << "  snapfit " << padr(s.variant == "eft_tricubic" ? "6-DOF E+F+T tricubic" : "6-DOF E+F tricubic", 21)
               << " m' " << pad(std::to_string(s.modes), 6) << "  p50 " << pad(fixed(s.stat.p50, 1), 8) << " us  p99 "
               << pad(fixed(s.stat.p99, 1), 8) << " us\n";
 
-  const auto cf0 = snapfit::bench::cpu_sample();
+  const auto cf0 = cpu_sample();
   run_fcl(b, L, R);
-  R.other_cores_fcl = snapfit::bench::other_cores(cf0, snapfit::bench::cpu_sample());
-  R.load_after = snapfit::bench::load1();
+  R.other_cores_fcl = other_cores(cf0, cpu_sample());
+  R.load_after = load1();
   std::size_t colliding = 0;
   for (int c : R.fcl_collides) colliding += std::size_t(c);
   std::cout << "  FCL collide   p50 " << pad(fixed(R.collide.p50, 1), 10) << " us  p99 "
@@ -496,13 +467,7 @@ void print_times(const std::vector<LevelResult>& levels) {
   std::cout << "  " << padr("triangles", 10) << pad("FCL build", 10) << pad("collide", 20) << pad("distance", 22)
             << pad("snap m'4096", 18) << pad("snap m'32768", 18) << pad("snap pre", 10) << "\n";
   for (const auto& R : levels) {
-    auto find = [&](std::size_t m) -> const Stat* {
-      for (const auto& s : R.snap)
-        if (s.variant == "eft_tricubic" && s.modes == m) return &s.stat;
-      return nullptr;
-    };
-    const Stat* a = find(4096);
-    const Stat* b = find(32768);
+    const Stat *a = R.snap_stat("eft_tricubic", 4096), *b = R.snap_stat("eft_tricubic", 32768);
     std::cout << "  " << padr(std::to_string(R.tri1 + R.tri2), 10) << pad(fixed(R.fcl_build1_s + R.fcl_build2_s, 2), 10)
               << pad(fixed(R.collide.p50, 1) + " / " + fixed(R.collide.p99, 1), 20)
               << pad(fixed(R.distance.p50, 1) + " / " + fixed(R.distance.p99, 1), 22)
@@ -556,8 +521,7 @@ void write_csvs(const std::filesystem::path& dir, const std::vector<LevelResult>
         << R.spectra_s;
       for (const std::string v : {"eft_tricubic", "ef_tricubic"})
         for (std::size_t m : timing_modes)
-          for (const auto& s : R.snap)
-            if (s.variant == v && s.modes == m) f << ',' << s.stat.p50 << ',' << s.stat.p99;
+          if (const Stat* s = R.snap_stat(v, m)) f << ',' << s->p50 << ',' << s->p99;
       f << ',' << R.other_cores_snap << ',' << R.other_cores_fcl << ',' << R.load_before << ',' << R.load_after << '\n';
     }
     if (!f) throw snapfit::Error((dir / "peers.csv").string() + ": cannot write");
@@ -591,14 +555,13 @@ void write_csvs(const std::filesystem::path& dir, const std::vector<LevelResult>
 }
 
 nlohmann::json level_json(const LevelResult& R) {
+  nlohmann::json distance = stat_json(R.distance);
+  distance["skipped_by_budget"] = R.distance_skipped;
   nlohmann::json sj = nlohmann::json::array();
-  for (const auto& s : R.snap)
-    sj.push_back({{"variant", s.variant},
-                  {"modes", s.modes},
-                  {"p50_us", num(s.stat.p50)},
-                  {"p99_us", num(s.stat.p99)},
-                  {"max_us", num(s.stat.max)},
-                  {"n", s.stat.n}});
+  for (const auto& s : R.snap) {
+    sj.push_back(stat_json(s.stat));
+    sj.back().update({{"variant", s.variant}, {"modes", s.modes}});
+  }
   return {{"level", R.label},
           {"target", R.target},
           {"triangles", R.tri1 + R.tri2},
@@ -607,17 +570,8 @@ nlohmann::json level_json(const LevelResult& R) {
           {"refine_radius", R.radius},
           {"refine_s", R.refine_s},
           {"fcl_build_s", {R.fcl_build1_s, R.fcl_build2_s}},
-          {"fcl_collide",
-           {{"p50_us", num(R.collide.p50)},
-            {"p99_us", num(R.collide.p99)},
-            {"max_us", num(R.collide.max)},
-            {"n", R.collide.n}}},
-          {"fcl_distance",
-           {{"p50_us", num(R.distance.p50)},
-            {"p99_us", num(R.distance.p99)},
-            {"max_us", num(R.distance.max)},
-            {"n", R.distance.n},
-            {"skipped_by_budget", R.distance_skipped}}},
+          {"fcl_collide", stat_json(R.collide)},
+          {"fcl_distance", distance},
           {"snapfit_fields_s", R.fields_s},
           {"snapfit_fields_cached", R.fields_cached},
           {"snapfit_spectra_s", R.spectra_s},
@@ -645,25 +599,16 @@ nlohmann::json agreement_json(const AgreementRow& a) {
           {"snapfit_only_fcl_distance_within_h", a.snap_only_within_h}};
 }
 
-// The run as a whole: when, the load and contention around it, the scene's name and spacing.
-struct RunRecord {
-  std::string date, load_start, load_end, base_scene_name;
-  double total_s = 0, others_run = 0, spacing = 0;
+// The run as a whole (perf/bench_common.h), the scene's name and spacing.
+struct RunRecord : RunSpan {
+  std::string base_scene_name;
+  double spacing = 0;
 };
 
 nlohmann::json report_json(const Peers& b, const RunRecord& run, const std::vector<LevelResult>& levels,
                            const std::vector<AgreementRow>& agreement, std::size_t fcl_changes) {
-  nlohmann::json j;
-  j["benchmark"] = "bench_peers";
-  j["command_line"] = b.args.command_line;
-  j["date"] = run.date;
-  j["quick"] = b.args.quick;
-  j["total_seconds"] = run.total_s;
-  j["loadavg_start"] = run.load_start;
-  j["loadavg_end"] = run.load_end;
+  nlohmann::json j = run.header("bench_peers", b.args.command_line, b.args.quick, b.ctx.device.info);
   j["other_cores_run"] = run.others_run;
-  j["nproc"] = std::thread::hardware_concurrency();
-  j["device"] = snapfit::bench::device_record(b.ctx.device.info);
   j["scene"] = {{"file", b.args.scene},
                 {"name", run.base_scene_name},
                 {"descriptor_used", "indicator (winding number), as scenes/collision_only.json"},
@@ -697,11 +642,8 @@ std::vector<snapfit::Chart> charts(const std::vector<LevelResult>& levels, const
                                    const Plan& plan) {
   std::vector<snapfit::Chart> charts;
   {
-    snapfit::Chart c;
-    c.title = "query time vs triangles: FCL vs snapfit (same poses)";
-    c.x_label = "triangles (both parts)";
-    c.y_label = "time per query (us)";
-    c.log_x = c.log_y = true;
+    snapfit::Chart c = make_chart("query time vs triangles: FCL vs snapfit (same poses)", "triangles (both parts)",
+                                  "time per query (us)", true, true);
     auto add = [&](const std::string& label, auto get) {
       snapfit::Series s;
       s.label = label;
@@ -715,19 +657,15 @@ std::vector<snapfit::Chart> charts(const std::vector<LevelResult>& levels, const
     for (std::size_t m : plan.timing_modes)
       for (const bool p99 : {false, true})
         add("snapfit E+F+T m' " + std::to_string(m) + (p99 ? " p99" : " p50"), [&](const LevelResult& R) {
-          for (const auto& s : R.snap)
-            if (s.variant == "eft_tricubic" && s.modes == m) return p99 ? s.stat.p99 : s.stat.p50;
-          return std::numeric_limits<double>::quiet_NaN();
+          const Stat* s = R.snap_stat("eft_tricubic", m);
+          return s ? (p99 ? s->p99 : s->p50) : std::numeric_limits<double>::quiet_NaN();
         });
     c.hlines.push_back({1000.0, "1 ms"});
     charts.push_back(c);
   }
   {
-    snapfit::Chart c;
-    c.title = "precompute vs triangles: FCL BVH build, snapfit fields + spectra";
-    c.x_label = "triangles (both parts)";
-    c.y_label = "seconds";
-    c.log_x = c.log_y = true;
+    snapfit::Chart c = make_chart("precompute vs triangles: FCL BVH build, snapfit fields + spectra",
+                                  "triangles (both parts)", "seconds", true, true);
     snapfit::Series a, b;
     a.label = "FCL BVH build (OBBRSS, both parts)";
     b.label = "snapfit indicator fields + spectra";
@@ -739,11 +677,8 @@ std::vector<snapfit::Chart> charts(const std::vector<LevelResult>& levels, const
     charts.push_back(c);
   }
   {
-    snapfit::Chart c;
-    c.title = "collision verdict agreement with FCL vs m' (tau = 0.5 h^3)";
-    c.x_label = "retained modes m'";
-    c.y_label = "poses where snapfit and FCL agree (%)";
-    c.log_x = true;
+    snapfit::Chart c = make_chart("collision verdict agreement with FCL vs m' (tau = 0.5 h^3)", "retained modes m'",
+                                  "poses where snapfit and FCL agree (%)", true);
     for (const auto& R : levels) {
       snapfit::Series s;
       s.label = R.label + " (" + std::to_string(R.tri1 + R.tri2) + " triangles)";
@@ -759,12 +694,7 @@ std::vector<snapfit::Chart> charts(const std::vector<LevelResult>& levels, const
 
 int run(const Args& args) {
   RunRecord run;
-  run.load_start = snapfit::bench::read_loadavg();
-  const auto cpu_start = snapfit::bench::cpu_sample();
-  run.date = snapfit::bench::now_iso();
-  const auto t_start = Clock::now();
-  std::cout << "bench_peers: " << args.command_line << "\n  date " << run.date
-            << ", load average at start: " << run.load_start << "\n";
+  run.announce("bench_peers", args.command_line);
 
   const snapfit::FftLibrary fft;
   const snapfit::ComputeContext ctx =
@@ -782,7 +712,7 @@ int run(const Args& args) {
     std::cout << "  note: the scene itself does not ask for torque; E+F+T is timed anyway (the default scene's)\n";
 
   Peers b(args, fft, ctx, scene);
-  b.all_poses = snapfit::bench::trajectory_poses(scene, b.plan.pose_count, 20261122u, 0.5, 2.0);
+  b.all_poses = trajectory_poses(scene, b.plan.pose_count, 20261122u, 0.5, 2.0);
   b.popt.use_cache = args.use_cache;
   b.popt.descriptors.progress = snapfit::pass_progress_bars(std::cerr);
   b.popt.note = [](const std::string& m) { std::cerr << "  snapfit: " << m << "\n"; };
@@ -799,28 +729,19 @@ int run(const Args& args) {
   print_times(levels);
   print_agreement(levels, agreement, b.plan, run.spacing, fcl_changes);
 
-  run.load_end = snapfit::bench::read_loadavg();
-  run.others_run = snapfit::bench::other_cores(cpu_start, snapfit::bench::cpu_sample());
-  run.total_s = seconds_since(t_start);
+  run.stop();
   const std::filesystem::path dir(args.out);
   std::filesystem::create_directories(dir);
   write_csvs(dir, levels, agreement, b.poses, b.plan);
-  {
-    std::ofstream f(dir / "peers.json");
-    f << report_json(b, run, levels, agreement, fcl_changes).dump(2) << "\n";
-    if (!f) throw snapfit::Error((dir / "peers.json").string() + ": cannot write");
-  }
-  snapfit::bench::write_charts(dir, "bench_peers: FCL and snapfit", args.command_line,
-                               charts(levels, agreement, b.plan));
-  std::cout << "\nload average at end: " << run.load_end << " (start: " << run.load_start << "), total "
-            << fixed(run.total_s, 0) << " s; other processes kept " << fixed(run.others_run, 2)
-            << " cores busy on average\nwrote " << (dir / "peers.csv").string()
-            << ", agreement.csv, poses.csv, peers.json, charts.html\n";
+  write_json(dir / "peers.json", report_json(b, run, levels, agreement, fcl_changes));
+  write_charts(dir, "bench_peers: FCL and snapfit", args.command_line, charts(levels, agreement, b.plan));
+  std::cout << run.end_text() << "other processes kept " << fixed(run.others_run, 2) << " cores busy on average\nwrote "
+            << (dir / "peers.csv").string() << ", agreement.csv, poses.csv, peers.json, charts.html\n";
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  return snapfit::bench::guarded_main("bench_peers", [&] { return run(parse_args(argc, argv)); });
+  return guarded_main("bench_peers", [&] { return run(parse_args(argc, argv)); });
 }

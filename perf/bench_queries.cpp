@@ -49,8 +49,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -58,21 +56,19 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <sstream>
 #include <string>
-#include <thread>
-#include <unistd.h>
 #include <vector>
 
 #include "core/progress.h"
+#include "engine/maps/full_map.h"
+#include "engine/query/query_engine.h"
 #include "engine/runtime/compute_context.h"
 #include "engine/runtime/device.h"
 #include "engine/spectra/fft3d.h"
-#include "engine/maps/full_map.h"
-#include "engine/query/query_engine.h"
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
+#include "perf/bench_poses.h"
 #include "perf/device_limits.h"
 #include "perf/quiet_guard.h"
 #include "pipeline/assembly_pair.h"
@@ -82,19 +78,12 @@
 
 namespace {
 
-using snapfit::bench::fixed;
-using snapfit::bench::num;
-using snapfit::bench::pad;
-using snapfit::bench::padr;
-using snapfit::bench::seconds_since;
-
+using namespace snapfit::bench;  // perf/*.h: tables, contention, quiet guard, poses, limits
 using snapfit::Interpolation;
 using snapfit::Pose;
 using snapfit::QueryEngine;
 using snapfit::QueryVariant;
 using Clock = std::chrono::steady_clock;
-using snapfit::bench::DeviceLimits;
-using snapfit::bench::measure_limits;
 
 // ---------------------------------------------------------------- command line
 
@@ -112,12 +101,12 @@ struct Args {
 
 Args parse_args(int argc, char** argv) {
   Args a;
-  a.command_line = snapfit::bench::command_line(argc, argv);
+  a.command_line = command_line(argc, argv);
   CLI::App app{"Per-pose queries, batched queries, full translational maps and a roofline of the query kernel",
                "bench_queries"};
-  snapfit::bench::add_common_options(app, a.quick, a.device, a.out,
-                                     "a few m' values, 300 repetitions (under a minute once fields are cached)");
-  app.add_option("--scene", a.scene, "scene")->check(snapfit::bench::non_empty());
+  add_common_options(app, a.quick, a.device, a.out,
+                     "a few m' values, 300 repetitions (under a minute once fields are cached)");
+  app.add_option("--scene", a.scene, "scene")->check(non_empty());
   app.add_option("--repeats", a.repeats, "timed queries per latency point (0: 2000, --quick 300)")
       ->check(CLI::Range(1, 10000000));
   app.add_flag("--latency-only", a.latency_only,
@@ -129,23 +118,11 @@ Args parse_args(int argc, char** argv) {
                  "comma-separated variant keys (default all: 6dof_eft_trilinear, 6dof_eft_tricubic, "
                  "6dof_eft_trilinear_half, 6dof_eft_tricubic_half, 6dof_ef_trilinear, translation_ef)")
       ->delimiter(',');
-  snapfit::bench::parse(app, argc, argv);
+  parse(app, argc, argv);
   return a;
 }
 
 // ---------------------------------------------------------------- small helpers
-
-using snapfit::bench::load1;
-using snapfit::bench::read_loadavg;
-
-// Contention: cores other processes kept busy during an interval (perf/bench_common.h).
-using snapfit::bench::cpu_sample;
-using snapfit::bench::CpuSample;
-using snapfit::bench::other_cores;
-
-using snapfit::bench::QuietGuard;  // perf/quiet_guard.h
-
-using snapfit::bench::now_iso;
 
 std::string fmt(double v, int prec = 3) {
   if (!std::isfinite(v)) return "-";
@@ -153,9 +130,6 @@ std::string fmt(double v, int prec = 3) {
   os << std::setprecision(prec) << v;
   return os.str();
 }
-
-using snapfit::bench::percentile;
-double median(const std::vector<double>& v) { return percentile(v, 0.5); }
 
 // ---------------------------------------------------------------- variants and cost model
 
@@ -237,68 +211,6 @@ Cost cost_model(const QueryVariant& v, double terms_per_mode) {
   c.bytes *= terms_per_mode;
   c.flops *= terms_per_mode;
   return c;
-}
-
-// ---------------------------------------------------------------- poses
-
-Pose trajectory_pose(const std::vector<snapfit::Keyframe>& keys, double t) {
-  if (keys.size() == 1 || t <= keys.front().time_s) return keys.front().pose;
-  if (t >= keys.back().time_s) return keys.back().pose;
-  std::size_t i = 1;
-  while (keys[i].time_s < t) ++i;
-  const auto& a = keys[i - 1];
-  const auto& b = keys[i];
-  const double s = (t - a.time_s) / (b.time_s - a.time_s);
-  Pose p;
-  p.translation = (1 - s) * a.pose.translation + s * b.pose.translation;
-  p.rotation = a.pose.rotation.slerp(s, b.pose.rotation).normalized();
-  return p;
-}
-
-// `count` poses along the scene's trajectory (or from its initial pose to the assembled
-// one), each perturbed by up to +-0.5 grid spacings per axis and, with rotation, by up
-// to 0.5 degrees about a random axis; translation-only poses have R = I.
-std::vector<Pose> make_poses(const snapfit::Scene& scene, double spacing, std::size_t count, bool rotate,
-                             unsigned seed) {
-  std::vector<snapfit::Keyframe> keys = scene.trajectory.keyframes;
-  if (keys.empty()) {
-    keys.push_back({0.0, scene.part2.pose});
-    if (scene.assembled_pose) keys.push_back({1.0, *scene.assembled_pose});
-  }
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Pose> poses;
-  poses.reserve(count);
-  const double t0 = keys.front().time_s, t1 = keys.back().time_s;
-  for (std::size_t i = 0; i < count; ++i) {
-    const double t = t0 + (t1 - t0) * (count > 1 ? double(i) / double(count - 1) : 0.0);
-    Pose p = trajectory_pose(keys, t);
-    p.translation += 0.5 * spacing * Eigen::Vector3d(u(rng), u(rng), u(rng));
-    if (rotate) {
-      Eigen::Vector3d axis(u(rng), u(rng), u(rng));
-      if (axis.norm() < 1e-6) axis = Eigen::Vector3d::UnitZ();
-      const double angle = 0.5 * M_PI / 180.0 * std::abs(u(rng));
-      p.rotation = (Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis.normalized())) * p.rotation).normalized();
-    } else {
-      p.rotation = Eigen::Quaterniond::Identity();
-    }
-    poses.push_back(p);
-  }
-  return poses;
-}
-
-// Poses the engine accepts (not outside the padded box, not rejected).
-std::vector<Pose> usable_poses(QueryEngine& engine, const std::vector<Pose>& poses, std::size_t& rejected) {
-  const auto results = engine.query_batch(poses);
-  std::vector<Pose> out;
-  rejected = 0;
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    if (results[i].flags == snapfit::query_ok)
-      out.push_back(poses[i]);
-    else
-      ++rejected;
-  }
-  return out;
 }
 
 // ---------------------------------------------------------------- geometry of the spectra
@@ -573,7 +485,9 @@ void print_latency_row(const LatencyRow& r) {
 void measure_variant_latency(Bench& b, const VariantSpec& spec, std::size_t pose_count) {
   auto engine = make_query_engine(b.ctx, b.spectra, spec.variant);
   engine->set_modes(1024);
-  const auto all = make_poses(b.scene, b.spectra.spacing, pose_count, !spec.variant.translation_only, 12345u);
+  // Within 0.5 spacings and 0.5 degrees of the trajectory; translation only: R = I.
+  const auto all =
+      trajectory_poses(b.scene, pose_count, 12345u, 0.5 * b.spectra.spacing, 0.5, !spec.variant.translation_only);
   std::size_t rejected = 0;
   const std::vector<Pose>& poses = b.poses_of[spec.key] = usable_poses(*engine, all, rejected);
   b.rejected_of[spec.key] = rejected;
@@ -733,7 +647,7 @@ void measure_maps(Bench& b) {
   if (b.args.quick)
     std::cout << "  skipped with --quick (a cold map bakes an FFT plan for the full grid: a minute on a CPU)\n";
   if (b.args.latency_only || b.args.quick) return;
-  const auto rot_poses = make_poses(b.scene, b.spectra.spacing, 16, true, 777u);
+  const auto rot_poses = trajectory_poses(b.scene, 16, 777u, 0.5 * b.spectra.spacing, 0.5);
   std::size_t next = 0;
   for (Interpolation interp : {Interpolation::trilinear, Interpolation::tricubic}) {
     const MapRow row = measure_map(b, interp, rot_poses, next);
@@ -948,11 +862,10 @@ void check_targets(Bench& b) {
 
 // ---------------------------------------------------------------- output
 
-// The run as a whole: when, the load and contention around it, and the pair's set-up.
-struct RunRecord {
-  std::string date, load_start, load_end;
-  double total_s = 0, others_run = 0, others_latency_max = 0;
-  double pair_s = 0;
+// The run as a whole (perf/bench_common.h), the most contention during a latency point
+// and the pair's set-up.
+struct RunRecord : RunSpan {
+  double others_latency_max = 0, pair_s = 0;
   bool fields_from_cache = false;
 };
 
@@ -1076,14 +989,7 @@ nlohmann::json roofline_json(const Bench& b) {
 nlohmann::json run_json(const Bench& b, const RunRecord& run) {
   const auto& args = b.args;
   const auto& dims = b.spectra.dims;
-  nlohmann::json j;
-  j["benchmark"] = "bench_queries";
-  j["command_line"] = args.command_line;
-  j["date"] = run.date;
-  j["quick"] = args.quick;
-  j["total_seconds"] = run.total_s;
-  j["loadavg_start"] = run.load_start;
-  j["loadavg_end"] = run.load_end;
+  nlohmann::json j = run.header("bench_queries", args.command_line, args.quick, b.ctx.device.info);
   j["other_cores_run"] = run.others_run;
   j["quiet_guard"] = {{"threshold_cores", b.guard.threshold},
                       {"max_retries", b.guard.max_retries},
@@ -1095,8 +1001,6 @@ nlohmann::json run_json(const Bench& b, const RunRecord& run) {
       "rises toward the number of cores during the run: judge other activity by loadavg_start and by the "
       "running/total process counts; other_cores = (machine busy CPU time - this process's CPU time) / wall "
       "time, from /proc/stat and /proc/self/stat";
-  j["nproc"] = std::thread::hardware_concurrency();
-  j["device"] = snapfit::bench::device_record(b.ctx.device.info);
   j["scene"] = {{"file", args.scene},
                 {"name", b.scene.name},
                 {"fft_dims", {dims[0], dims[1], dims[2]}},
@@ -1144,11 +1048,8 @@ nlohmann::json report_json(const Bench& b, const RunRecord& run) {
 std::vector<snapfit::Chart> latency_charts(const Bench& b, const std::string& dev_short) {
   std::vector<snapfit::Chart> charts;
   for (const auto& spec : b.specs) {
-    snapfit::Chart c;
-    c.title = "query latency vs m': " + spec.label + " (" + dev_short + ")";
-    c.x_label = "retained modes m'";
-    c.y_label = "latency per query (us)";
-    c.log_x = c.log_y = true;
+    snapfit::Chart c = make_chart("query latency vs m': " + spec.label + " (" + dev_short + ")", "retained modes m'",
+                                  "latency per query (us)", true, true);
     snapfit::Series p50, p99;
     p50.label = "p50";
     p99.label = "p99";
@@ -1164,11 +1065,8 @@ std::vector<snapfit::Chart> latency_charts(const Bench& b, const std::string& de
     if (spec.variant.translation_only) c.markers.push_back({4096.0, 1000.0, "seed 000 K20c 1 kHz (published)"});
     charts.push_back(c);
   }
-  snapfit::Chart c;
-  c.title = "query latency p99 vs m', all variants (" + dev_short + ")";
-  c.x_label = "retained modes m'";
-  c.y_label = "p99 latency per query (us)";
-  c.log_x = c.log_y = true;
+  snapfit::Chart c = make_chart("query latency p99 vs m', all variants (" + dev_short + ")", "retained modes m'",
+                                "p99 latency per query (us)", true, true);
   for (const auto& spec : b.specs) {
     snapfit::Series s;
     s.label = spec.label;
@@ -1183,11 +1081,8 @@ std::vector<snapfit::Chart> latency_charts(const Bench& b, const std::string& de
 }
 
 snapfit::Chart throughput_chart(const Bench& b, const std::string& dev_short) {
-  snapfit::Chart c;
-  c.title = "batched throughput vs batch size (" + dev_short + ")";
-  c.x_label = "poses per batch";
-  c.y_label = "poses per second (median batch)";
-  c.log_x = c.log_y = true;
+  snapfit::Chart c = make_chart("batched throughput vs batch size (" + dev_short + ")", "poses per batch",
+                                "poses per second (median batch)", true, true);
   for (const auto& spec : b.specs)
     for (std::size_t m : b.plan.batch_modes) {
       snapfit::Series s;
@@ -1203,11 +1098,8 @@ snapfit::Chart throughput_chart(const Bench& b, const std::string& dev_short) {
 
 snapfit::Chart roofline_chart(const Bench& b) {
   const double bw = b.limits.read_gbs, peak = b.limits.peak_gflops;
-  snapfit::Chart c;
-  c.title = "roofline at m' = 32768 (measured limits; requested bytes)";
-  c.x_label = "arithmetic intensity (flop / byte requested)";
-  c.y_label = "GFLOP/s";
-  c.log_x = c.log_y = true;
+  snapfit::Chart c = make_chart("roofline at m' = 32768 (measured limits; requested bytes)",
+                                "arithmetic intensity (flop / byte requested)", "GFLOP/s", true, true);
   snapfit::Series roofline;
   roofline.label = "roof: min(" + fixed(peak, 0) + " GFLOP/s, " + fixed(bw, 1) + " GB/s x I)";
   roofline.style = snapfit::Series::Style::line;
@@ -1274,24 +1166,14 @@ void write_outputs(const Bench& b, const RunRecord& run) {
   std::filesystem::create_directories(dir);
   const std::string device_desc = info.name + " (" + info.platform_name + ", driver " + info.driver_version + ")";
   write_csvs(dir, b.latency, b.throughput, device_desc);
-  {
-    std::ofstream f(dir / "queries.json");
-    f << report_json(b, run).dump(2) << "\n";
-    if (!f) throw snapfit::Error((dir / "queries.json").string() + ": cannot write");
-  }
-  const std::string page =
-      snapfit::bench::write_charts(dir, "bench_queries: latency and throughput", b.args.command_line, charts(b));
+  write_json(dir / "queries.json", report_json(b, run));
+  const std::string page = write_charts(dir, "bench_queries: latency and throughput", b.args.command_line, charts(b));
   std::cout << "wrote " << (dir / "queries.csv").string() << ", throughput.csv, queries.json and " << page << "\n";
 }
 
 int run(const Args& args) {
   RunRecord run;
-  run.load_start = read_loadavg();
-  const CpuSample cpu_start = cpu_sample();
-  run.date = now_iso();
-  const auto t_start = Clock::now();
-  std::cout << "bench_queries: " << args.command_line << "\n  date " << run.date
-            << ", load average at start: " << run.load_start << "\n";
+  run.announce("bench_queries", args.command_line);
   const snapfit::FftLibrary fft;
   const snapfit::ComputeContext ctx = open_device(args.device);
   const snapfit::Scene scene = snapfit::load_scene(args.scene);
@@ -1308,12 +1190,9 @@ int run(const Args& args) {
   time_split(b);
   check_targets(b);
 
-  run.load_end = read_loadavg();
-  run.others_run = other_cores(cpu_start, cpu_sample());
+  run.stop();
   for (const auto& r : b.latency) run.others_latency_max = std::max(run.others_latency_max, r.other_cores);
-  run.total_s = seconds_since(t_start);
-  std::cout << "\nload average at end: " << run.load_end << " (start: " << run.load_start << "), total "
-            << fixed(run.total_s, 0) << " s; other processes kept " << fixed(run.others_run, 2)
+  std::cout << run.end_text() << "other processes kept " << fixed(run.others_run, 2)
             << " cores busy on average (at most " << fixed(run.others_latency_max, 2) << " during a latency point); "
             << b.guard.retries << " points re-measured after waiting " << fixed(b.guard.waited_s, 0) << " s\n";
   write_outputs(b, run);
@@ -1324,5 +1203,5 @@ int run(const Args& args) {
 
 int main(int argc, char** argv) {
   snapfit::expose_pocl_caller_thread_driver();  // --device basic: the haptic loop's device
-  return snapfit::bench::guarded_main("bench_queries", [&] { return run(parse_args(argc, argv)); });
+  return guarded_main("bench_queries", [&] { return run(parse_args(argc, argv)); });
 }

@@ -50,6 +50,7 @@ namespace {
 
 using namespace snapfit;
 using Clock = std::chrono::steady_clock;
+using bench::median;
 
 struct Row {
   std::string workload;                    // "synthetic" or the scene file
@@ -61,8 +62,6 @@ struct Row {
   double setup_s = 0, median_s = 0, p90_s = 0, scan_rate = 0, one_shot_s = 0, load_before = 0, load_after = 0;
   MapMinimaCounts counts;  // over the row's maps
 };
-
-double median(const std::vector<double>& v) { return quantile(v, 0.5); }
 
 // scan_rotations as it was before the device found the minima: the whole map read
 // back, the next map queued, then map_minima on the host.
@@ -107,12 +106,9 @@ MapStageSeconds stage_medians(TranslationMapper& mapper, const So3Grid& grid, co
     return median(v);
   };
   MapStageSeconds medians;
-  medians.product = stage(&MapStageSeconds::product);
-  medians.fft = stage(&MapStageSeconds::fft);
-  medians.reduce = stage(&MapStageSeconds::reduce);
-  medians.read = stage(&MapStageSeconds::read);
-  medians.host = stage(&MapStageSeconds::host);
-  medians.minima = stage(&MapStageSeconds::minima);
+  for (double MapStageSeconds::*field : {&MapStageSeconds::product, &MapStageSeconds::fft, &MapStageSeconds::reduce,
+                                         &MapStageSeconds::read, &MapStageSeconds::host, &MapStageSeconds::minima})
+    medians.*field = stage(field);
   return medians;
 }
 
@@ -217,11 +213,8 @@ void print_row(const std::string& size, const Row& row, bool on_device) {
 // Rotations per second against the grid size, per interpolation, FFT and where the
 // minima are found, and clFFT's one-shot map.
 Chart rate_chart(const std::vector<Row>& rows) {
-  Chart chart;
-  chart.title = "snapfit search: rotations per second (median interval)";
-  chart.x_label = "FFT grid points per axis";
-  chart.y_label = "rotations/s";
-  chart.log_y = true;
+  Chart chart = bench::make_chart("snapfit search: rotations per second (median interval)", "FFT grid points per axis",
+                                  "rotations/s", false, true);
   for (const char* name : {"trilinear", "tricubic"}) {
     for (const MapFft kind : map_ffts_built())
       for (const char* where : {"device", "host", "device, batched"}) {

@@ -22,14 +22,13 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
-#include "engine/spectra/ball_spectrum.h"
 #include "engine/fields/ball_union_error.h"
+#include "engine/fields/sphere_decomposition.h"
 #include "engine/runtime/device.h"
+#include "engine/spectra/ball_spectrum.h"
 #include "engine/spectra/mode_order.h"
 #include "engine/spectra/spectra.h"
-#include "engine/fields/sphere_decomposition.h"
 #include "io/mesh_load.h"
 #include "mesh/mesh_mass_properties.h"
 #include "mesh/procedural/procedural_parts.h"
@@ -130,11 +129,8 @@ nlohmann::json bunny_table(const ComputeContext& ctx, const Mesh& bunny, bool qu
 }
 
 Chart bunny_chart(const Series (&n3)[3]) {
-  Chart chart;
-  chart.title = "Balls n3 against grid size m (the bunny, seed 001 Table A.2 shape)";
-  chart.x_label = "m (grid nodes)";
-  chart.y_label = "balls n3";
-  chart.log_x = chart.log_y = true;
+  Chart chart = bench::make_chart("Balls n3 against grid size m (the bunny, seed 001 Table A.2 shape)",
+                                  "m (grid nodes)", "balls n3", true, true);
   for (const auto& s : n3) chart.series.push_back(s);
   chart.series.push_back({"seed 001 Table A.2, mu = 0.25",
                           {4096, 32768, 262144, 2097152},
@@ -270,11 +266,8 @@ void add_sphere_points(const FftLibrary& fft, const ComputeContext& ctx, const M
 }
 
 Chart pareto_chart(const std::vector<Point>& points) {
-  Chart pareto;
-  pareto.title = "Part 2 (peg) spectrum: error at the 4,096 lowest modes against time";
-  pareto.x_label = "seconds to the spectrum";
-  pareto.y_label = "relative L2 error";
-  pareto.log_x = pareto.log_y = true;
+  Chart pareto = bench::make_chart("Part 2 (peg) spectrum: error at the 4,096 lowest modes against time",
+                                   "seconds to the spectrum", "relative L2 error", true, true);
   for (const std::string path : {"grid", "spheres direct", "spheres nufft"}) {
     Series s{path, {}, {}, Series::Style::points, ""};
     for (const Point& p : points)

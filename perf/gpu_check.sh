@@ -99,28 +99,6 @@ describe() {
   printf '[%s] %s:%s %s (%s, %s, driver %s)' "$(jget index "$1")" "$(jget platform_index "$1")" \
     "$(jget device_index "$1")" "$(jget name "$1")" "$(jget type "$1")" "$(jget platform "$1")" "$(jget driver_version "$1")"
 }
-# resolve_device SPEC FILE: the line of `snapfit devices --json` output FILE that SPEC picks
-# (engine/runtime/device.cpp select_device_index: "", N, P:D, a type, or a name substring)
-resolve_device() {
-  local spec=${1,,} file=$2 line p d hay
-  spec=$(printf '%s' "$spec" | sed 's/^[[:space:]]*//; s/[[:space:]]*$//')
-  [ -s "$file" ] || return 1
-  if [ -z "$spec" ]; then grep -m1 '"selected":true' "$file"; return; fi
-  if [[ $spec =~ ^[0-9]+$ ]]; then grep -m1 "\"index\":$((10#$spec))[,}]" "$file"; return; fi
-  if [[ $spec =~ ^([0-9]+):([0-9]+)$ ]]; then
-    p=$((10#${BASH_REMATCH[1]})) d=$((10#${BASH_REMATCH[2]}))
-    while IFS= read -r line; do
-      [ "$(jget platform_index "$line")" = "$p" ] && [ "$(jget device_index "$line")" = "$d" ] && { printf '%s\n' "$line"; return 0; }
-    done < "$file"
-    return 1
-  fi
-  case "$spec" in cpu|gpu|accelerator|simulator) grep -m1 "\"type\":\"$spec\"" "$file"; return ;; esac
-  while IFS= read -r line; do
-    hay="$(jget platform "$line") $(jget name "$line") $(jget vendor "$line")"
-    [[ ${hay,,} == *"$spec"* ]] && { printf '%s\n' "$line"; return 0; }
-  done < "$file"
-  return 1
-}
 # default_device_under [VAR=VALUE...]: the JSON line of the default device with that environment
 default_device_under() { env "$@" timeout 120 "$snapfit" devices --json 2>/dev/null | grep -m1 '"selected":true'; }
 
@@ -602,7 +580,7 @@ echo "gpu_check: into $out, --device $device, $([ $quick = 1 ] && echo quick || 
 # 1. devices
 timed devices "$out/devices.log" - "" "$snapfit" devices
 timeout 120 "$snapfit" devices --json > "$out/devices.json" 2>> "$out/devices.log"
-target=$(resolve_device "$device" "$out/devices.json" || true)
+target=$(default_device_under "SNAPFIT_DEVICE=$device" || true)  # the device SPEC picks, as the benchmarks pick it
 if [ -n "$target" ]; then
   meta device "--device $device is $(describe "$target")"
   meta driver "$(jget driver_version "$target"), $(jget device_version "$target")"
