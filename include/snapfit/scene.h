@@ -144,7 +144,7 @@ enum class HybridRegion {
 };
 
 // The VPS - constraint hybrid's parameters (the scene's `vps.hybrid` section; every field
-// optional; scheduler/vps/vps_hybrid.h, docs/scenes.md).
+// optional; docs/scenes.md, docs/haptics.md "The VPS - constraint hybrid").
 struct VpsHybridParams {
   // The defaults differ from the paper's (rotation_fraction 0.5, x_full 1, region pair)
   // in three places, measured in docs/haptics.md: they insert at zero clearance.
