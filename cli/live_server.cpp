@@ -174,6 +174,9 @@ LiveHttpServer::LiveHttpServer(LiveSession& session, const BridgeServer& bridge,
                                std::filesystem::path record_base)
     : state_(std::make_unique<State>(session, bridge, std::move(page), std::move(record_base))) {
   State& s = *state_;
+  // Small replies on a kept-alive connection: without TCP_NODELAY each waits for the
+  // client's delayed acknowledgement (tens of ms), slower than the page's 60 Hz.
+  s.server.set_tcp_nodelay(true);
   s.routes();
   const int bound = port ? (s.server.bind_to_port("127.0.0.1", port) ? port : -1)
                          : s.server.bind_to_any_port("127.0.0.1");

@@ -191,8 +191,10 @@ function main() {
   }
   requestAnimationFrame(draw);
 
+  // The loop's latest frame, state_hz times a second (sooner after a slow reply).
   async function poll() {
-    for (;;) {
+    const period = 1000 / data.state_hz;
+    for (let due = performance.now(); ; due += period) {
       try {
         const response = await fetch('/state');
         show(await response.json());
@@ -200,7 +202,8 @@ function main() {
         message.textContent = `the session is gone (${e.message})`;
         return;
       }
-      await new Promise((done) => setTimeout(done, 1000 / data.state_hz));
+      due = Math.max(due, performance.now() - period);  // behind: no burst to catch up
+      await new Promise((done) => setTimeout(done, Math.max(0, due + period - performance.now())));
     }
   }
 
