@@ -31,8 +31,8 @@
 #                  the device the suite ran on.
 # Then OUT/summary.md: date, host, devices, driver, commit, the steps (status, seconds, log)
 # and the headline figures read from the outputs ("not found" where a file lacks one). It is
-# also printed at the end. Needs bash, coreutils, grep and sed; python3 for the figures'
-# tables (without it they are quoted from the logs).
+# also printed at the end. Needs bash, coreutils, grep and sed; python3 for the figures
+# (without it summary.md says so: rerun --summary-only on OUT where python3 is).
 #
 # Here (a machine with the build and a GPU that its OpenCL loader lists):
 #   bash perf/gpu_check.sh results/gpu_check
@@ -179,48 +179,6 @@ write_summary_header() {
     done < "$steps_file"
     echo
   } > "$s"
-}
-
-# Figures without python3: the console lines that carry them, quoted
-write_figures_plain() {
-  local s=$out/summary.md
-  {
-    echo "## Figures (quoted from the logs: $1)"
-    echo
-    echo "**Main job** (run.log):"
-    echo '```text'
-    grep -E "m' = |frames, measured|final pose error" "$out/run.log" 2>/dev/null | sed 's/^ *//' || echo "not found"
-    echo '```'
-    echo "**Accuracy** (accuracy.json, per strategy):"
-    echo '```text'
-    if [ -s "$out/accuracy.json" ]; then
-      sed 's/{"energy_error"/\n&/g' "$out/accuracy.json" | sed 's/}\].*//' | grep '"strategy":"' | grep -v '"strategies":' | while IFS= read -r l; do
-        printf "%s: m' %s, frame p99 %s ms, E %s F %s T %s\n" "$(jget strategy "$l")" "$(jget modes "$l")" \
-          "$(jget frame_ms_p99 "$l")" "$(jget energy_error "$l")" "$(jget force_error "$l")" "$(jget torque_error "$l")"
-      done
-      printf 'chosen: %s\n' "$(sed -n 's/.*"strategy":"\([^"]*\)","torque_error".*/\1/p' "$out/accuracy.json" | tail -1)"
-    else
-      echo "not found"
-    fi
-    echo '```'
-    echo "**bench_queries** (bench_queries.log):"
-    echo '```text'
-    grep -E "^  [0-9A-Za-z-].* poses \(|^    m' .* p50 .* p99 " "$out/bench_queries.log" 2>/dev/null | sed 's/  max .*//' || echo "not found"
-    echo '```'
-    echo "**bench_search** (bench_search.log):"
-    echo '```text'
-    grep -E "choose_map_fft picks|rotations/s" "$out/bench_search.log" 2>/dev/null | sed 's/: stages .*; [0-9]* rotations, set-up [^,]*, /: /; s/; one-shot.*//; s/; load .*//' || echo "not found"
-    echo '```'
-    echo "**bench_fft** (bench_fft.log):"
-    echo '```text'
-    grep -E "^verdict:" "$out/bench_fft.log" 2>/dev/null || echo "not found"
-    echo '```'
-    echo "**Tests** (tests.log):"
-    echo '```text'
-    grep -E "MESSAGE: default device:|^\[doctest\] (test cases|assertions):" "$out/tests.log" 2>/dev/null | sed 's/^.*MESSAGE: //' || echo "not found"
-    grep -E "^TEST CASE:|: (FATAL )?ERROR: " "$out/tests.log" 2>/dev/null | grep -B1 -E ": (FATAL )?ERROR: " | grep '^TEST CASE:' | sort -u | sed 's/^TEST CASE: */failed: /'
-    echo '```'
-  } >> "$s"
 }
 
 write_figures_python() {
@@ -511,17 +469,18 @@ PY
 
 write_summary() {
   write_summary_header
-  local ok=0 why="no $python on this machine"
+  local why="no $python on this machine"
   if command -v "$python" > /dev/null 2>&1; then
-    why="$python failed on the outputs"
     cp "$out/summary.md" "$out/.summary_head.md"
-    if write_figures_python 2> "$out/.summary_python.err"; then ok=1; else
+    if write_figures_python 2> "$out/.summary_python.err"; then why=""; else
       cp "$out/.summary_head.md" "$out/summary.md"
-      echo "gpu_check: the python3 summary failed ($(tail -1 "$out/.summary_python.err")); quoting the logs instead" >&2
+      why="$python failed on the outputs$(tail -1 "$out/.summary_python.err" | sed 's/^./: &/')"
+      echo "gpu_check: the python3 summary failed ($why)" >&2
     fi
     rm -f "$out/.summary_head.md" "$out/.summary_python.err"
   fi
-  [ $ok = 1 ] || write_figures_plain "$why"
+  # The figures need python3; the logs stay in OUT for a rerun where it is.
+  [ -z "$why" ] || echo "No figures ($why): run \`bash perf/gpu_check.sh OUT --summary-only\` where python3 is." >> "$out/summary.md"
 }
 
 if [ $summary_only = 1 ]; then
