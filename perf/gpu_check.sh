@@ -215,6 +215,9 @@ def text(rel):
         return ""
 
 
+steps = [line.split("\t") for line in text("steps.tsv").splitlines()]
+
+
 def g(d, *keys):
     for k in keys:
         if isinstance(d, dict) and k in d:
@@ -362,13 +365,8 @@ w("")
 w("## bench_fft --quick (bench_fft/fft.json)")
 w("")
 f = load("bench_fft/fft.json")
-steps = {}
-for line in text("steps.tsv").splitlines():
-    parts = line.split("\t")
-    if len(parts) >= 2:
-        steps[parts[0]] = parts[1]
 if f is None:
-    st = steps.get("bench_fft", "")
+    st = next((p[1] for p in steps if len(p) >= 2 and p[0] == "bench_fft"), "")
     w("bench_fft/fft.json " + NF + (" (" + st + ")" if st.startswith("skipped") else "") + ".")
 else:
     tr = g(f, "transforms") or []
@@ -446,8 +444,7 @@ w("")
 
 # ---- failed steps: the end of their logs
 tails = []
-for line in text("steps.tsv").splitlines():
-    parts = line.split("\t")
+for parts in steps:
     if len(parts) >= 4 and parts[0] != "tests" and (parts[1].startswith("FAILED") or parts[1].startswith("TIMEOUT")):
         body = [l for l in text(parts[3]).splitlines() if l.strip()][-4:]
         tails.append((parts[0], parts[3], body))
@@ -493,16 +490,14 @@ fi
 # ---------------------------------------------------------------------------------------------
 # binaries
 
-missing=()
+missing=0
 for b in "$snapfit" "$build/perf/bench_queries" "$build/perf/bench_search" "$tests_bin"; do
-  [ -x "$b" ] || missing+=("$b")
+  [ -x "$b" ] && continue
+  t=$(basename "$b") extra="" missing=1
+  [[ $t == bench_* ]] && extra=" in a build configured with -DSNAPFIT_BUILD_BENCHMARKS=ON"
+  echo "gpu_check.sh: ${b#"$root"/} is missing: build it with 'cmake --build ${build#"$root"/} --target $t'$extra, or from scratch with 'bash .ci/setup'" >&2
 done
-if [ ${#missing[@]} -gt 0 ]; then
-  for b in "${missing[@]}"; do
-    t=$(basename "$b") extra=""
-    [[ $t == bench_* ]] && extra=" in a build configured with -DSNAPFIT_BUILD_BENCHMARKS=ON"
-    echo "gpu_check.sh: ${b#"$root"/} is missing: build it with 'cmake --build ${build#"$root"/} --target $t'$extra, or from scratch with 'bash .ci/setup'" >&2
-  done
+if [ $missing = 1 ]; then
   echo "gpu_check.sh: (a GPU machine without this project's Debian packages gets the build from a Debian machine: 'bash ../shared/gpu/bundle.sh' there, 'bash .gpu/run.sh ...' here; ../shared/gpu/README.md)" >&2
   exit 2
 fi
@@ -619,14 +614,10 @@ if [ $quick = 1 ]; then
   # float accumulation, batches against single queries
   test_args+=("-tc=device enumeration*,device self-check*,pose query: results do not depend on the launch shape*,pose query: query_batch equals a loop of query,stability accumulation*,reference query: the device kernel*")
 fi
-# in build/tests, as ctest runs them (env -C needs coreutils 8.28; older: a bash that cds)
-if env -C / true 2> /dev/null; then
-  timed tests "$out/tests.log" - "$test_note" env -C "$build/tests" "${test_env[@]}" "$tests_bin" "${test_args[@]}"
-else
-  # shellcheck disable=SC2016
-  timed tests "$out/tests.log" - "$test_note" bash -c 'cd "$1" && shift && exec env "$@"' gpu_check "$build/tests" \
-    "${test_env[@]}" "$tests_bin" "${test_args[@]}"
-fi
+# in build/tests, as ctest runs them (a bash that cds: env -C needs coreutils 8.28)
+# shellcheck disable=SC2016
+timed tests "$out/tests.log" - "$test_note" bash -c 'cd "$1" && shift && exec env "$@"' gpu_check "$build/tests" \
+  "${test_env[@]}" "$tests_bin" "${test_args[@]}"
 
 # ---------------------------------------------------------------------------------------------
 write_summary
