@@ -20,12 +20,11 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "core/quantile.h"
-#include "engine/runtime/device.h"
 #include "engine/query/query_engine.h"
 #include "engine/query/reference_query.h"
+#include "engine/runtime/device.h"
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
@@ -61,12 +60,6 @@ std::vector<const Row*> pareto(const std::vector<Row>& rows, double Row::*err) {
   return front;
 }
 
-std::string oversampling_label(double os) {
-  std::ostringstream s;
-  s << os;
-  return s.str();
-}
-
 }  // namespace
 
 // What every measured setting is compared with: the poses, the exact reference at each,
@@ -82,7 +75,6 @@ struct Inputs {
 Row float_row(QueryEngine& engine, const Inputs& in, double os, const std::string& scheme_name, std::size_t m,
               bool exact) {
   const std::vector<Pose>& poses = in.poses;
-  const int repeats = in.repeats;
   Row f{os, scheme_name, "float", m};
   RelativeErrors fe;
   for (std::size_t i = 0; i < poses.size(); ++i) {
@@ -93,13 +85,13 @@ Row float_row(QueryEngine& engine, const Inputs& in, double os, const std::strin
       fe.add(r, in.reference[i]);
   }
   std::vector<double> times;
-  for (int k = 0; k < repeats; ++k) {
+  for (int k = 0; k < in.repeats; ++k) {
     // The exact product: one pose, so the product is made once and the frame's line
     // sums are timed (what a background product leaves to the frame).
     const Pose& timed = poses[exact ? 0 : k % poses.size()];
     const auto t0 = std::chrono::steady_clock::now();
     engine.query(timed);
-    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    times.push_back(1e3 * bench::seconds_since(t0));
   }
   f.ms = quantile(times, 0.5);
   f.err_energy = fe.relative(0), f.err_force = fe.relative(1), f.err_torque = fe.relative(2);
@@ -166,15 +158,15 @@ void measure_strategy(const ComputeContext& ctx, const PairSpectra& s, const Inp
     // double: the host reference evaluator at the same m' (skipped where it is slow).
     const Row d = double_row(s, order, in, os, scheme, scheme_name, m);
     if (!d.flagged) rows.push_back(d);
-    if (f.flagged)
+    if (f.flagged) {
       flagged_settings.push_back(
           {{"oversampling", os}, {"interpolation", scheme_name}, {"modes", m}, {"flagged_poses", f.flagged}});
-    if (f.flagged)
       std::printf("os %.1f %-9s m' %7zu  %zu of %zu poses outside this FFT box's alias-free range: no figure\n", os,
                   scheme_name.c_str(), m, f.flagged, in.poses.size());
-    else
+    } else {
       std::printf("os %.1f %-9s m' %7zu  float %8.3f ms  E %.2e F %.2e T %.2e | double %8.3f ms  E %.2e\n", os,
                   scheme_name.c_str(), m, f.ms, f.err_energy, f.err_force, f.err_torque, d.ms, d.err_energy);
+    }
   }
 }
 
@@ -189,7 +181,7 @@ Chart error_chart(const char* name, double Row::*err, const std::vector<Row>& ro
     for (const char* scheme : {"trilinear", "tricubic", "exact-product"})
       for (const char* precision : {"float", "double"}) {
         Series s{
-            std::string(scheme) + " " + precision + " x" + oversampling_label(os), {}, {}, Series::Style::line_points, ""};
+            std::string(scheme) + " " + precision + " x" + bench::fmt(os, 6), {}, {}, Series::Style::line_points, ""};
         for (const Row& r : rows)
           if (r.oversampling == os && r.interpolation == scheme && r.precision == precision && r.*err > 0)
             s.x.push_back(r.ms), s.y.push_back(r.*err);
@@ -259,23 +251,6 @@ std::map<double, PairSpectra> spectra_per_oversampling(const AssemblyPair& pair,
   return spectra;
 }
 
-// The reference at each pose, exact in rotation (tests/test_exact_rotation.cpp checks it).
-std::vector<QueryResult> exact_reference(const ComputeContext& ctx, const PairSpectra& spectra,
-                                         const QueryVariant& variant, const std::vector<Pose>& poses) {
-  std::vector<QueryResult> reference;
-  auto engine = make_query_engine(ctx, spectra, bench::exact_reference_variant(variant, spectra.part1.rho.size()));
-  engine->set_modes(engine->max_modes());
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    const auto t0 = std::chrono::steady_clock::now();
-    reference.push_back(engine->query(poses[i]));
-    if (reference.back().flags) throw Error("reference pose " + std::to_string(i) + " is outside the grid");
-    std::cout << "reference " << i + 1 << "/" << poses.size() << ": E = " << reference.back().energy << " ("
-              << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s, "
-              << reference.back().modes << " modes)\n";
-  }
-  return reference;
-}
-
 int main(int argc, char** argv) {
   return bench::guarded_main("bench_accuracy", [&] {
     std::string scene_path = "scenes/default.json", out_dir = "results/bench_accuracy";
@@ -309,7 +284,13 @@ int main(int argc, char** argv) {
 
     const std::map<double, PairSpectra> spectra = spectra_per_oversampling(pair, ctx, fft, oversamplings);
     const auto ref_start = std::chrono::steady_clock::now();
-    const std::vector<QueryResult> reference = exact_reference(ctx, pair.spectra, scene_variant, poses);
+    // Exact in rotation (tests/test_exact_rotation.cpp checks it).
+    const std::vector<QueryResult> reference = bench::exact_references(
+        ctx, pair.spectra, scene_variant, poses, [&](std::size_t i, const QueryResult& r, double s) {
+          if (r.flags) throw Error("reference pose " + std::to_string(i) + " is outside the grid");
+          std::cout << "reference " << i + 1 << "/" << poses.size() << ": E = " << r.energy << " (" << s << " s, "
+                    << r.modes << " modes)\n";
+        });
     const double ref_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ref_start).count();
     ReferenceOptions ref_options;
     ref_options.force = scene.outputs.force;
@@ -334,12 +315,11 @@ int main(int argc, char** argv) {
                          rows, flagged_settings);
 
     fs::create_directories(out_dir);
-    std::ostringstream csv;
-    csv << "oversampling,interpolation,precision,modes,ms_p50,err_energy,err_force,err_torque\n";
+    bench::CsvFile csv(fs::path(out_dir) / "accuracy.csv",
+                       "oversampling,interpolation,precision,modes,ms_p50,err_energy,err_force,err_torque");
     nlohmann::json jrows = nlohmann::json::array();
     for (const Row& r : rows) {
-      csv << r.oversampling << ',' << r.interpolation << ',' << r.precision << ',' << r.modes << ',' << r.ms << ','
-          << r.err_energy << ',' << r.err_force << ',' << r.err_torque << '\n';
+      csv.row(r.oversampling, r.interpolation, r.precision, r.modes, r.ms, r.err_energy, r.err_force, r.err_torque);
       jrows.push_back({{"oversampling", r.oversampling},
                        {"interpolation", r.interpolation},
                        {"precision", r.precision},
@@ -349,7 +329,6 @@ int main(int argc, char** argv) {
                        {"err_force", r.err_force},
                        {"err_torque", r.err_torque}});
     }
-    std::ofstream(fs::path(out_dir) / "accuracy.csv") << csv.str();
 
     const std::array<std::pair<const char*, double Row::*>, 3> quantities = {
         {{"energy", &Row::err_energy}, {"force", &Row::err_force}, {"torque", &Row::err_torque}}};

@@ -423,25 +423,22 @@ struct Summary {
 // Where the trials go: trials.csv, and for trial 0 of the peg at the middle clearance the
 // wrench against depth (wrench_vs_depth.csv and the charts).
 struct TrialFiles {
-  std::ofstream csv, depth_csv;
+  bench::CsvFile csv, depth_csv;
   double depth_clearance = 0;
   std::map<std::string, std::vector<std::pair<double, double>>> force_depth, torque_depth;  // method -> (depth, value)
 };
 
 void write_trial(TrialFiles& out, const Cell& cell, const BenchMethod& method, const Scene& scene, long t,
                  const UserTrial& user, const SessionResult& run, const TrialResult& r) {
-  std::ofstream& csv = out.csv;
-  csv << cell.pair << "," << method.name << "," << cell.clearance << "," << t << "," << r.success << "," << r.inserted
-      << "," << r.position_error << "," << r.lateral_error << "," << r.axial_error << "," << r.angle_error << ","
-      << r.max_penetration << "," << r.max_force_step << "," << r.force_hf_rms << "," << r.peak_force << ","
-      << r.frame_p99_ms << "," << r.frame_wall_p99_ms << "," << r.misses << "," << r.frames << "," << user.lateral
-      << "," << (method.kind == BenchMethod::translation ? 0.0 : user.tilt_deg) << "," << user.approach_offset << ","
-      << user.duration_s << "\n";
+  out.csv.row(cell.pair, method.name, cell.clearance, t, r.success, r.inserted, r.position_error, r.lateral_error,
+              r.axial_error, r.angle_error, r.max_penetration, r.max_force_step, r.force_hf_rms, r.peak_force,
+              r.frame_p99_ms, r.frame_wall_p99_ms, r.misses, r.frames, user.lateral,
+              method.kind == BenchMethod::translation ? 0.0 : user.tilt_deg, user.approach_offset, user.duration_s);
   if (t == 0 && cell.pair == "peg-in-hole" && cell.clearance == out.depth_clearance) {
     for (const FrameRecord& f : run.loop.log) {
       const double depth = scene.assembled_pose->translation.z() + cell.entry - f.part.translation.z();
-      out.depth_csv << cell.pair << "," << method.name << "," << cell.clearance << "," << t << "," << f.time_s << ","
-                    << depth << "," << f.sent.force.norm() << "," << f.sent.torque.norm() << "\n";
+      out.depth_csv.row(cell.pair, method.name, cell.clearance, t, f.time_s, depth, f.sent.force.norm(),
+                        f.sent.torque.norm());
       out.force_depth[method.name].push_back({depth, f.sent.force.norm()});
       out.torque_depth[method.name].push_back({depth, f.sent.torque.norm()});
     }
@@ -485,7 +482,7 @@ Summary run_method(const Options& o, TrialFiles& out, const Cell& cell, const Be
 
 // One cell and method's line of the summary: summary.csv, summary.md and the JSON; the
 // peg's success rate into `success_series`.
-nlohmann::json summarise(const Summary& s, std::ofstream& scsv, std::ostringstream& md,
+nlohmann::json summarise(const Summary& s, bench::CsvFile& scsv, std::ostringstream& md,
                          std::map<std::string, Series>& success_series) {
   std::vector<double> pos, ang, pen, step, hf, p99, wall99;
   double ok = 0, in = 0, misses = 0;
@@ -496,10 +493,9 @@ nlohmann::json summarise(const Summary& s, std::ofstream& scsv, std::ostringstre
     ok += r.success, in += r.inserted, misses += r.misses;
   }
   const double n = s.trials.size();
-  scsv << s.pair << "," << s.method << "," << s.clearance << "," << n << "," << ok / n << "," << in / n << ","
-       << quantile(pos, 0.5) << "," << quantile(ang, 0.5) << "," << quantile(pen, 0.5) << "," << quantile(pen, 1.0)
-       << "," << quantile(step, 0.5) << "," << quantile(hf, 0.5) << "," << quantile(p99, 1.0) << ","
-       << quantile(wall99, 1.0) << "," << misses << "\n";
+  scsv.row(s.pair, s.method, s.clearance, n, ok / n, in / n, quantile(pos, 0.5), quantile(ang, 0.5), quantile(pen, 0.5),
+           quantile(pen, 1.0), quantile(step, 0.5), quantile(hf, 0.5), quantile(p99, 1.0), quantile(wall99, 1.0),
+           misses);
   md << "| " << s.pair << " | " << s.method << " | " << s.clearance << " | " << n << " | "
      << bench::fixed(100 * ok / n, 0) << " % | " << bench::fixed(100 * in / n, 0) << " % | "
      << bench::fixed(quantile(pos, 0.5), 3) << " | " << bench::fixed(quantile(ang, 0.5), 2) << " | "
@@ -564,15 +560,15 @@ int main(int argc, char** argv) {
     }
     const std::string load_start = bench::read_loadavg();
     fs::create_directories(o.out_dir);
-    TrialFiles out;
-    out.csv.open(fs::path(o.out_dir) / "trials.csv");
-    out.csv << "pair,method,clearance,trial,success,inserted,position_error,lateral_error,axial_error,angle_error,"
-               "max_penetration,max_force_step,force_hf_rms,peak_force,frame_p99_ms,frame_wall_p99_ms,misses,frames,"
-               "lateral_offset,tilt_deg,"
-               "approach_offset,duration_s\n";
-    out.depth_csv.open(fs::path(o.out_dir) / "wrench_vs_depth.csv");
-    out.depth_csv << "pair,method,clearance,trial,time_s,depth,force_n,torque_nm\n";
-    out.depth_clearance = o.clearances.size() > 1 ? o.clearances[o.clearances.size() / 2] : o.clearances[0];
+    TrialFiles out{
+        {fs::path(o.out_dir) / "trials.csv",
+         "pair,method,clearance,trial,success,inserted,position_error,lateral_error,axial_error,angle_error,"
+         "max_penetration,max_force_step,force_hf_rms,peak_force,frame_p99_ms,frame_wall_p99_ms,misses,"
+         "frames,lateral_offset,tilt_deg,approach_offset,duration_s"},
+        {fs::path(o.out_dir) / "wrench_vs_depth.csv", "pair,method,clearance,trial,time_s,depth,force_n,torque_nm"},
+        o.clearances.size() > 1 ? o.clearances[o.clearances.size() / 2] : o.clearances[0],
+        {},
+        {}};
     std::vector<Summary> summaries;
     const auto started = std::chrono::steady_clock::now();
     for (const Cell& cell : cells) {
@@ -587,11 +583,10 @@ int main(int argc, char** argv) {
 
     // The summary per cell: success rate, medians of the errors, the worst penetration.
     std::ostringstream md;
-    std::ofstream scsv(fs::path(o.out_dir) / "summary.csv");
-    scsv << "pair,method,clearance,trials,success_rate,inserted_rate,median_position_error,median_angle_error,"
-            "median_max_penetration,max_penetration,median_max_force_step,median_force_hf_rms,frame_p99_ms,frame_wall_"
-            "p99_ms,"
-            "misses\n";
+    bench::CsvFile scsv(fs::path(o.out_dir) / "summary.csv",
+                        "pair,method,clearance,trials,success_rate,inserted_rate,median_position_error,"
+                        "median_angle_error,median_max_penetration,max_penetration,median_max_force_step,"
+                        "median_force_hf_rms,frame_p99_ms,frame_wall_p99_ms,misses");
     md << "| pair | method | clearance (mm) | trials | success | inserted | position error (mm, median) | angle "
           "error (deg, median) | max penetration (mm, median / max) | max force step (N, median) | query CPU "
           "p99 (ms, max) | misses |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -618,7 +613,7 @@ int main(int argc, char** argv) {
                    {"penetration_stride", o.stride},
                    {"seconds", seconds},
                    {"cells", cells_json}});
-    std::ofstream(fs::path(o.out_dir) / "summary.json") << report.dump(2) << "\n";
+    bench::write_json(fs::path(o.out_dir) / "summary.json", report);
     const std::string page = bench::write_charts(o.out_dir, "bench_assembly: imprecise-user insertions",
                                                  bench::command_line(argc, argv), charts);
     std::cout << "wrote " << o.out_dir << "/trials.csv, summary.csv, summary.md, summary.json, wrench_vs_depth.csv and "

@@ -31,7 +31,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -55,10 +54,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace snapfit;
-using bench::fixed;
-using bench::pad;
-using bench::padr;
-using bench::percentile;
+using namespace snapfit::bench;  // perf/bench_common.h: tables, CSV, JSON
 using Clock = std::chrono::steady_clock;
 
 // The deepest vertex of `a` (placed by pose_a) inside `b_index` (b at the identity): >= 0.
@@ -112,11 +108,10 @@ Options parse_options(int argc, char** argv) {
       "Seed 001's collision predicate (truncated overlap above its truncation bound) against fcl::collide "
       "on the shipped scenes, at m' = 512, 1024, 2048, 4096: agreement and query time.",
       "bench_collision"};
-  bench::add_common_options(app, o.quick, o.device, o.out,
-                            "collision_only.json and default.json (spacing doubled), 30 poses");
+  add_common_options(app, o.quick, o.device, o.out, "collision_only.json and default.json (spacing doubled), 30 poses");
   app.add_option("--poses", pose_arg, "poses per scene (0: 198, --quick 30)")->check(CLI::Range(2, 100000));
   app.add_option("--scene", o.scene_files, "scene, repeatable (default: every scenes/*.json)");
-  bench::parse(app, argc, argv);
+  parse(app, argc, argv);
   if (o.scene_files.empty()) {
     if (o.quick) {
       o.scene_files = {"scenes/collision_only.json", "scenes/default.json"};
@@ -137,17 +132,16 @@ const std::vector<std::size_t> kModes = {512, 1024, 2048, 4096};
 std::vector<Pose> scene_poses(const Scene& scene, QueryEngine& engine, std::size_t pose_count, double h,
                               const AssemblyPair& pair) {
   const bool rotates = scene.motion == Motion::six_dof;
-  std::vector<Pose> candidates = bench::trajectory_poses(scene, pose_count / 3, 20261124u, 0.0, 0.0);
-  for (const Pose& p : bench::trajectory_poses(scene, pose_count / 3, 20261125u, 0.5, rotates ? 2.0 : 0.0))
+  std::vector<Pose> candidates = trajectory_poses(scene, pose_count / 3, 20261124u, 0.0, 0.0);
+  for (const Pose& p : trajectory_poses(scene, pose_count / 3, 20261125u, 0.5, rotates ? 2.0 : 0.0))
     candidates.push_back(p);
-  for (const Pose& p :
-       bench::trajectory_poses(scene, pose_count - 2 * (pose_count / 3), 20261126u, 3.0, rotates ? 10.0 : 0.0))
+  for (const Pose& p : trajectory_poses(scene, pose_count - 2 * (pose_count / 3), 20261126u, 3.0, rotates ? 10.0 : 0.0))
     candidates.push_back(p);
   if (!rotates)  // part 2's orientation is in its mesh (pipeline/assembly_pair.h)
     for (Pose& p : candidates) p.rotation = Eigen::Quaterniond::Identity();
   engine.set_modes(kModes.front());
   std::size_t rejected = 0;
-  const std::vector<Pose> poses = bench::usable_poses(engine, candidates, rejected);
+  const std::vector<Pose> poses = usable_poses(engine, candidates, rejected);
   std::cout << "  FFT grid " << pair.spectra.dims[0] << "x" << pair.spectra.dims[1] << "x" << pair.spectra.dims[2]
             << ", h " << h << "; poses " << poses.size() << " of " << candidates.size() << " inside the padded box\n";
   return poses;
@@ -162,12 +156,12 @@ Truth fcl_truth(const AssemblyPair& pair, const std::vector<Pose>& poses) {
   const Mesh& m1 = pair.parts.part1.mesh;
   const Mesh& m2 = pair.parts.part2.mesh;
   double build_s = 0;
-  fcl::CollisionObjectd o1(bench::fcl_model(m1, build_s), fcl::Transform3d::Identity());
-  fcl::CollisionObjectd o2(bench::fcl_model(m2, build_s), fcl::Transform3d::Identity());
+  fcl::CollisionObjectd o1(fcl_model(m1, build_s), fcl::Transform3d::Identity());
+  fcl::CollisionObjectd o2(fcl_model(m2, build_s), fcl::Transform3d::Identity());
   const MeshDistanceIndex index1(m1), index2(m2);
   Truth t{std::vector<int>(poses.size()), std::vector<double>(poses.size())};
   for (std::size_t i = 0; i < poses.size(); ++i) {
-    o2.setTransform(bench::fcl_transform(poses[i]));
+    o2.setTransform(fcl_transform(poses[i]));
     fcl::CollisionRequestd creq(1, false);
     fcl::CollisionResultd cres;
     fcl::collide(&o1, &o2, creq, cres);
@@ -188,8 +182,7 @@ Truth fcl_truth(const AssemblyPair& pair, const std::vector<Pose>& poses) {
 // The three predicates' verdicts against FCL's at each m', and the query time; each
 // pose's overlap into poses.csv.
 void measure_modes(const std::string& file, QueryEngine& engine, const TruncationTails& tails, double h,
-                   const std::vector<Pose>& poses, const Truth& truth, std::ofstream& poses_csv,
-                   std::vector<Row>& rows) {
+                   const std::vector<Pose>& poses, const Truth& truth, CsvFile& poses_csv, std::vector<Row>& rows) {
   const int warmup = 20;
   for (std::size_t m : kModes) {
     engine.set_modes(m);
@@ -204,10 +197,9 @@ void measure_modes(const std::string& file, QueryEngine& engine, const Truncatio
       estimate_row.c.add(v.overlap > res[i].error_estimate.energy, truth.collides[i] != 0, truth.distance[i]);
       zero_row.c.add(v.overlap > 0, truth.collides[i] != 0, truth.distance[i]);
       const Pose& p = poses[i];
-      poses_csv << file << "," << i << "," << p.translation.x() << "," << p.translation.y() << "," << p.translation.z()
-                << "," << p.rotation.w() << "," << p.rotation.x() << "," << p.rotation.y() << "," << p.rotation.z()
-                << "," << truth.collides[i] << "," << truth.distance[i] << "," << engine.modes() << "," << v.overlap
-                << "," << v.bound << "\n";
+      poses_csv.row(file, i, p.translation.x(), p.translation.y(), p.translation.z(), p.rotation.w(), p.rotation.x(),
+                    p.rotation.y(), p.rotation.z(), truth.collides[i], truth.distance[i], engine.modes(), v.overlap,
+                    v.bound);
     }
     // Time: one pose per call, as the haptic frame asks.
     double sink = 0;
@@ -216,7 +208,7 @@ void measure_modes(const std::string& file, QueryEngine& engine, const Truncatio
     for (const Pose& p : poses) {
       const auto t0 = Clock::now();
       sink += engine.query(p).energy;
-      us.push_back(bench::seconds_since(t0) * 1e6);
+      us.push_back(seconds_since(t0) * 1e6);
     }
     bound_row.p50_us = estimate_row.p50_us = zero_row.p50_us = percentile(us, 0.5);
     bound_row.p99_us = estimate_row.p99_us = zero_row.p99_us = percentile(us, 0.99);
@@ -258,17 +250,14 @@ std::vector<Row> totals_of(const std::vector<Row>& rows) {
 
 void write_results(const std::string& out, const std::vector<Row>& rows, const std::vector<Row>& totals,
                    const nlohmann::json& record) {
-  std::ofstream csv(fs::path(out) / "collision.csv");
-  csv << "scene,modes,predicate,tp,fp,fn,tn,tpr,fpr,agreement,beyond_2h,agree_beyond_2h,worst_fp_distance,worst_fn_"
-         "distance,bound,spacing,"
-         "query_p50_us,query_p99_us\n";
+  CsvFile csv(fs::path(out) / "collision.csv",
+              "scene,modes,predicate,tp,fp,fn,tn,tpr,fpr,agreement,beyond_2h,agree_beyond_2h,worst_fp_distance,"
+              "worst_fn_distance,bound,spacing,query_p50_us,query_p99_us");
   nlohmann::json jrows = nlohmann::json::array();
   for (const std::vector<Row>* list : {&rows, &totals})
     for (const Row& r : *list) {
-      csv << r.scene << "," << r.modes << "," << r.predicate << "," << r.c.tp << "," << r.c.fp << "," << r.c.fn << ","
-          << r.c.tn << "," << r.c.tpr() << "," << r.c.fpr() << "," << r.c.agreement() << "," << r.c.far << ","
-          << r.c.far_agree << "," << r.c.worst_fp << "," << r.c.worst_fn << "," << r.bound << "," << r.spacing << ","
-          << r.p50_us << "," << r.p99_us << "\n";
+      csv.row(r.scene, r.modes, r.predicate, r.c.tp, r.c.fp, r.c.fn, r.c.tn, r.c.tpr(), r.c.fpr(), r.c.agreement(),
+              r.c.far, r.c.far_agree, r.c.worst_fp, r.c.worst_fn, r.bound, r.spacing, r.p50_us, r.p99_us);
       jrows.push_back({{"scene", r.scene},
                        {"modes", r.modes},
                        {"predicate", r.predicate},
@@ -282,19 +271,19 @@ void write_results(const std::string& out, const std::vector<Row>& rows, const s
                        {"worst_fn_distance", r.c.worst_fn},
                        {"bound", r.bound},
                        {"spacing", r.spacing},
-                       {"query_p50_us", bench::num(r.p50_us)},
-                       {"query_p99_us", bench::num(r.p99_us)}});
+                       {"query_p50_us", num(r.p50_us)},
+                       {"query_p99_us", num(r.p99_us)}});
     }
   nlohmann::json report = record;
   report["rows"] = jrows;
-  std::ofstream(fs::path(out) / "collision.json") << report.dump(2) << "\n";
+  write_json(fs::path(out) / "collision.json", report);
 }
 
 std::vector<Chart> charts(const std::vector<Row>& totals) {
   Chart agreement =
-      bench::make_chart("Collision verdicts against fcl::collide, all scenes", "m' (retained modes)", "rate", true);
+      make_chart("Collision verdicts against fcl::collide, all scenes", "m' (retained modes)", "rate", true);
   Chart timing =
-      bench::make_chart("Energy-only query time per pose (slowest scene)", "m' (retained modes)", "microseconds", true);
+      make_chart("Energy-only query time per pose (slowest scene)", "m' (retained modes)", "microseconds", true);
   timing.hlines.push_back({1000.0, "1 ms"});
   Series tp50{"median", {}, {}, Series::Style::line_points, ""}, tp99{"p99", {}, {}, Series::Style::line_points, ""};
   for (const std::string pred : {"bound", "estimate", "zero"}) {
@@ -318,8 +307,8 @@ std::vector<Chart> charts(const std::vector<Row>& totals) {
 
 int run(int argc, char** argv) {
   const Options o = parse_options(argc, argv);
-  const bench::RunSpan span;
-  span.announce("bench_collision", bench::command_line(argc, argv));
+  const RunSpan span;
+  span.announce("bench_collision", command_line(argc, argv));
 
   const FftLibrary fft;
   const ComputeContext ctx = make_compute_context(select_device(device_spec_from(o.device)));
@@ -329,10 +318,9 @@ int run(int argc, char** argv) {
   popt.note = [](const std::string& m) { std::cerr << "  snapfit: " << m << "\n"; };
 
   std::vector<Row> rows;
-  std::ofstream poses_csv;
   fs::create_directories(o.out);
-  poses_csv.open(fs::path(o.out) / "poses.csv");
-  poses_csv << "scene,pose,x,y,z,qw,qx,qy,qz,fcl_collides,distance_to_contact,modes,overlap,bound\n";
+  CsvFile poses_csv(fs::path(o.out) / "poses.csv",
+                    "scene,pose,x,y,z,qw,qx,qy,qz,fcl_collides,distance_to_contact,modes,overlap,bound");
   for (const std::string& file : o.scene_files) {
     Scene scene = indicator_scene(load_scene(file));
     if (o.quick) {
@@ -356,11 +344,11 @@ int run(int argc, char** argv) {
     measure_modes(file, *engine, tails, h, poses, truth, poses_csv, rows);
   }
   const std::vector<Row> totals = totals_of(rows);
-  nlohmann::json record = bench::run_record(argc, argv, describe_device(ctx.device.info), span.load_start);
+  nlohmann::json record = run_record(argc, argv, describe_device(ctx.device.info), span.load_start);
   record["quick"] = o.quick;
   write_results(o.out, rows, totals, record);
-  const std::string page = bench::write_charts(o.out, "bench_collision: seed 001's collision predicate against FCL",
-                                               bench::command_line(argc, argv), charts(totals));
+  const std::string page = write_charts(o.out, "bench_collision: seed 001's collision predicate against FCL",
+                                        command_line(argc, argv), charts(totals));
   std::cout << "wrote " << o.out << "/collision.csv, poses.csv, collision.json and " << page << "\n";
   return 0;
 }

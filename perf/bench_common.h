@@ -21,6 +21,8 @@
 #include <vector>
 
 #include "core/quantile.h"
+#include "engine/maps/full_map.h"
+#include "engine/query/query_engine.h"
 #include "engine/runtime/device.h"
 #include "report/chart_spec.h"
 #include "report/device_json.h"
@@ -138,12 +140,18 @@ inline double other_cores(const CpuSample& a, const CpuSample& b) {
 inline double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
-inline std::string fixed(double v, int prec = 1) {
+// v with `prec` digits in `format` (std::ios_base::fixed, scientific, or {}: significant
+// digits); '-' when it is not finite.
+inline std::string formatted(double v, int prec, std::ios_base::fmtflags format) {
   if (!std::isfinite(v)) return "-";
   std::ostringstream os;
-  os << std::fixed << std::setprecision(prec) << v;
+  os.setf(format, std::ios_base::floatfield);
+  os << std::setprecision(prec) << v;
   return os.str();
 }
+inline std::string fixed(double v, int prec = 1) { return formatted(v, prec, std::ios_base::fixed); }
+inline std::string fmt(double v, int prec = 3) { return formatted(v, prec, {}); }
+inline std::string sci(double v, int prec = 2) { return formatted(v, prec, std::ios_base::scientific); }
 inline std::string pad(const std::string& s, std::size_t w) {
   return s.size() >= w ? s : std::string(w - s.size(), ' ') + s;
 }
@@ -173,6 +181,38 @@ inline void write_json(const std::filesystem::path& path, const nlohmann::json& 
   f << j.dump(indent) << "\n";
   if (!f) throw Error(path.string() + ": cannot write");
 }
+
+// Sets the kernel's arguments 0, 1, ... to `args`.
+template <class... A>
+void set_args(cl::Kernel& k, const A&... args) {
+  cl_uint i = 0;
+  (k.setArg(i++, args), ...);
+}
+
+// A CSV file: the header line, then one row per call; throws snapfit::Error when it cannot
+// be written.
+class CsvFile {
+ public:
+  CsvFile(const std::filesystem::path& path, const std::string& header) : path_(path), f_(path) {
+    f_ << header << "\n";
+  }
+  // The values as std::ostream prints them, separated by commas.
+  template <class First, class... Rest>
+  void row(const First& first, const Rest&... rest) {
+    f_ << first;
+    ((f_ << ',' << rest), ...);
+    f_ << "\n";
+    if (!f_) throw Error(path_.string() + ": cannot write");
+  }
+
+ private:
+  std::filesystem::path path_;
+  std::ofstream f_;
+};
+// "s" in double quotes, for a CSV field that may hold commas.
+inline std::string quoted(const std::string& s) { return "\"" + s + "\""; }
+// A finite number as std::to_string writes it, anything else as an empty field.
+inline std::string finite_or_empty(double v) { return std::isfinite(v) ? std::to_string(v) : std::string(); }
 
 // A chart with its title, axis labels and log axes; series, markers and lines come after.
 inline Chart make_chart(const std::string& title, const std::string& x_label, const std::string& y_label,
@@ -241,6 +281,43 @@ inline QueryVariant exact_reference_variant(QueryVariant v, std::size_t modes) {
   v.product_update = ProductUpdate::each_query;
   v.product_modes = modes;
   return v;
+}
+
+// The exact reference at each pose (exact_reference_variant with every mode); `each` sees
+// each result with its pose's index and the seconds it took.
+inline std::vector<QueryResult> exact_references(
+    const ComputeContext& ctx, const PairSpectra& spectra, const QueryVariant& variant, const std::vector<Pose>& poses,
+    const std::function<void(std::size_t, const QueryResult&, double)>& each) {
+  auto engine = make_query_engine(ctx, spectra, exact_reference_variant(variant, spectra.part1.rho.size()));
+  engine->set_modes(engine->max_modes());
+  std::vector<QueryResult> reference;
+  for (const Pose& p : poses) {
+    const auto t0 = std::chrono::steady_clock::now();
+    reference.push_back(engine->query(p));
+    each(reference.size() - 1, reference.back(), seconds_since(t0));
+  }
+  return reference;
+}
+
+// Seconds of `warm` + 1 full translational maps (engine/maps/full_map.h, all modes), each
+// at next_rotation(): the first call's into `cold` while that is NaN (a repeated attempt
+// is not cold), the others' returned.
+inline std::vector<double> time_full_maps(const FftLibrary& fft, const ComputeContext& ctx, const PairSpectra& s,
+                                          Interpolation interp, int warm, double& cold,
+                                          const std::function<Eigen::Matrix3d()>& next_rotation) {
+  std::vector<double> warm_s;
+  for (int i = 0; i <= warm; ++i) {
+    const Eigen::Matrix3d R = next_rotation();
+    const auto t = std::chrono::steady_clock::now();
+    const TranslationMap map = translational_energy_map(fft, ctx, s, R, interp, 0);
+    const double sec = seconds_since(t);
+    if (map.energy.size() != s.dims[0] * s.dims[1] * s.dims[2]) throw Error("full map: wrong size");
+    if (i > 0)
+      warm_s.push_back(sec);
+    else if (std::isnan(cold))
+      cold = sec;
+  }
+  return warm_s;
 }
 
 // DIR/charts.html: the benchmark's charts on one self-contained page (report/chart_spec.h),

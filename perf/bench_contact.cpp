@@ -24,8 +24,6 @@
 using namespace snapfit;
 namespace fs = std::filesystem;
 
-namespace {}  // namespace
-
 int main(int argc, char** argv) {
   return bench::guarded_main("bench_contact", [&] {
     bool quick = false;
@@ -70,8 +68,7 @@ int main(int argc, char** argv) {
           for (const Pose& pose : poses) {
             const auto start = std::chrono::steady_clock::now();
             kept = evaluators[e](pose).energy_j;
-            const double t =
-                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            const double t = 1e3 * bench::seconds_since(start);
             ms[e].push_back(t);
             total += t;
           }

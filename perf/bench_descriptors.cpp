@@ -33,14 +33,12 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -69,18 +67,15 @@ constexpr double kPadding = 3.0;  // mm on every side of the part's box
 
 // ---------------------------------------------------------------- command line
 
-struct Args {
-  bool quick = false;
-  std::string device;
-  std::string out = "results/bench_descriptors";
+struct Args : snapfit::bench::CommonArgs {
   std::set<std::string> only;
-  std::string command_line;
 };
 
 const std::set<std::string> kCases = {"m_sweep", "n_sweep", "brute", "headline", "tolerance"};
 
 Args parse_args(int argc, char** argv) {
   Args a;
+  a.out = "results/bench_descriptors";
   a.command_line = snapfit::bench::command_line(argc, argv);
   std::vector<std::string> only;
   CLI::App app{
@@ -355,16 +350,8 @@ BruteComparison compare(const Measured& h, const Measured& b) {
 
 // ---------------------------------------------------------------- output
 
-std::string fmt(double v, int prec = 3) {
-  std::ostringstream os;
-  os << std::setprecision(prec) << v;
-  return os.str();
-}
-std::string fixed(double v, int prec = 2) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(prec) << v;
-  return os.str();
-}
+using snapfit::bench::fmt;
+std::string fixed(double v, int prec = 2) { return snapfit::bench::fixed(v, prec); }
 
 void print_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
   std::vector<std::size_t> w(header.size());
@@ -453,19 +440,16 @@ nlohmann::json row_json(const Row& r) {
 }
 
 void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) {
-  std::ofstream f(path);
-  f << "case,m,dims,n_triangles,tolerance,sigma,variant,seconds,distance_s,winding_s,density_s,refine_s,bvh_s,"
-       "max_bound,mean_bound,mean_abs_s,m_label,spacing,segments,refined_triangles,max_winding_bound,"
-       "mean_winding_bound,runs,load_before,load_after,median_bound,cpu_s,lanes\n";
-  f << std::setprecision(6);
+  snapfit::bench::CsvFile f(
+      path,
+      "case,m,dims,n_triangles,tolerance,sigma,variant,seconds,distance_s,winding_s,density_s,"
+      "refine_s,bvh_s,max_bound,mean_bound,mean_abs_s,m_label,spacing,segments,refined_triangles,"
+      "max_winding_bound,mean_winding_bound,runs,load_before,load_after,median_bound,cpu_s,lanes");
   for (const Row& r : rows)
-    f << r.case_name << ',' << r.grid.count() << ',' << dims_string(r.grid) << ',' << r.n_triangles << ','
-      << r.tolerance << ',' << r.sigma << ',' << r.variant << ',' << r.seconds << ',' << r.distance_s << ','
-      << r.winding_s << ',' << r.density_s << ',' << r.refine_s << ',' << r.bvh_s << ',' << r.max_bound << ','
-      << r.mean_bound << ',' << r.mean_abs_s << ',' << r.m_label << ',' << r.grid.spacing << ',' << r.segments << ','
-      << r.refined_triangles << ',' << r.max_winding_bound << ',' << r.mean_winding_bound << ',' << r.runs << ','
-      << r.load_before << ',' << r.load_after << ',' << r.median_bound << ',' << r.cpu_s << ',' << r.lanes << '\n';
-  if (!f) throw snapfit::Error(path.string() + ": cannot write");
+    f.row(r.case_name, r.grid.count(), dims_string(r.grid), r.n_triangles, r.tolerance, r.sigma, r.variant, r.seconds,
+          r.distance_s, r.winding_s, r.density_s, r.refine_s, r.bvh_s, r.max_bound, r.mean_bound, r.mean_abs_s,
+          r.m_label, r.grid.spacing, r.segments, r.refined_triangles, r.max_winding_bound, r.mean_winding_bound, r.runs,
+          r.load_before, r.load_after, r.median_bound, r.cpu_s, r.lanes);
 }
 
 // ---------------------------------------------------------------- charts

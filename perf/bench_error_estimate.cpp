@@ -15,9 +15,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/quantile.h"
-#include "engine/runtime/device.h"
 #include "engine/query/error_estimate.h"
 #include "engine/query/query_engine.h"
+#include "engine/runtime/device.h"
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
@@ -25,24 +25,6 @@
 #include "scheduler/engine_tuning.h"
 
 using namespace snapfit;
-
-namespace {
-
-// The reference at each pose: every mode, exact in rotation, made for the pose's rotation.
-std::vector<QueryResult> reference_results(const ComputeContext& ctx, const PairSpectra& spectra,
-                                           const QueryVariant& variant, const std::vector<Pose>& poses) {
-  std::vector<QueryResult> reference;
-  auto engine = make_query_engine(ctx, spectra, bench::exact_reference_variant(variant, spectra.part1.rho.size()));
-  engine->set_modes(engine->max_modes());
-  for (const Pose& p : poses) {
-    reference.push_back(engine->query(p));
-    std::cerr << "\rreference " << reference.size() << "/" << poses.size() << std::flush;
-  }
-  std::cerr << "\n";
-  return reference;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   return bench::guarded_main("bench_error_estimate", [&] {
@@ -66,7 +48,11 @@ int main(int argc, char** argv) {
     const QueryVariant variant = query_variant_for(scene, Interpolation::tricubic);
     const std::vector<Pose> poses = accuracy_poses(scene, std::size_t(pose_count));
 
-    const std::vector<QueryResult> reference = reference_results(ctx, pair.spectra, variant, poses);
+    const std::vector<QueryResult> reference =
+        bench::exact_references(ctx, pair.spectra, variant, poses, [&](std::size_t i, const QueryResult&, double) {
+          std::cerr << "\rreference " << i + 1 << "/" << poses.size() << std::flush;
+        });
+    std::cerr << "\n";
 
     auto engine = make_query_engine(ctx, pair.spectra, variant);
     const char* names[3] = {"energy", "force", "torque"};

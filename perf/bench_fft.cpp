@@ -73,8 +73,6 @@
 #include <complex>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -101,11 +99,7 @@
 
 namespace {
 
-using snapfit::bench::fixed;
-using snapfit::bench::num;
-using snapfit::bench::pad;
-using snapfit::bench::padr;
-using snapfit::bench::seconds_since;
+using namespace snapfit::bench;  // perf/*.h: tables, medians, contention, CSV, spectra
 
 using Clock = std::chrono::steady_clock;
 using Dims = std::array<std::size_t, 3>;
@@ -114,39 +108,27 @@ using cd = std::complex<double>;
 
 // ---------------------------------------------------------------- command line
 
-struct Args {
-  bool quick = false;
-  std::string device;
-  std::string out = "results/bench_fft";
+struct Args : CommonArgs {
   int repeats = 0;  // 0: 30, or 5 with --quick
-  std::string command_line;
 };
 
 Args parse_args(int argc, char** argv) {
   Args a;
-  a.command_line = snapfit::bench::command_line(argc, argv);
+  a.out = "results/bench_fft";
+  a.command_line = command_line(argc, argv);
   CLI::App app{
       "clFFT against FFTW and VkFFT on the same 3D transforms, and the full-map throughput with each library's "
       "inverse FFT",
       "bench_fft"};
-  snapfit::bench::add_common_options(
-      app, a.quick, a.device, a.out,
-      "64^3 and 128^3 only, 5 transforms and 3 map rotations per point (under a minute)");
+  add_common_options(app, a.quick, a.device, a.out,
+                     "64^3 and 128^3 only, 5 transforms and 3 map rotations per point (under a minute)");
   app.add_option("--repeats", a.repeats, "timed transforms per point (0: 30, --quick 5)")->check(CLI::Range(1, 100000));
-  snapfit::bench::parse(app, argc, argv);
+  parse(app, argc, argv);
   return a;
 }
 
 // ---------------------------------------------------------------- small helpers
 
-std::string sci(double v, int prec = 2) {
-  if (!std::isfinite(v)) return "-";
-  std::ostringstream os;
-  os << std::scientific << std::setprecision(prec) << v;
-  return os.str();
-}
-
-using snapfit::bench::median;
 double minimum(const std::vector<double>& v) {
   return v.empty() ? std::numeric_limits<double>::quiet_NaN() : *std::min_element(v.begin(), v.end());
 }
@@ -289,7 +271,7 @@ struct VkfftPlan {
 
 // Rows are re-measured while other processes keep cores busy (perf/quiet_guard.h); off
 // in --quick.
-snapfit::bench::QuietGuard g_quiet{true, 0.25, 2, 15, 240};
+QuietGuard g_quiet{true, 0.25, 2, 15, 240};
 
 // Runs `body` (which fills row.times_s / total_s ...) under the guard, with the load
 // around it; the row keeps the quietest attempt, its number and its contention.
@@ -300,9 +282,9 @@ void quiet_measure(Row& row, const std::string& what, F&& body) {
   const auto measure = [&] {
     Row r = row;
     r.attempts = ++attempt;
-    r.load_before = snapfit::bench::load1();
+    r.load_before = load1();
     body(r);
-    r.load_after = snapfit::bench::load1();
+    r.load_after = load1();
     return r;
   };
   row = g_quiet.run(what, measure, others, attempts);
@@ -413,8 +395,6 @@ std::vector<TransformRow> bench_transforms(const snapfit::FftLibrary& lib, const
 
 // ---------------------------------------------------------------- 2. full maps
 
-using snapfit::bench::synthetic_spectra;  // perf/bench_spectra.h
-
 struct MapRow {
   std::string library;  // clfft | vkfft | fftw | full_map (the real path)
   Dims dims{};
@@ -448,22 +428,13 @@ MapRow measure_full_map(const snapfit::FftLibrary& lib, const snapfit::ComputeCo
   MapRow r;
   r.library = "full_map";
   r.dims = d;
-  bool first = true;
+  double cold = std::numeric_limits<double>::quiet_NaN();
   quiet_measure(r, "full_map " + dims_text(d), [&](MapRow& q) {
-    for (int i = 0; i <= warm_real; ++i) {
-      const auto t = Clock::now();
-      const auto map = snapfit::translational_energy_map(lib, ctx, s, rots[std::size_t(i) % rots.size()],
-                                                         snapfit::Interpolation::trilinear, 0);
-      const double sec = seconds_since(t);
-      if (map.energy.size() != count_of(d)) throw snapfit::Error("full map: wrong size");
-      if (i == 0) {
-        if (first) q.cold_s = sec;  // a repeated attempt is not cold: keep the first
-        first = false;
-      } else {
-        q.total_s.push_back(sec);
-      }
-    }
+    std::size_t i = 0;
+    q.total_s = time_full_maps(lib, ctx, s, snapfit::Interpolation::trilinear, warm_real, cold,
+                               [&] { return rots[i++ % rots.size()]; });
   });
+  r.cold_s = cold;
   r.median_s = median(r.total_s);
   r.rotations_per_s = 1.0 / r.median_s;
   return r;
@@ -486,15 +457,11 @@ std::vector<MapRow> bench_maps(const snapfit::FftLibrary& lib, const snapfit::Co
   cl::Buffer s1(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, const_cast<cf*>(s.part1.rho.data()));
   cl::Buffer s2(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, const_cast<cf*>(s.part2.rho.data()));
   cl::Buffer product(ctx.context, CL_MEM_READ_WRITE, bytes), result(ctx.context, CL_MEM_READ_WRITE, bytes);
-  kernel.setArg(0, s1);
-  kernel.setArg(1, s2);
-  kernel.setArg(2, cl_int4{{int(d[0]), int(d[1]), int(d[2]), 0}});
-  kernel.setArg(3, cl_float4{{float(s.length.x()), float(s.length.y()), float(s.length.z()), 0.0f}});
-  kernel.setArg(5, static_cast<float>(1.0 / (s.length.x() * s.length.y() * s.length.z())));
-  kernel.setArg(6, std::numeric_limits<float>::infinity());
-  kernel.setArg(7, product);
   cl::Buffer poses(ctx.context, CL_MEM_READ_ONLY, sizeof(cl_float16));  // a batch of one rotation
-  kernel.setArg(4, poses);
+  set_args(kernel, s1, s2, cl_int4{{int(d[0]), int(d[1]), int(d[2]), 0}},
+           cl_float4{{float(s.length.x()), float(s.length.y()), float(s.length.z()), 0.0f}}, poses,
+           static_cast<float>(1.0 / (s.length.x() * s.length.y() * s.length.z())),
+           std::numeric_limits<float>::infinity(), product);
   auto run_product = [&](const Eigen::Matrix3d& R) {
     const Eigen::Vector3d shift = R * s.part2.centre - s.part1.centre;
     cl_float16 pose{};
@@ -600,30 +567,21 @@ Dims scene_fft_dims(const std::string& path, double oversampling) {
 void write_outputs(const std::filesystem::path& dir, const Args& args, const std::vector<TransformRow>& tr,
                    const std::vector<MapRow>& maps, const nlohmann::json& meta, const std::string& verdict) {
   std::filesystem::create_directories(dir);
-  {
-    std::ofstream f(dir / "fft.csv");
-    f << "library,direction,nx,ny,nz,points,plan_s,repeats,p50_ms,min_ms,gflops_p50,gflops_min,max_rel_diff_vs_fftw_"
-         "double,load_before,load_after,other_cores\n";
-    for (const auto& r : tr)
-      f << r.library << ',' << r.direction << ',' << r.dims[0] << ',' << r.dims[1] << ',' << r.dims[2] << ','
-        << count_of(r.dims) << ',' << r.plan_s << ',' << r.times_s.size() << ',' << r.p50_s * 1e3 << ','
-        << r.min_s * 1e3 << ',' << r.gflops_p50 << ',' << r.gflops_min << ',' << r.max_rel_diff << ',' << r.load_before
-        << ',' << r.load_after << ',' << r.other_cores << '\n';
-    if (!f) throw snapfit::Error((dir / "fft.csv").string() + ": cannot write");
-  }
-  {
-    std::ofstream f(dir / "maps.csv");
-    f << "path,nx,ny,nz,points,plan_s,cold_s,rotations,median_ms,product_ms,readback_ms,fft_ms,rotations_per_s,max_rel_"
-         "diff_vs_fftw_double,load_before,load_after,other_cores\n";
-    for (const auto& r : maps)
-      f << r.library << ',' << r.dims[0] << ',' << r.dims[1] << ',' << r.dims[2] << ',' << count_of(r.dims) << ','
-        << r.plan_s << ',' << (std::isfinite(r.cold_s) ? std::to_string(r.cold_s) : "") << ',' << r.total_s.size()
-        << ',' << r.median_s * 1e3 << ',' << r.product_median_s * 1e3 << ',' << r.readback_median_s * 1e3 << ','
-        << r.fft_median_s * 1e3 << ',' << r.rotations_per_s << ','
-        << (std::isfinite(r.max_rel_diff) ? std::to_string(r.max_rel_diff) : "") << ',' << r.load_before << ','
-        << r.load_after << ',' << r.other_cores << '\n';
-    if (!f) throw snapfit::Error((dir / "maps.csv").string() + ": cannot write");
-  }
+  CsvFile ft(dir / "fft.csv",
+             "library,direction,nx,ny,nz,points,plan_s,repeats,p50_ms,min_ms,gflops_p50,gflops_min,"
+             "max_rel_diff_vs_fftw_double,load_before,load_after,other_cores");
+  for (const auto& r : tr)
+    ft.row(r.library, r.direction, r.dims[0], r.dims[1], r.dims[2], count_of(r.dims), r.plan_s, r.times_s.size(),
+           r.p50_s * 1e3, r.min_s * 1e3, r.gflops_p50, r.gflops_min, r.max_rel_diff, r.load_before, r.load_after,
+           r.other_cores);
+  CsvFile mt(dir / "maps.csv",
+             "path,nx,ny,nz,points,plan_s,cold_s,rotations,median_ms,product_ms,readback_ms,fft_ms,"
+             "rotations_per_s,max_rel_diff_vs_fftw_double,load_before,load_after,other_cores");
+  for (const auto& r : maps)
+    mt.row(r.library, r.dims[0], r.dims[1], r.dims[2], count_of(r.dims), r.plan_s, finite_or_empty(r.cold_s),
+           r.total_s.size(), r.median_s * 1e3, r.product_median_s * 1e3, r.readback_median_s * 1e3,
+           r.fft_median_s * 1e3, r.rotations_per_s, finite_or_empty(r.max_rel_diff), r.load_before, r.load_after,
+           r.other_cores);
   nlohmann::json j = meta;
   j["verdict"] = verdict;
   nlohmann::json tj = nlohmann::json::array();
@@ -668,13 +626,13 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
                   {"other_cores", r.other_cores},
                   {"attempts", r.attempts}});
   j["maps"] = mj;
-  snapfit::bench::write_json(dir / "fft.json", j);
+  write_json(dir / "fft.json", j);
   const std::vector<std::string> libs = {"clfft", "vkfft", "fftw"};
   std::vector<snapfit::Chart> charts;
   for (const bool gflops : {false, true}) {
-    snapfit::Chart c = snapfit::bench::make_chart(
-        gflops ? "3D C2C FFT throughput (5 n log2 n / p50)" : "3D C2C FFT time per transform (p50)",
-        "points n (64^3, 128^3, scene grid)", gflops ? "GFLOP/s" : "ms per transform", true, !gflops);
+    snapfit::Chart c =
+        make_chart(gflops ? "3D C2C FFT throughput (5 n log2 n / p50)" : "3D C2C FFT time per transform (p50)",
+                   "points n (64^3, 128^3, scene grid)", gflops ? "GFLOP/s" : "ms per transform", true, !gflops);
     for (const auto& lib : libs)
       for (const std::string dir : {"forward", "inverse"}) {
         snapfit::Series s;
@@ -689,9 +647,8 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
     charts.push_back(c);
   }
   {
-    snapfit::Chart c =
-        snapfit::bench::make_chart("full translational maps: rotations per second (product + inverse FFT)",
-                                   "FFT grid points n", "rotations per second (median)", true, true);
+    snapfit::Chart c = make_chart("full translational maps: rotations per second (product + inverse FFT)",
+                                  "FFT grid points n", "rotations per second (median)", true, true);
     for (const std::string lib : {"clfft", "vkfft", "fftw", "full_map"}) {
       snapfit::Series s;
       s.label = lib == "full_map" ? "translational_energy_map (clFFT, real path)" : "product + " + lib + " inverse";
@@ -701,7 +658,7 @@ void write_outputs(const std::filesystem::path& dir, const Args& args, const std
     }
     charts.push_back(c);
   }
-  snapfit::bench::write_charts(dir, "bench_fft: 3D FFT libraries and full maps", args.command_line, charts);
+  write_charts(dir, "bench_fft: 3D FFT libraries and full maps", args.command_line, charts);
 }
 
 // ---------------------------------------------------------------- the run
@@ -764,7 +721,7 @@ void print_map_row(const MapRow& r) {
 }
 
 int run(const Args& args) {
-  snapfit::bench::RunSpan span;
+  RunSpan span;
   const int repeats = args.repeats > 0 ? args.repeats : (args.quick ? 5 : 30);
   const int warmup = 2;
   const int map_rotations = args.quick ? 3 : 20;
@@ -834,7 +791,6 @@ int run(const Args& args) {
 
   span.stop();
   nlohmann::json meta = span.header("bench_fft", args.command_line, args.quick, info);
-  meta["nproc"] = threads;
   meta["quiet_guard"] = {{"enabled", g_quiet.enabled},
                          {"threshold_cores", g_quiet.threshold},
                          {"max_retries", g_quiet.max_retries},
@@ -868,5 +824,5 @@ int run(const Args& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return snapfit::bench::guarded_main("bench_fft", [&] { return run(parse_args(argc, argv)); });
+  return guarded_main("bench_fft", [&] { return run(parse_args(argc, argv)); });
 }

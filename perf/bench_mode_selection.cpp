@@ -19,15 +19,14 @@
 #include <cmath>
 #include <complex>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <numeric>
 
-#include "engine/runtime/device.h"
-#include "engine/spectra/mode_order.h"
 #include "engine/query/query_engine.h"
 #include "engine/query/rotated_product.h"
 #include "engine/query/translation_lines.h"
+#include "engine/runtime/device.h"
+#include "engine/spectra/mode_order.h"
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
@@ -185,8 +184,8 @@ int main(int argc, char** argv) {
     for (int q = 0; q < 3; ++q) check = std::max(check, largest_diff[q] / std::max(scale[q], 1e-30));
 
     std::filesystem::create_directories(out_dir);
-    std::ofstream csv(std::filesystem::path(out_dir) / "mode_selection.csv");
-    csv << "selection,modes,energy_error,force_error,torque_error\n";
+    bench::CsvFile csv(std::filesystem::path(out_dir) / "mode_selection.csv",
+                       "selection,modes,energy_error,force_error,torque_error");
     nlohmann::json rows = nlohmann::json::array();
     std::cout
         << "scene " << scene_path << ", " << poses.size() << " poses, " << M
@@ -198,7 +197,7 @@ int main(int argc, char** argv) {
       for (std::size_t j = 0; j < L; ++j) {
         const double e = std::sqrt(dE[s * L + j] / rE), f = std::sqrt(dF[s * L + j] / rF),
                      t = std::sqrt(dT[s * L + j] / rT);
-        csv << '"' << kSelectionNames[s] << "\"," << levels[j] << ',' << e << ',' << f << ',' << t << "\n";
+        csv.row(bench::quoted(kSelectionNames[s]), levels[j], e, f, t);
         rows.push_back({{"selection", kSelectionNames[s]},
                         {"modes", levels[j]},
                         {"energy_error", e},
@@ -213,7 +212,7 @@ int main(int argc, char** argv) {
     summary["modes_total"] = M;
     summary["host_vs_engine_max_relative_difference"] = check;
     summary["rows"] = rows;
-    std::ofstream(std::filesystem::path(out_dir) / "summary.json") << summary.dump(2) << "\n";
+    bench::write_json(std::filesystem::path(out_dir) / "summary.json", summary);
     std::cout << "\nwrote " << out_dir << "/mode_selection.csv and summary.json\n";
     // The host sums must reproduce the engine's: a float kernel against double sums.
     return check < 1e-3 ? 0 : 1;

@@ -19,7 +19,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -41,8 +40,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace snapfit;
-using bench::fixed;
-using bench::pad;
+using namespace snapfit::bench;  // perf/bench_common.h: tables, CSV, JSON
 
 // The median (nearest rank) of `runs` timed calls of f.
 template <class F>
@@ -51,7 +49,7 @@ double median_seconds(int runs, F f) {
   for (int i = 0; i < runs; ++i) {
     const auto t0 = std::chrono::steady_clock::now();
     f();
-    s.push_back(bench::seconds_since(t0));
+    s.push_back(seconds_since(t0));
   }
   return quantile(s, 0.5);
 }
@@ -76,10 +74,10 @@ int run(int argc, char** argv) {
   std::string device, out = "results/bench_ndft_crossover";
   CLI::App app{"Direct NDFT against type-1 NUFFT of ball spectra over ball counts and lattice sizes.",
                "bench_ndft_crossover"};
-  bench::add_common_options(app, quick, device, out);
-  bench::parse(app, argc, argv);
-  const std::string load_start = bench::read_loadavg();
-  std::cout << "bench_ndft_crossover: " << bench::command_line(argc, argv) << "\n  date " << bench::now_iso()
+  add_common_options(app, quick, device, out);
+  parse(app, argc, argv);
+  const std::string load_start = read_loadavg();
+  std::cout << "bench_ndft_crossover: " << command_line(argc, argv) << "\n  date " << now_iso()
             << ", load average at start: " << load_start << "\n";
   const FftLibrary fft;
   const ComputeContext ctx = make_compute_context(select_device(device_spec_from(device)));
@@ -137,20 +135,18 @@ int run(int argc, char** argv) {
   }
 
   fs::create_directories(out);
-  std::ofstream csv(fs::path(out) / "crossover.csv");
-  csv << "n,modes,balls,direct_s,nufft_s\n";
+  CsvFile csv(fs::path(out) / "crossover.csv", "n,modes,balls,direct_s,nufft_s");
   nlohmann::json jpoints = nlohmann::json::array();
   for (const Point& p : points) {
-    csv << p.n << "," << p.n * p.n * p.n << "," << p.balls << "," << p.direct_s << "," << p.nufft_s << "\n";
-    jpoints.push_back(
-        {{"n", p.n}, {"balls", p.balls}, {"direct_s", bench::num(p.direct_s)}, {"nufft_s", bench::num(p.nufft_s)}});
+    csv.row(p.n, p.n * p.n * p.n, p.balls, p.direct_s, p.nufft_s);
+    jpoints.push_back({{"n", p.n}, {"balls", p.balls}, {"direct_s", num(p.direct_s)}, {"nufft_s", num(p.nufft_s)}});
   }
-  nlohmann::json report = bench::run_record(argc, argv, describe_device(ctx.device.info), load_start);
+  nlohmann::json report = run_record(argc, argv, describe_device(ctx.device.info), load_start);
   report["points"] = jpoints;
   report["crossings"] = crossings;
-  std::ofstream(fs::path(out) / "crossover.json") << report.dump(2) << "\n";
-  Chart chart = bench::make_chart("Ball spectrum onto n^3 modes: direct NDFT and NUFFT against the ball count", "balls",
-                                  "seconds", true, true);
+  write_json(fs::path(out) / "crossover.json", report);
+  Chart chart = make_chart("Ball spectrum onto n^3 modes: direct NDFT and NUFFT against the ball count", "balls",
+                           "seconds", true, true);
   for (std::size_t n : sizes)
     for (const std::string method : {"direct", "nufft"}) {
       Series s{method + " " + std::to_string(n) + "^3", {}, {}, Series::Style::line_points, ""};
@@ -160,8 +156,8 @@ int run(int argc, char** argv) {
       }
       chart.series.push_back(s);
     }
-  const std::string page = bench::write_charts(out, "bench_ndft_crossover: direct NDFT against NUFFT",
-                                               bench::command_line(argc, argv), {chart});
+  const std::string page =
+      write_charts(out, "bench_ndft_crossover: direct NDFT against NUFFT", command_line(argc, argv), {chart});
   std::cout << "wrote " << out << "/crossover.csv, crossover.json and " << page << "\n";
   return 0;
 }

@@ -16,6 +16,13 @@ inline CLI::Validator non_empty() {
                         "NONEMPTY");
 }
 
+// What every benchmark's arguments hold: --quick, --device, --out (the benchmark sets its
+// default) and the command line as one string.
+struct CommonArgs {
+  bool quick = false;
+  std::string device, out, command_line;
+};
+
 // --quick (the benchmark's small mode, `quick_text`) and --out DIR (not empty; `out` holds
 // its default). Every option added after this shows its default in --help.
 inline void add_quick_and_out(CLI::App& app, bool& quick, std::string& out,

@@ -84,18 +84,15 @@ using snapfit::QueryVariant;
 
 // ---------------------------------------------------------------- command line
 
-struct Args {
-  bool quick = false;
+struct Args : CommonArgs {
   bool use_cache = true;
-  std::string device;
   std::string scene = "scenes/default.json";
-  std::string out = "results/bench_peers";
   int poses = 0;  // 0: 400, or 60 with --quick
-  std::string command_line;
 };
 
 Args parse_args(int argc, char** argv) {
   Args a;
+  a.out = "results/bench_peers";
   a.command_line = command_line(argc, argv);
   bool no_cache = false;
   CLI::App app{
@@ -506,36 +503,30 @@ void write_csvs(const std::filesystem::path& dir, const std::vector<LevelResult>
                 const std::vector<AgreementRow>& agreement, const std::vector<Pose>& poses, const Plan& plan) {
   const auto& timing_modes = plan.timing_modes;
   const auto& verdict_modes = plan.verdict_modes;
-  {
-    std::ofstream f(dir / "peers.csv");
-    f << "level,triangles,triangles_part1,triangles_part2,refine_radius,refine_s,fcl_build_s,fcl_build_part1_s,fcl_"
-         "build_part2_s,fcl_collide_p50_us,fcl_collide_p99_us,fcl_collide_n,fcl_distance_p50_us,fcl_distance_p99_us,"
-         "fcl_distance_n,fcl_distance_skipped,snap_fields_s,snap_fields_cached,snap_spectra_s,snap_eft_4096_p50_us,"
-         "snap_eft_4096_p99_us,snap_eft_32768_p50_us,snap_eft_32768_p99_us,snap_ef_4096_p50_us,snap_ef_4096_p99_us,"
-         "snap_ef_32768_p50_us,snap_ef_32768_p99_us,other_cores_snap,other_cores_fcl,load_before,load_after\n";
-    for (const auto& R : levels) {
-      f << R.label << ',' << R.tri1 + R.tri2 << ',' << R.tri1 << ',' << R.tri2 << ',' << R.radius << ',' << R.refine_s
-        << ',' << R.fcl_build1_s + R.fcl_build2_s << ',' << R.fcl_build1_s << ',' << R.fcl_build2_s << ','
-        << R.collide.p50 << ',' << R.collide.p99 << ',' << R.collide.n << ',' << R.distance.p50 << ',' << R.distance.p99
-        << ',' << R.distance.n << ',' << R.distance_skipped << ',' << R.fields_s << ',' << R.fields_cached << ','
-        << R.spectra_s;
-      for (const std::string v : {"eft_tricubic", "ef_tricubic"})
-        for (std::size_t m : timing_modes)
-          if (const Stat* s = R.snap_stat(v, m)) f << ',' << s->p50 << ',' << s->p99;
-      f << ',' << R.other_cores_snap << ',' << R.other_cores_fcl << ',' << R.load_before << ',' << R.load_after << '\n';
-    }
-    if (!f) throw snapfit::Error((dir / "peers.csv").string() + ": cannot write");
+  CsvFile pc(dir / "peers.csv",
+             "level,triangles,triangles_part1,triangles_part2,refine_radius,refine_s,fcl_build_s,fcl_build_part1_s,"
+             "fcl_build_part2_s,fcl_collide_p50_us,fcl_collide_p99_us,fcl_collide_n,fcl_distance_p50_us,"
+             "fcl_distance_p99_us,fcl_distance_n,fcl_distance_skipped,snap_fields_s,snap_fields_cached,snap_spectra_s,"
+             "snap_eft_4096_p50_us,snap_eft_4096_p99_us,snap_eft_32768_p50_us,snap_eft_32768_p99_us,"
+             "snap_ef_4096_p50_us,snap_ef_4096_p99_us,snap_ef_32768_p50_us,snap_ef_32768_p99_us,other_cores_snap,"
+             "other_cores_fcl,load_before,load_after");
+  for (const auto& R : levels) {
+    std::ostringstream snap;  // the spectra's seconds, then p50 and p99 per variant and m' as the header has them
+    snap << R.spectra_s;
+    for (const std::string v : {"eft_tricubic", "ef_tricubic"})
+      for (std::size_t m : timing_modes)
+        if (const Stat* s = R.snap_stat(v, m)) snap << ',' << s->p50 << ',' << s->p99;
+    pc.row(R.label, R.tri1 + R.tri2, R.tri1, R.tri2, R.radius, R.refine_s, R.fcl_build1_s + R.fcl_build2_s,
+           R.fcl_build1_s, R.fcl_build2_s, R.collide.p50, R.collide.p99, R.collide.n, R.distance.p50, R.distance.p99,
+           R.distance.n, R.distance_skipped, R.fields_s, R.fields_cached, snap.str(), R.other_cores_snap,
+           R.other_cores_fcl, R.load_before, R.load_after);
   }
-  {
-    std::ofstream f(dir / "agreement.csv");
-    f << "level,triangles,modes,tau_voxels,tau,poses,agree,fraction,both_collide,both_free,snapfit_only,fcl_only,"
-         "snapfit_only_fcl_distance_within_h\n";
-    for (const auto& a : agreement)
-      f << a.level << ',' << a.triangles << ',' << a.modes << ',' << a.tau_voxels << ',' << a.tau << ',' << a.poses
-        << ',' << a.agree << ',' << a.fraction() << ',' << a.both_collide << ',' << a.both_free << ',' << a.snap_only
-        << ',' << a.fcl_only << ',' << a.snap_only_within_h << '\n';
-    if (!f) throw snapfit::Error((dir / "agreement.csv").string() + ": cannot write");
-  }
+  CsvFile ag(dir / "agreement.csv",
+             "level,triangles,modes,tau_voxels,tau,poses,agree,fraction,both_collide,both_free,snapfit_only,fcl_only,"
+             "snapfit_only_fcl_distance_within_h");
+  for (const auto& a : agreement)
+    ag.row(a.level, a.triangles, a.modes, a.tau_voxels, a.tau, a.poses, a.agree, a.fraction(), a.both_collide,
+           a.both_free, a.snap_only, a.fcl_only, a.snap_only_within_h);
   {
     std::ofstream f(dir / "poses.csv");
     f << "index,tx,ty,tz,qw,qx,qy,qz,fcl_collide,fcl_distance";
@@ -546,7 +537,7 @@ void write_csvs(const std::filesystem::path& dir, const std::vector<LevelResult>
       const auto& p = poses[i];
       f << i << ',' << p.translation.x() << ',' << p.translation.y() << ',' << p.translation.z() << ','
         << p.rotation.w() << ',' << p.rotation.x() << ',' << p.rotation.y() << ',' << p.rotation.z() << ','
-        << R.fcl_collides[i] << ',' << (std::isfinite(R.fcl_distance[i]) ? std::to_string(R.fcl_distance[i]) : "");
+        << R.fcl_collides[i] << ',' << finite_or_empty(R.fcl_distance[i]);
       for (std::size_t m : verdict_modes) f << ',' << R.energy.at(m)[i];
       f << "\n";
     }

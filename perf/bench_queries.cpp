@@ -50,13 +50,10 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -87,20 +84,17 @@ using Clock = std::chrono::steady_clock;
 
 // ---------------------------------------------------------------- command line
 
-struct Args {
-  bool quick = false;
-  std::string device;
+struct Args : CommonArgs {
   std::string scene = "scenes/default.json";
-  std::string out = "results/bench_queries";
   int repeats = 0;                    // 0: 2000, or 300 with --quick
   bool latency_only = false;          // sections 1 and 5 only
   std::vector<std::size_t> modes;     // empty: the default m' list
   std::vector<std::string> variants;  // empty: every variant
-  std::string command_line;
 };
 
 Args parse_args(int argc, char** argv) {
   Args a;
+  a.out = "results/bench_queries";
   a.command_line = command_line(argc, argv);
   CLI::App app{"Per-pose queries, batched queries, full translational maps and a roofline of the query kernel",
                "bench_queries"};
@@ -120,15 +114,6 @@ Args parse_args(int argc, char** argv) {
       ->delimiter(',');
   parse(app, argc, argv);
   return a;
-}
-
-// ---------------------------------------------------------------- small helpers
-
-std::string fmt(double v, int prec = 3) {
-  if (!std::isfinite(v)) return "-";
-  std::ostringstream os;
-  os << std::setprecision(prec) << v;
-  return os.str();
 }
 
 // ---------------------------------------------------------------- variants and cost model
@@ -349,39 +334,30 @@ struct MapRow {
 
 void write_csvs(const std::filesystem::path& dir, const std::vector<LatencyRow>& lat,
                 const std::vector<ThroughputRow>& thr, const std::string& device) {
-  {
-    std::ofstream f(dir / "queries.csv");
-    f << "variant,label,interpolation,torque,translation_only,modes,modes_used,repeats,warmup,p50_us,p99_us,max_us,"
-         "mean_us,min_us,p10_us,p90_us,flagged,bytes_per_mode,flops_per_mode,gbs_at_p50,gflops_at_p50,cube_bytes,load_"
-         "before,"
-         "load_after,other_cores,device,source\n";
-    for (const auto& r : lat) {
-      const double s = r.p50 * 1e-6;
-      f << r.key << ",\"" << r.label << "\","
-        << (r.variant.translation_only                           ? "none"
-            : r.variant.interpolation == Interpolation::tricubic ? "tricubic"
-                                                                 : "trilinear")
-        << ',' << r.variant.torque << ',' << r.variant.translation_only << ',' << r.modes << ',' << r.modes_used << ','
-        << r.repeats << ',' << r.warmup << ',' << r.p50 << ',' << r.p99 << ',' << r.max << ',' << r.mean << ',' << r.min
-        << ',' << r.p10 << ',' << r.p90 << ',' << r.flagged << ',' << r.cost.bytes << ',' << r.cost.flops << ','
-        << r.cost.bytes * double(r.modes_used) / s * 1e-9 << ',' << r.cost.flops * double(r.modes_used) / s * 1e-9
-        << ',' << r.fp.cube_bytes << ',' << r.load_before << ',' << r.load_after << ',' << r.other_cores << ",\""
-        << device << "\",measured\n";
-    }
-    f << "seed000_translation,\"seed 000: translation only, 1 kHz (1000 us per frame) on a Tesla K20c\",none,0,1,4096,"
-         "4096,,,,,,,,,,,,,,,,,,,\"NVIDIA Tesla K20c\",\"published, not measured here\"\n";
-    if (!f) throw snapfit::Error((dir / "queries.csv").string() + ": cannot write");
+  CsvFile q(dir / "queries.csv",
+            "variant,label,interpolation,torque,translation_only,modes,modes_used,repeats,warmup,p50_us,p99_us,max_us,"
+            "mean_us,min_us,p10_us,p90_us,flagged,bytes_per_mode,flops_per_mode,gbs_at_p50,gflops_at_p50,cube_bytes,"
+            "load_before,load_after,other_cores,device,source");
+  for (const auto& r : lat) {
+    const double s = r.p50 * 1e-6;
+    const QueryVariant& v = r.variant;
+    q.row(r.key, quoted(r.label),
+          v.translation_only                           ? "none"
+          : v.interpolation == Interpolation::tricubic ? "tricubic"
+                                                       : "trilinear",
+          v.torque, v.translation_only, r.modes, r.modes_used, r.repeats, r.warmup, r.p50, r.p99, r.max, r.mean, r.min,
+          r.p10, r.p90, r.flagged, r.cost.bytes, r.cost.flops, r.cost.bytes * double(r.modes_used) / s * 1e-9,
+          r.cost.flops * double(r.modes_used) / s * 1e-9, r.fp.cube_bytes, r.load_before, r.load_after, r.other_cores,
+          quoted(device), "measured");
   }
-  {
-    std::ofstream f(dir / "throughput.csv");
-    f << "variant,label,modes,batch,batches,seconds,poses_per_s_best,poses_per_s_median,skipped,other_cores,attempts,"
-         "note\n";
-    for (const auto& r : thr)
-      f << r.key << ",\"" << r.label << "\"," << r.modes << ',' << r.batch << ',' << r.batches << ',' << r.seconds
-        << ',' << r.poses_per_s << ',' << r.median_poses_per_s << ',' << r.skipped << ',' << r.other_cores << ','
-        << r.attempts << ",\"" << r.note << "\"\n";
-    if (!f) throw snapfit::Error((dir / "throughput.csv").string() + ": cannot write");
-  }
+  q.row("seed000_translation", quoted("seed 000: translation only, 1 kHz (1000 us per frame) on a Tesla K20c"),
+        "none,0,1,4096,4096,,,,,,,,,,,,,,,,,,", quoted("NVIDIA Tesla K20c"), quoted("published, not measured here"));
+  CsvFile t(dir / "throughput.csv",
+            "variant,label,modes,batch,batches,seconds,poses_per_s_best,poses_per_s_median,skipped,other_cores,"
+            "attempts,note");
+  for (const auto& r : thr)
+    t.row(r.key, quoted(r.label), r.modes, r.batch, r.batches, r.seconds, r.poses_per_s, r.median_poses_per_s,
+          r.skipped, r.other_cores, r.attempts, quoted(r.note));
 }
 
 // ---------------------------------------------------------------- the sweep
@@ -604,35 +580,19 @@ void measure_throughput(Bench& b) {
 
 // ---------------------------------------------------------------- 3. full maps
 
-// Cold (the first call: program load and FFT plan bake) and warm times of the full
-// translational map at the FFT grid; a repeated attempt is not cold, so the first
-// attempt's cold time is kept.
+// Cold (the first call: program load and FFT plan bake) and 4 warm times of the full
+// translational map at the FFT grid.
 MapRow measure_map(Bench& b, Interpolation interp, const std::vector<Pose>& rot_poses, std::size_t& next) {
-  const int warm_runs = 4;
   MapRow row;
   row.interpolation = interp == Interpolation::tricubic ? "tricubic" : "trilinear";
   row.dims = b.spectra.dims;
-  double cold = -1;
-  auto measure_maps = [&] {
-    MapRow row_try = row;
-    for (int i = 0; i <= warm_runs; ++i) {
-      const Eigen::Matrix3d R = rot_poses[next++ % rot_poses.size()].rotation.toRotationMatrix();
-      const auto tm = Clock::now();
-      const snapfit::TranslationMap map = snapfit::translational_energy_map(b.fft, b.ctx, b.spectra, R, interp, 0);
-      const double s = seconds_since(tm);
-      b.sink +=
-          map.energy.empty() ? 0.0 : double(map.energy[map.energy.size() / 2] == map.energy[map.energy.size() / 2]);
-      if (i == 0)
-        row_try.cold_s = cold < 0 ? s : cold;
-      else
-        row_try.warm_s.push_back(s);
-    }
-    if (cold < 0) cold = row_try.cold_s;
-    return row_try;
-  };
-  double others = 0;
+  double cold = std::numeric_limits<double>::quiet_NaN(), others = 0;
   int attempts = 1;
-  row = b.guard.run(std::string("maps ") + row.interpolation, measure_maps, others, attempts);
+  const auto rotation = [&] { return rot_poses[next++ % rot_poses.size()].rotation.toRotationMatrix(); };
+  row.warm_s = b.guard.run(
+      "maps " + row.interpolation, [&] { return time_full_maps(b.fft, b.ctx, b.spectra, interp, 4, cold, rotation); },
+      others, attempts);
+  row.cold_s = cold;
   row.other_cores = others;
   row.attempts = attempts;
   row.warm_median_s = median(row.warm_s);

@@ -328,25 +328,23 @@ int main(int argc, char** argv) {
       }
     }
     std::filesystem::create_directories(out);
-    std::ofstream csv(std::filesystem::path(out) / "search.csv");
-    csv << "workload,n,interpolation,fft,batch,minima_on,product_s,inverse_fft_s,reduce_s,read_s,host_map_s,minima_s,"
-           "rotations,"
-           "setup_s,median_s,p90_s,rotations_per_s_median,rotations_per_s_scan,one_shot_s,longest_list,"
-           "whole_maps_read,load_before,load_after\n";
+    bench::CsvFile csv(std::filesystem::path(out) / "search.csv",
+                       "workload,n,interpolation,fft,batch,minima_on,product_s,inverse_fft_s,reduce_s,read_s,"
+                       "host_map_s,minima_s,rotations,setup_s,median_s,p90_s,rotations_per_s_median,"
+                       "rotations_per_s_scan,one_shot_s,longest_list,whole_maps_read,load_before,load_after");
     nlohmann::json json = {{"command", bench::command_line(argc, argv)},
                            {"device", ctx.device.info.name},
                            {"date", bench::now_iso()},
                            {"rows", nlohmann::json::array()}};
     const Chart chart = rate_chart(rows);
     for (const Row& r : rows) {
-      csv << r.workload << "," << r.n << "," << r.interpolation << "," << r.fft << "," << r.batch << "," << r.minima
-          << "," << r.stages.product << "," << r.stages.fft << "," << r.stages.reduce << "," << r.stages.read << ","
-          << r.stages.host << "," << r.stages.minima << "," << r.rotations << "," << r.setup_s << "," << r.median_s
-          << "," << r.p90_s << "," << 1 / r.median_s << "," << r.scan_rate << "," << r.one_shot_s << ","
-          << r.counts.longest << "," << r.counts.fallbacks << "," << r.load_before << "," << r.load_after << "\n";
+      csv.row(r.workload, r.n, r.interpolation, r.fft, r.batch, r.minima, r.stages.product, r.stages.fft,
+              r.stages.reduce, r.stages.read, r.stages.host, r.stages.minima, r.rotations, r.setup_s, r.median_s,
+              r.p90_s, 1 / r.median_s, r.scan_rate, r.one_shot_s, r.counts.longest, r.counts.fallbacks, r.load_before,
+              r.load_after);
       json["rows"].push_back(row_json(r));
     }
-    std::ofstream(std::filesystem::path(out) / "search.json") << json.dump(2) << "\n";
+    bench::write_json(std::filesystem::path(out) / "search.json", json);
     std::cout << bench::write_charts(out, "bench_search", bench::command_line(argc, argv), {chart}) << "\n";
     return 0;
   });

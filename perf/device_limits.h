@@ -14,6 +14,7 @@
 #include "engine/runtime/compute_context.h"
 #include "engine/runtime/kernel_sources.h"
 #include "engine/runtime/program_cache.h"
+#include "perf/bench_common.h"
 
 namespace snapfit::bench {
 
@@ -75,14 +76,9 @@ inline void measure_memory(const ComputeContext& ctx, const cl::Program& program
   const std::size_t strided_items = 65536, blocked_items = 1024;
   cl::Buffer partial(ctx.context, CL_MEM_READ_WRITE, sizeof(float) * strided_items);
   cl::Kernel copy(program, "copy_f4"), strided(program, "read_strided"), blocked(program, "read_blocked");
-  copy.setArg(0, src);
-  copy.setArg(1, dst);
-  strided.setArg(0, src);
-  strided.setArg(1, cl_uint(n4));
-  strided.setArg(2, partial);
-  blocked.setArg(0, src);
-  blocked.setArg(1, cl_uint(n4 / blocked_items));
-  blocked.setArg(2, partial);
+  set_args(copy, src, dst);
+  set_args(strided, src, cl_uint(n4), partial);
+  set_args(blocked, src, cl_uint(n4 / blocked_items), partial);
   struct Case {
     const char* name;
     cl::Kernel* k;
@@ -110,10 +106,7 @@ inline void measure_memory(const ComputeContext& ctx, const cl::Program& program
   L.bandwidth_gbs = std::max(L.bandwidth_gbs, L.read_gbs);
   const std::size_t small4 = (std::size_t(6) << 20) / 16, reps = quick ? 16 : 64;
   cl::Kernel cached(program, "read_blocked_repeat");
-  cached.setArg(0, src);
-  cached.setArg(1, cl_uint(small4 / blocked_items));
-  cached.setArg(2, cl_uint(reps));
-  cached.setArg(3, partial);
+  set_args(cached, src, cl_uint(small4 / blocked_items), cl_uint(reps), partial);
   LimitResult r;
   r.name = "read_cached";
   r.detail = "6 MiB of the buffer, contiguous blocks, read " + std::to_string(reps) + " times";
@@ -130,8 +123,7 @@ inline void measure_arithmetic(const ComputeContext& ctx, const cl::Program& pro
   for (const auto& [name, width] :
        std::vector<std::pair<std::string, int>>{{"fma_f4", 4}, {"fma_f8", 8}, {"fma_f16", 16}}) {
     cl::Kernel k(program, name.c_str());
-    k.setArg(0, 0.9999f);
-    k.setArg(1, 1e-4f);
+    set_args(k, 0.9999f, 1e-4f);  // argument 2, the output, below
     std::size_t global = 4096;
     const double target = quick ? 0.03 : 0.1;
     cl::Buffer out;

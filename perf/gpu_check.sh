@@ -31,8 +31,8 @@
 #                  the device the suite ran on.
 # Then OUT/summary.md: date, host, devices, driver, commit, the steps (status, seconds, log)
 # and the headline figures read from the outputs ("not found" where a file lacks one). It is
-# also printed at the end. Needs bash, coreutils, grep and sed; python3 for the figures'
-# tables (without it they are quoted from the logs).
+# also printed at the end. Needs bash, coreutils, grep and sed; python3 for the figures
+# (without it summary.md says so: rerun --summary-only on OUT where python3 is).
 #
 # Here (a machine with the build and a GPU that its OpenCL loader lists):
 #   bash perf/gpu_check.sh results/gpu_check
@@ -181,48 +181,6 @@ write_summary_header() {
   } > "$s"
 }
 
-# Figures without python3: the console lines that carry them, quoted
-write_figures_plain() {
-  local s=$out/summary.md
-  {
-    echo "## Figures (quoted from the logs: $1)"
-    echo
-    echo "**Main job** (run.log):"
-    echo '```text'
-    grep -E "m' = |frames, measured|final pose error" "$out/run.log" 2>/dev/null | sed 's/^ *//' || echo "not found"
-    echo '```'
-    echo "**Accuracy** (accuracy.json, per strategy):"
-    echo '```text'
-    if [ -s "$out/accuracy.json" ]; then
-      sed 's/{"energy_error"/\n&/g' "$out/accuracy.json" | sed 's/}\].*//' | grep '"strategy":"' | grep -v '"strategies":' | while IFS= read -r l; do
-        printf "%s: m' %s, frame p99 %s ms, E %s F %s T %s\n" "$(jget strategy "$l")" "$(jget modes "$l")" \
-          "$(jget frame_ms_p99 "$l")" "$(jget energy_error "$l")" "$(jget force_error "$l")" "$(jget torque_error "$l")"
-      done
-      printf 'chosen: %s\n' "$(sed -n 's/.*"strategy":"\([^"]*\)","torque_error".*/\1/p' "$out/accuracy.json" | tail -1)"
-    else
-      echo "not found"
-    fi
-    echo '```'
-    echo "**bench_queries** (bench_queries.log):"
-    echo '```text'
-    grep -E "^  [0-9A-Za-z-].* poses \(|^    m' .* p50 .* p99 " "$out/bench_queries.log" 2>/dev/null | sed 's/  max .*//' || echo "not found"
-    echo '```'
-    echo "**bench_search** (bench_search.log):"
-    echo '```text'
-    grep -E "choose_map_fft picks|rotations/s" "$out/bench_search.log" 2>/dev/null | sed 's/: stages .*; [0-9]* rotations, set-up [^,]*, /: /; s/; one-shot.*//; s/; load .*//' || echo "not found"
-    echo '```'
-    echo "**bench_fft** (bench_fft.log):"
-    echo '```text'
-    grep -E "^verdict:" "$out/bench_fft.log" 2>/dev/null || echo "not found"
-    echo '```'
-    echo "**Tests** (tests.log):"
-    echo '```text'
-    grep -E "MESSAGE: default device:|^\[doctest\] (test cases|assertions):" "$out/tests.log" 2>/dev/null | sed 's/^.*MESSAGE: //' || echo "not found"
-    grep -E "^TEST CASE:|: (FATAL )?ERROR: " "$out/tests.log" 2>/dev/null | grep -B1 -E ": (FATAL )?ERROR: " | grep '^TEST CASE:' | sort -u | sed 's/^TEST CASE: */failed: /'
-    echo '```'
-  } >> "$s"
-}
-
 write_figures_python() {
   "$python" - "$out" <<'PY'
 import json, os, re, sys
@@ -255,6 +213,9 @@ def text(rel):
             return f.read()
     except OSError:
         return ""
+
+
+steps = [line.split("\t") for line in text("steps.tsv").splitlines()]
 
 
 def g(d, *keys):
@@ -404,13 +365,8 @@ w("")
 w("## bench_fft --quick (bench_fft/fft.json)")
 w("")
 f = load("bench_fft/fft.json")
-steps = {}
-for line in text("steps.tsv").splitlines():
-    parts = line.split("\t")
-    if len(parts) >= 2:
-        steps[parts[0]] = parts[1]
 if f is None:
-    st = steps.get("bench_fft", "")
+    st = next((p[1] for p in steps if len(p) >= 2 and p[0] == "bench_fft"), "")
     w("bench_fft/fft.json " + NF + (" (" + st + ")" if st.startswith("skipped") else "") + ".")
 else:
     tr = g(f, "transforms") or []
@@ -488,8 +444,7 @@ w("")
 
 # ---- failed steps: the end of their logs
 tails = []
-for line in text("steps.tsv").splitlines():
-    parts = line.split("\t")
+for parts in steps:
     if len(parts) >= 4 and parts[0] != "tests" and (parts[1].startswith("FAILED") or parts[1].startswith("TIMEOUT")):
         body = [l for l in text(parts[3]).splitlines() if l.strip()][-4:]
         tails.append((parts[0], parts[3], body))
@@ -511,17 +466,18 @@ PY
 
 write_summary() {
   write_summary_header
-  local ok=0 why="no $python on this machine"
+  local why="no $python on this machine"
   if command -v "$python" > /dev/null 2>&1; then
-    why="$python failed on the outputs"
     cp "$out/summary.md" "$out/.summary_head.md"
-    if write_figures_python 2> "$out/.summary_python.err"; then ok=1; else
+    if write_figures_python 2> "$out/.summary_python.err"; then why=""; else
       cp "$out/.summary_head.md" "$out/summary.md"
-      echo "gpu_check: the python3 summary failed ($(tail -1 "$out/.summary_python.err")); quoting the logs instead" >&2
+      why="$python failed on the outputs$(tail -1 "$out/.summary_python.err" | sed 's/^./: &/')"
+      echo "gpu_check: the python3 summary failed ($why)" >&2
     fi
     rm -f "$out/.summary_head.md" "$out/.summary_python.err"
   fi
-  [ $ok = 1 ] || write_figures_plain "$why"
+  # The figures need python3; the logs stay in OUT for a rerun where it is.
+  [ -z "$why" ] || echo "No figures ($why): run \`bash perf/gpu_check.sh OUT --summary-only\` where python3 is." >> "$out/summary.md"
 }
 
 if [ $summary_only = 1 ]; then
@@ -534,16 +490,14 @@ fi
 # ---------------------------------------------------------------------------------------------
 # binaries
 
-missing=()
+missing=0
 for b in "$snapfit" "$build/perf/bench_queries" "$build/perf/bench_search" "$tests_bin"; do
-  [ -x "$b" ] || missing+=("$b")
+  [ -x "$b" ] && continue
+  t=$(basename "$b") extra="" missing=1
+  [[ $t == bench_* ]] && extra=" in a build configured with -DSNAPFIT_BUILD_BENCHMARKS=ON"
+  echo "gpu_check.sh: ${b#"$root"/} is missing: build it with 'cmake --build ${build#"$root"/} --target $t'$extra, or from scratch with 'bash .ci/setup'" >&2
 done
-if [ ${#missing[@]} -gt 0 ]; then
-  for b in "${missing[@]}"; do
-    t=$(basename "$b") extra=""
-    [[ $t == bench_* ]] && extra=" in a build configured with -DSNAPFIT_BUILD_BENCHMARKS=ON"
-    echo "gpu_check.sh: ${b#"$root"/} is missing: build it with 'cmake --build ${build#"$root"/} --target $t'$extra, or from scratch with 'bash .ci/setup'" >&2
-  done
+if [ $missing = 1 ]; then
   echo "gpu_check.sh: (a GPU machine without this project's Debian packages gets the build from a Debian machine: 'bash ../shared/gpu/bundle.sh' there, 'bash .gpu/run.sh ...' here; ../shared/gpu/README.md)" >&2
   exit 2
 fi
@@ -660,14 +614,10 @@ if [ $quick = 1 ]; then
   # float accumulation, batches against single queries
   test_args+=("-tc=device enumeration*,device self-check*,pose query: results do not depend on the launch shape*,pose query: query_batch equals a loop of query,stability accumulation*,reference query: the device kernel*")
 fi
-# in build/tests, as ctest runs them (env -C needs coreutils 8.28; older: a bash that cds)
-if env -C / true 2> /dev/null; then
-  timed tests "$out/tests.log" - "$test_note" env -C "$build/tests" "${test_env[@]}" "$tests_bin" "${test_args[@]}"
-else
-  # shellcheck disable=SC2016
-  timed tests "$out/tests.log" - "$test_note" bash -c 'cd "$1" && shift && exec env "$@"' gpu_check "$build/tests" \
-    "${test_env[@]}" "$tests_bin" "${test_args[@]}"
-fi
+# in build/tests, as ctest runs them (a bash that cds: env -C needs coreutils 8.28)
+# shellcheck disable=SC2016
+timed tests "$out/tests.log" - "$test_note" bash -c 'cd "$1" && shift && exec env "$@"' gpu_check "$build/tests" \
+  "${test_env[@]}" "$tests_bin" "${test_args[@]}"
 
 # ---------------------------------------------------------------------------------------------
 write_summary
