@@ -10,6 +10,7 @@
 // renders each wrench's force and torque (N, N m in part 1's frame).
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -74,23 +75,19 @@ int main(int argc, char** argv) {
     std::size_t states = 0, wrenches = 0;
     snapfit::BridgeWrench last;
     const Clock::time_point start = Clock::now();
-    for (;; ++states) {
-      const Clock::time_point due = start + std::chrono::duration_cast<Clock::duration>(
-                                                std::chrono::duration<double>(double(states) / rate));
-      std::this_thread::sleep_until(due);
-      const double t = std::chrono::duration<double>(Clock::now() - start).count();
-      if (t > duration) break;
-      snapfit::BridgeState state;
-      state.sequence = std::uint32_t(states + 1);
-      state.state.pose = pose_at(keys, keys.front().time_s + t);
-      const snapfit::BridgeStateBytes bytes = snapfit::encode_bridge_state(state);
-      sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&session), sizeof session);
-      sent_at[state.sequence] = Clock::now();
+    // Between sends the client waits on the socket, so a wrench is timed when it arrives.
+    const auto receive_until = [&](Clock::time_point until) {
       unsigned char buffer[2048];
-      for (ssize_t n; (n = recv(fd, buffer, sizeof buffer, MSG_DONTWAIT)) > 0;) {
+      for (;;) {
+        const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(until - Clock::now()).count();
+        pollfd p{fd, POLLIN, 0};
+        const timespec wait{time_t(left / 1000000000), long(left % 1000000000)};  // not rounded to a millisecond
+        if (left <= 0 || ppoll(&p, 1, &wait, nullptr) <= 0) return true;
+        const ssize_t n = recv(fd, buffer, sizeof buffer, MSG_DONTWAIT);
+        if (n <= 0) continue;
         if (auto reason = snapfit::decode_bridge_refusal(buffer, std::size_t(n))) {
           std::printf("{\"refused\": \"%s\"}\n", reason->c_str());
-          return 3;
+          return false;
         }
         std::string why;
         const auto w = snapfit::decode_bridge_wrench(buffer, std::size_t(n), why);
@@ -102,6 +99,19 @@ int main(int argc, char** argv) {
         round_trips.push_back(1e3 * std::chrono::duration<double>(Clock::now() - at->second).count());
         sent_at.erase(sent_at.begin(), std::next(at));  // and the states the loop skipped
       }
+    };
+    for (;; ++states) {
+      const Clock::time_point due = start + std::chrono::duration_cast<Clock::duration>(
+                                                std::chrono::duration<double>(double(states) / rate));
+      if (!receive_until(due)) return 3;
+      const double t = std::chrono::duration<double>(Clock::now() - start).count();
+      if (t > duration) break;
+      snapfit::BridgeState state;
+      state.sequence = std::uint32_t(states + 1);
+      state.state.pose = pose_at(keys, keys.front().time_s + t);
+      const snapfit::BridgeStateBytes bytes = snapfit::encode_bridge_state(state);
+      sent_at[state.sequence] = Clock::now();
+      sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&session), sizeof session);
     }
     close(fd);
     std::printf(

@@ -17,6 +17,7 @@ fixed rate, and prints what came back (round-trip times, the last wrench) as JSO
 import argparse
 import json
 import math
+import select
 import socket
 import struct
 import sys
@@ -127,21 +128,23 @@ def main():
     try:
         while True:
             due = start + n / args.rate
-            now = time.perf_counter()
-            if due - now > 0:
-                time.sleep(due - now)
+            # Between sends wait on the socket, so a wrench is timed when it arrives.
+            while (left := due - time.perf_counter()) > 0:
+                if not select.select([bridge.socket], [], [], left)[0]:
+                    break
+                for w in bridge.receive():
+                    wrenches += 1
+                    last = w
+                    if w.sequence in sent_at:  # the first wrench computed from that state
+                        round_trips.append(1e3 * (time.perf_counter() - sent_at.pop(w.sequence)))
+                        for older in [s for s in sent_at if s < w.sequence]:  # states the loop skipped
+                            del sent_at[older]
             t = time.perf_counter() - start
             if t > duration:
                 break
             position, quaternion = pose_at(frames, frames[0][0] + t)
-            sent_at[bridge.send_state(position, quaternion)] = time.perf_counter()
-            for w in bridge.receive():
-                wrenches += 1
-                last = w
-                if w.sequence in sent_at:  # the first wrench computed from that state
-                    round_trips.append(1e3 * (time.perf_counter() - sent_at.pop(w.sequence)))
-                    for older in [s for s in sent_at if s < w.sequence]:  # states the loop skipped
-                        del sent_at[older]
+            sent_at[bridge.sequence + 1] = time.perf_counter()
+            bridge.send_state(position, quaternion)
             n += 1
     except Refused as e:
         print(json.dumps({"refused": str(e)}))
