@@ -114,7 +114,8 @@ try {
   checks.check(shot.bluish > 500, `part 2 is drawn (${shot.bluish} bluish pixels)`);
 
   await page.click('#record');
-  await page.waitForFunction(() => window.snapfitLive.lastRecording !== null, null, { timeout: 60000 });
+  await page.waitForFunction(() => window.snapfitLive.lastRecording && window.snapfitLive.lastRecording.folder, null,
+                             { timeout: 60000 });
   const recording = await live('recording');
   for (const file of ['summary.json', 'loop.csv', 'report.html'])
     checks.check(recording.files.includes(file) && fs.existsSync(path.join(recording.folder, file)),
