@@ -6,6 +6,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <thread>
 
@@ -59,28 +60,39 @@ void run_serve(const ServeOptions& opt) {
   request.progress = true;
   request.say = [](const std::string& text) { std::cout << text << std::flush; };
 
-  // The bridge first: the session's frames go to it from the loop's thread.
-  LiveSession* session_for_bridge = nullptr;
-  BridgeServer bridge(opt.bridge_port.value_or(opt.port ? std::uint16_t(opt.port + 1) : 0),
-                      [&](const BodyState& state, std::uint32_t sequence) {
-                        if (session_for_bridge) session_for_bridge->set_device_state(state, sequence);
-                      });
+  // The loop sends each frame to the bridge, the bridge hands each state to the session:
+  // the session's loop stops first, then the bridge, then the session goes.
+  std::unique_ptr<BridgeServer> bridge;
   LiveOptions live;
   live.late_s = opt.late_ms / 1e3;
   live.fade_s = opt.fade_ms / 1e3;
-  live.on_frame = [&bridge](const LiveFrame& frame) { bridge.send_frame(frame); };
+  live.on_frame = [&bridge](const LiveFrame& frame) { bridge->send_frame(frame); };
   LiveSession session(scene, request, live);
-  session_for_bridge = &session;
-  LiveHttpServer http(session, bridge, live_page_html(session.prepared(), LivePageInfo{bridge.port()}), opt.port,
+  bridge = std::make_unique<BridgeServer>(opt.bridge_port.value_or(opt.port ? std::uint16_t(opt.port + 1) : 0),
+                                          [&session](const BodyState& state, std::uint32_t sequence) {
+                                            session.set_device_state(state, sequence);
+                                          });
+  struct StopInOrder {  // on every way out of this function
+    LiveSession& session;
+    std::unique_ptr<BridgeServer>& bridge;
+    ~StopInOrder() {
+      try {
+        session.stop();
+      } catch (...) {  // reported by the explicit stop() below when there is one
+      }
+      bridge.reset();
+    }
+  } stop_in_order{session, bridge};
+  LiveHttpServer http(session, *bridge, live_page_html(session.prepared(), LivePageInfo{bridge->port()}), opt.port,
                       out);
   session.start();
   std::cout << "[7/7] live: the page at http://127.0.0.1:" << http.port() << "/ , the device bridge at UDP 127.0.0.1:"
-            << bridge.port() << " (docs/haptics.md); Ctrl-C ends the session" << std::endl;
+            << bridge->port() << " (docs/haptics.md); Ctrl-C ends the session" << std::endl;
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   while (!interrupted && !http.quit_requested()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   const LiveStatus end = session.stop();
-  print_end(scene, end, bridge.stats());
+  print_end(scene, end, bridge->stats());
 }
 
 }  // namespace
