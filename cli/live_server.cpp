@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "report/run_page.h"
 #include "report/run_report.h"
 #include "snapfit/error.h"
 
@@ -15,11 +16,6 @@ namespace snapfit::cli {
 namespace {
 
 nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-
-nlohmann::json pose_json(const Pose& p) {
-  const Eigen::Quaterniond q = p.rotation.normalized();
-  return {{"position", vector_json(p.translation)}, {"quaternion", {q.w(), q.x(), q.y(), q.z()}}};
-}
 
 nlohmann::json wrench_json(const Wrench& w) { return {{"force", vector_json(w.force)}, {"torque", vector_json(w.torque)}}; }
 
