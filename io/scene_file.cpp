@@ -433,7 +433,7 @@ HapticsParams read_haptics(const Ctx& c, const json& v, const std::string& path)
       c, v, path,
       {"mass_kg", "stiffness_n_per_m", "rot_stiffness_nm_per_rad", "damping_ratio", "max_force_n", "max_torque_nm",
        "geometry_gain", "geometry_strength", "settle_s", "success_position", "success_angle_deg", "contact",
-       "contact_stiffness_n_per_mm3", "contact_spacing", "max_force_rate_n_per_s"});
+       "contact_stiffness_n_per_mm3", "contact_spacing", "max_force_rate_n_per_s", "vouch"});
   HapticsParams h;
   if (const json* x = find(v, "mass_kg")) h.mass_kg = positive(c, *x, join(path, "mass_kg"));
   if (const json* x = find(v, "stiffness_n_per_m"))
@@ -459,6 +459,10 @@ HapticsParams read_haptics(const Ctx& c, const json& v, const std::string& path)
   if (const json* x = find(v, "contact_spacing")) h.contact_spacing = positive(c, *x, join(path, "contact_spacing"));
   if (const json* x = find(v, "max_force_rate_n_per_s"))
     h.max_force_rate_n_per_s = non_negative(c, *x, join(path, "max_force_rate_n_per_s"));
+  if (const json* x = find(v, "vouch")) {
+    if (!x->is_boolean()) fail(c, join(path, "vouch"), "must be true or false");
+    h.vouch = x->get<bool>();
+  }
   return h;
 }
 
@@ -816,6 +820,7 @@ std::string scene_to_json(const Scene& s) {
   hj["contact_stiffness_n_per_mm3"] = h.contact_stiffness_n_per_mm3;
   if (h.contact_spacing) hj["contact_spacing"] = *h.contact_spacing;
   hj["max_force_rate_n_per_s"] = h.max_force_rate_n_per_s;
+  hj["vouch"] = h.vouch;
   j["haptics"] = hj;
   j["method"] = method_name(s.method);
   ordered_json vj;

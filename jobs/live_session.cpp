@@ -31,6 +31,8 @@ void append_segment(LoopReport& all, const LoopReport& segment) {
   all.misses += segment.misses;
   all.skipped_ticks += segment.skipped_ticks;
   all.flagged_frames += segment.flagged_frames;
+  all.trust_scaled_frames += segment.trust_scaled_frames;
+  all.trust_withheld_frames += segment.trust_withheld_frames;
   all.bad_device_reads += segment.bad_device_reads;
   all.part_resets += segment.part_resets;
   all.passivity_frames += segment.passivity_frames;
@@ -106,6 +108,7 @@ void LiveSession::State::publish(const FrameRecord& f) {
   frame.part = f.part;
   frame.energy = f.energy;
   frame.geometric = f.geometric;
+  frame.trust = f.trust;
   frame.contact = f.contact;
   frame.contact_depth = f.contact_depth;
   frame.sent = seen.sent;

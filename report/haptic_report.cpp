@@ -19,7 +19,7 @@ std::string loop_csv(const LoopReport& loop) {
   csv << "time_s,frame_ms,missed,modes,flags,device_x,device_y,device_z,part_x,part_y,part_z,part_qw,part_qx,"
          "part_qy,part_qz,energy,geo_fx,geo_fy,geo_fz,geo_tx,geo_ty,geo_tz,sent_fx,sent_fy,sent_fz,sent_tx,"
          "sent_ty,sent_tz,energy_error_est,geo_force_error_est,geo_torque_error_est,contact_fx,contact_fy,contact_fz,"
-         "contact_tx,contact_ty,contact_tz,contact_depth,constraint,constraint_x\n";
+         "contact_tx,contact_ty,contact_tz,contact_depth,constraint,constraint_x,trust\n";
   for (const FrameRecord& f : loop.log) {
     const Eigen::Vector3d& d = f.device.translation;
     const Eigen::Vector3d& p = f.part.translation;
@@ -31,7 +31,8 @@ std::string loop_csv(const LoopReport& loop) {
       csv << ',' << v->x() << ',' << v->y() << ',' << v->z();
     csv << ',' << f.geometric_error.energy << ',' << f.geometric_error.force << ',' << f.geometric_error.torque;
     for (const Eigen::Vector3d* v : {&f.contact.force, &f.contact.torque}) csv << ',' << v->x() << ',' << v->y() << ',' << v->z();
-    csv << ',' << f.contact_depth << ',' << static_cast<int>(f.constraint) << ',' << f.constraint_weight << '\n';
+    csv << ',' << f.contact_depth << ',' << static_cast<int>(f.constraint) << ',' << f.constraint_weight << ','
+        << f.trust << '\n';
   }
   return csv.str();
 }

@@ -13,6 +13,7 @@
 #include "core/quantile.h"
 #include "scheduler/force_rate_limit.h"
 #include "scheduler/virtual_coupling.h"
+#include "scheduler/wrench_trust.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -141,9 +142,11 @@ class PassivityController {
  public:
   explicit PassivityController(const LoopConfig& c) : config_(c) {}
 
-  // Called each frame after the query at the part's pose, with the wrench it gives:
-  // observes the last step (energy created) and updates the stiffness estimate.
-  void observe(const Pose& pose, const QueryResult& q, const Wrench& wrench) {
+  // Called each frame after the query at the part's pose, with the wrench it renders
+  // (the engine's times `trust`): observes the last step (energy created) and updates the
+  // stiffness estimate. The held wrench derives from the potential times the trust it was
+  // rendered with, so the step is judged against that potential at both ends.
+  void observe(const Pose& pose, const QueryResult& q, const Wrench& wrench, double trust) {
     const bool ok = q.flags == query_ok;
     const double u = config_.coupling.metres_per_unit;
     const double potential = ok ? config_.geometry_gain * u * q.energy : 0.0;
@@ -153,7 +156,7 @@ class PassivityController {
       const Eigen::Vector3d dx = u * (pose.translation - pose_.translation);
       const Eigen::Vector3d dtheta = rotation_between(pose_.rotation, pose.rotation);
       const double work = wrench_.force.dot(dx) + wrench_.torque.dot(dtheta);
-      const double created = work - (potential_ - potential);
+      const double created = work - trust_ * (potential_ - potential);
       if (std::isfinite(created)) budget_ = std::min(0.0, budget_ + (-created));
       // Secant stiffness along the motion, -dF.dx / |dx|^2 (only its positive part
       // threatens stability); steps below a nanometre / nanoradian are float noise.
@@ -169,6 +172,7 @@ class PassivityController {
     valid_ = ok;
     pose_ = pose;
     potential_ = potential;
+    trust_ = trust;
     modes_ = q.modes;
     wrench_ = wrench;
   }
@@ -212,7 +216,8 @@ class PassivityController {
   const LoopConfig& config_;
   bool valid_ = false;
   Pose pose_;
-  double potential_ = 0;
+  double potential_ = 0;  // the engine's, times the gain (J), before the trust
+  double trust_ = 1;      // the share of it the held wrench renders
   std::size_t modes_ = 0;
   Wrench wrench_;
   double budget_ = 0;                         // <= 0: energy created by the steps and not yet removed, J
@@ -239,7 +244,8 @@ struct LoopState {
   }
   ModeGovernor governor;
   PassivityController passivity;
-  Wrench geometric, external;  // the engine's wrench; with the contact, held over missed ticks
+  Wrench geometric, external;  // the engine's wrench as rendered; with the contact, held over missed ticks
+  double trust = 1;            // the share of the engine's wrench rendered this frame
   ContactWrench contact;
   ImplicitExtras extra;
   std::optional<BodyState> last_good_handle;
@@ -260,17 +266,23 @@ BodyState read_handle(HapticDevice& device, double tick_time, const BodyState& p
   return handle;
 }
 
-// 2. The geometric wrench at the part's pose (with the loop's gain, torque in N m) and
-// its error estimate; the rigid contact's beside it.
+// 2. The geometric wrench at the part's pose (with the loop's gain, torque in N m), as
+// far as its error estimate vouches for it (s.trust), and the estimate; the rigid
+// contact's beside it.
 ErrorEstimate geometric_wrench(const QueryResult& q, const Pose& queried, const LoopConfig& config, LoopState& s,
                                LoopReport& report) {
   s.geometric = Wrench{};
+  s.trust = 0;
   ErrorEstimate error;
   if (q.flags == query_ok) {
     s.geometric.force = config.geometry_gain * q.force;
     s.geometric.torque = config.geometry_gain * config.coupling.metres_per_unit * q.torque;
     error = {q.error_estimate.energy, config.geometry_gain * q.error_estimate.force,
              config.geometry_gain * config.coupling.metres_per_unit * q.error_estimate.torque};
+    s.trust = wrench_trust(s.geometric, error, config.trust);
+    s.geometric.force *= s.trust;
+    s.geometric.torque *= s.trust;
+    if (s.trust < 1) ++(s.trust > 0 ? report.trust_scaled_frames : report.trust_withheld_frames);
   } else {
     ++report.flagged_frames;
   }
@@ -287,7 +299,7 @@ ErrorEstimate geometric_wrench(const QueryResult& q, const Pose& queried, const 
 // Returns the energy the rate bound's damping removed, J.
 double step_part(BodyState& part, const BodyState& handle, const Pose& queried, const QueryResult& q,
                  const LoopConfig& config, double period, LoopState& s, LoopReport& report) {
-  s.passivity.observe(part.pose, q, s.geometric);
+  s.passivity.observe(part.pose, q, s.geometric, s.trust);
   s.extra = s.passivity.extras(part);
   s.extra.contact_stiffness = s.contact.stiffness;
   ImplicitExtras stepped = s.extra;
@@ -427,7 +439,8 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     if (config.keep_log || config.on_frame) {
       const FrameRecord record{tick_time, frame_ms,      handle.pose,     queried,         q.energy,
                                s.geometric, s.contact.wrench, s.contact.depth, geometric_error, sent,
-                               q.modes,   q.flags,       timing.missed,   q.constraint,    q.constraint_weight};
+                               q.modes,   q.flags,       timing.missed,   q.constraint,    q.constraint_weight,
+                               s.trust};
       if (config.keep_log) report.log.push_back(record);
       if (config.on_frame) config.on_frame(record);
     }

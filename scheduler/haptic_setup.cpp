@@ -66,6 +66,7 @@ LoopConfig scene_loop_config(const Scene& scene, const CouplingParams& coupling)
   config.budget_ms = scene.frame_budget_ms;
   config.coupling = coupling;
   config.max_force_rate_n_per_s = scene.haptics.max_force_rate_n_per_s;
+  config.trust.enabled = scene.haptics.vouch;
   return config;
 }
 

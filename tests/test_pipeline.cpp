@@ -185,12 +185,16 @@ TEST_CASE("pipeline: snapfit run, snapfit query and the library give the same wr
         CHECK(std::abs(q.energy - e) <= 1e-6 * std::max({1.0, std::abs(e), energy_scale}));
         const Eigen::Vector3d f(r[col("geo_fx")], r[col("geo_fy")], r[col("geo_fz")]);
         const Eigen::Vector3d t(r[col("geo_tx")], r[col("geo_ty")], r[col("geo_tz")]);
-        CHECK((gain * q.force - f).norm() <= 1e-6 * std::max(1e-9, f.norm()) + 1e-12);
+        // The log's geometric wrench is the engine's times the share its estimate vouched for.
+        const double trust = r[col("trust")];
+        CHECK(trust >= 0);
+        CHECK(trust <= 1);
+        CHECK((trust * gain * q.force - f).norm() <= 1e-6 * std::max(1e-9, f.norm()) + 1e-12);
         // The kernels sum the torque about part 2's box centre c2 and add (R c2) x F, in
         // float: on another device's order it agrees to round-off of |c2| |F| and of the
         // torque's size along the run, not of a torque that cancels at one pose.
         const double lever = pair.spectra.part2.centre.norm() * metres_per_unit(scene.units);
-        CHECK((torque_gain * q.torque - t).norm() <=
+        CHECK((trust * torque_gain * q.torque - t).norm() <=
               1e-6 * (std::max({1e-12, t.norm(), torque_scale}) + lever * f.norm()) + 1e-15);
       }
     }

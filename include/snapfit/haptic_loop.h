@@ -116,7 +116,7 @@ struct FrameRecord {
   Pose device;               // the device's pose read this frame
   Pose part;                 // the part's pose the engine was queried at (before this frame's step)
   double energy = 0;         // engine energy at `part`
-  Wrench geometric;          // scaled to N, N m (the engine's; rigid contact is `contact`)
+  Wrench geometric;          // as rendered: the engine's scaled to N, N m, times `trust` (rigid contact is `contact`)
   Wrench contact;            // rigid contact (LoopConfig::contact), N, N m
   double contact_depth = 0;  // its deepest point's interpenetration, scene units
   // The engine's error estimate for `energy` and `geometric` (same units as they).
@@ -127,6 +127,22 @@ struct FrameRecord {
   bool missed = false;
   std::uint8_t constraint = 0;   // QueryResult::constraint: the hybrid's engaged constraint
   double constraint_weight = 0;  // and its blend weight x
+  double trust = 1;              // the share of the engine's wrench rendered (WrenchTrust); 0 when flagged
+};
+
+// How much of the engine's wrench the loop renders, from its per-query error estimate
+// (include/snapfit/query.h ErrorEstimate): all of it where the estimate is within the
+// tolerance, the larger of `relative` times the value and the absolute floor (force_n,
+// torque_nm after the gain); none where the estimate reaches the value itself (its
+// direction is then not known); linearly in between, the whole wrench by the smaller of
+// the force's and the torque's weights. A weight w < 1 shrinks the wrench towards zero: if
+// the estimate covers the true error, the rendered force never pushes against the exact
+// one and is never stronger than it (scheduler/wrench_trust.h).
+struct WrenchTrust {
+  bool enabled = true;
+  double relative = 0.2;
+  double force_n = 0.05;
+  double torque_nm = 1e-3;
 };
 
 struct ModePolicy {
@@ -147,6 +163,7 @@ struct LoopConfig {
   double geometry_gain = 1;  // N per engine force unit (loop_config sets it from the scene)
   ModePolicy modes;
   bool passivity_control = true;  // observer + damping controller on the geometric wrench (above)
+  WrenchTrust trust;              // the engine's wrench only as far as its error estimate vouches for it
   // Speed limit: the most the part's origin moves (scene units) and turns (rad) in one
   // step; 0 = none. Voxmap PointShell sets it (no point moves more than half a voxel).
   double max_travel = 0;
@@ -182,6 +199,8 @@ struct LoopReport {
   std::size_t misses = 0;               // frames that ended after their deadline
   std::size_t skipped_ticks = 0;        // ticks not run because a frame overran them
   std::size_t flagged_frames = 0;       // frames whose query returned flags (zero geometric wrench)
+  std::size_t trust_scaled_frames = 0;    // frames whose engine wrench was rendered in part (WrenchTrust)
+  std::size_t trust_withheld_frames = 0;  // frames whose engine wrench was not rendered: its estimate vouched for none
   std::size_t bad_device_reads = 0;     // non-finite device states, replaced by the last good one
   std::size_t part_resets = 0;          // non-finite part states, reset to the device state
   std::size_t passivity_frames = 0;     // frames in which the passivity controller damped the part

@@ -28,7 +28,8 @@ struct LiveFrame {
   Pose device;                // the device's pose the frame read
   Pose part;                  // part 2's pose the engine was queried at
   double energy = 0;
-  Wrench geometric;           // the engine's wrench with the loop's gain, N and N m
+  Wrench geometric;           // the engine's wrench with the loop's gain, N and N m, as rendered (times trust)
+  double trust = 1;           // the share of the engine's wrench its error estimate vouched for
   Wrench contact;             // the rigid contact's
   double contact_depth = 0;   // scene units
   Wrench sent;                // to the device, after the limits and the fade

@@ -118,6 +118,9 @@ struct HapticsParams {
   // The most the force sent may change per second, N/s (0: no bound); the loop damps the
   // part instead (docs/haptics.md). 200 N/s = 0.2 N between 1 kHz frames.
   double max_force_rate_n_per_s = 200;
+  // Render the engine's wrench only as far as its per-query error estimate vouches for
+  // it (snapfit/haptic_loop.h WrenchTrust); false renders it whole, whatever the estimate.
+  bool vouch = true;
 };
 
 // Which haptic rendering method a scene's run uses.
