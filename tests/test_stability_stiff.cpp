@@ -107,6 +107,9 @@ StiffRun run_static_contact(StiffPair& s, double strength, const Pose& device_po
   config.geometry_gain = run.gain;
   config.modes.levels = {s.modes};
   config.passivity_control = passivity;
+  // The whole geometric wrench, whatever its error estimate: the energy accounting below
+  // uses the whole potential (tests/test_wrench_trust.cpp tests the trust).
+  config.trust.enabled = false;
   StaticDevice device(device_pose, device_limits_for(scene));
   WrenchEvaluator eval{[&](const Pose& p) { return engine.query(p); }, [&](std::size_t m) { engine.set_modes(m); }};
   BodyState start;
