@@ -42,6 +42,12 @@ struct JobRecord {
   std::optional<AccuracyReport> strategies;  // the candidates, when chosen by error
   std::string strategy_file;                 // where the choice is kept
   std::optional<SessionResult> session;      // the scripted assembly, when the scene has a trajectory
+  // The rigid contact the loop adds, and the frame time reserved for it before the
+  // strategy and m' were chosen (scheduler/haptic_setup.h reserved_contact_ms); null / 0
+  // without contact or with a fixed m'.
+  std::shared_ptr<const RigidContactModel> contact;
+  std::string contact_off;  // why the scene's contact is off (a part not watertight); empty otherwise
+  double contact_reserved_ms = 0;
   double seconds = 0;                        // the whole job so far
   std::optional<VpsFacts> vps;               // set for a scene whose method is "vps" (no fields, spectra or tuning)
 };

@@ -183,13 +183,14 @@ LiveSession::LiveSession(const Scene& scene, const JobRequest& request, const Li
   const JobOutput out = job_output(request);
   s.job = prepare_job(scene, request, out, prepare_job_parts(scene, request, out));
   const AssemblyPair& pair = *s.job.pair;
-  std::string contact_off;
-  std::shared_ptr<const RigidContactModel> contact =
-      rigid_contact_for(scene, pair.part(1).mesh, pair.part(2).mesh, pair.spectra.spacing, &contact_off);
+  const std::string contact_off = s.job.record->contact_off;
+  std::shared_ptr<const RigidContactModel> contact = s.job.record->contact;
   if (!contact_off.empty()) out.note(contact_off);
   double force_scale = 0;
+  std::optional<double> contact_ms;
+  if (s.job.record->contact_reserved_ms > 0) contact_ms = s.job.record->contact_reserved_ms;
   s.config = loop_config_for(scene, pair.part(2).mesh, pair.spectra.spacing, *s.job.loop_engine, s.job.record->tuning,
-                             force_scale, contact);
+                             force_scale, contact, contact_ms);
   s.session = session_before_loop(scene, pair.spectra.spacing, s.config);
   s.session.force_scale = force_scale;
   s.session.contact = contact;

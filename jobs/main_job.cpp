@@ -11,7 +11,9 @@
 #include "jobs/job_text.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/scene_summary.h"
+#include "scheduler/haptic_setup.h"
 #include "scheduler/loop_devices.h"
+#include "scheduler/parallel_contact.h"
 #include "scheduler/session_text.h"
 #include "snapfit/error.h"
 #include "snapfit/job.h"
@@ -97,6 +99,23 @@ std::unique_ptr<QueryEngine> fixed_modes_engine(const ComputeContext& ctx, const
   return engine;
 }
 
+// The rigid contact the loop will add, and its time per frame, reserved from the frame
+// before the strategy and m' are chosen: the strategy table then reports the errors of
+// the m' the loop renders beside the contact.
+void reserve_contact_time(const AssemblyPair& pair, const JobRequest& request, const JobOutput& out,
+                          JobRecord& record) {
+  const Scene& scene = pair.scene;
+  record.contact = rigid_contact_for(scene, pair.part(1).mesh, pair.part(2).mesh, pair.spectra.spacing,
+                                     &record.contact_off);
+  if (!record.contact || request.modes) return;
+  const double measured = contact_cost_ms(contact_evaluator(record.contact), *record.contact, scene);
+  record.contact_reserved_ms = reserved_contact_ms(measured);
+  std::ostringstream line;
+  line << "    rigid contact: " << measured << " ms a frame (p99 near the fit); " << record.contact_reserved_ms
+       << " ms of the " << scene.frame_budget_ms << " ms frame reserved for it before m' is chosen\n";
+  out.say(line.str());
+}
+
 // "[6/7]" tuned: m' on this device (and the others with no device named), then with
 // strategy "auto" every strategy's error at the budget and the most accurate that fits.
 LoopDevices tuned_loop_devices(const ComputeContext& ctx, const AssemblyPair& pair, const QueryVariant& variant,
@@ -124,6 +143,7 @@ LoopDevices tuned_loop_devices(const ComputeContext& ctx, const AssemblyPair& pa
     AccuracyOptions accuracy;
     accuracy.budget_ms = scene.frame_budget_ms;
     accuracy.margin = request.margin;
+    accuracy.reserved_ms = record.contact_reserved_ms;
     accuracy.retune = request.retune;
     accuracy.note = out.note;
     if (request.progress) accuracy.progress = pass_progress_bars();
@@ -170,6 +190,7 @@ PreparedJob prepare_job(const Scene& scene, const JobRequest& request, const Job
   std::ostringstream step6;
   step6 << "[6/7] the query strategy and m' for a " << scene.frame_budget_ms << " ms frame on this device\n";
   out.say(step6.str());
+  reserve_contact_time(*job.pair, request, out, *job.record);
   if (request.modes) {
     job.fixed_engine = fixed_modes_engine(*job.ctx, *job.pair, variant, request, out, *job.record);
     job.loop_engine = job.fixed_engine.get();
@@ -198,8 +219,11 @@ JobResult run_job(const Scene& scene, const JobRequest& request) {
   PreparedJob job = prepare_job(scene, request, out, pair);
   run_session_step(scene, request, out, "m' = " + std::to_string(job.record->tuning.chosen_modes), *job.record,
                    [&](const SessionOptions& session) {
+                     SessionOptions with_contact = session;
+                     if (job.record->contact_reserved_ms > 0) with_contact.contact_ms = job.record->contact_reserved_ms;
                      return run_scripted_assembly(scene, pair->part(1).mesh, pair->part(2).mesh,
-                                                  pair->spectra.spacing, *job.loop_engine, job.record->tuning, session);
+                                                  pair->spectra.spacing, *job.loop_engine, job.record->tuning,
+                                                  with_contact);
                    });
   return job_result(std::move(job.record));
 }

@@ -32,6 +32,10 @@ struct RelativeErrors {
 struct AccuracyOptions {
   double budget_ms = 1.0;
   double margin = 0.25;    // TuneOptions::margin
+  // The frame's time other work takes beside the query (the loop's rigid contact, ms):
+  // each strategy's m' is the one that fits beside it (tuning_beside_contact), so the
+  // errors measured are those of the m' the loop renders.
+  double reserved_ms = 0;
   std::size_t poses = 24;  // reference poses, evenly in time along the trajectory
   bool retune = false;     // measure even when the tuning file matches
   std::size_t repetitions = 400;

@@ -18,7 +18,8 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part1_mesh, 
       rigid_contact_for(scene, part1_mesh, part2_mesh, spacing, &contact_off);
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
   double force_scale = 0;
-  const LoopConfig config = loop_config_for(scene, part2_mesh, spacing, engine, tuning, force_scale, contact);
+  const LoopConfig config =
+      loop_config_for(scene, part2_mesh, spacing, engine, tuning, force_scale, contact, options.contact_ms);
   SessionResult out = run_scripted_session(scene, spacing, config, wrench_evaluator(engine), options);
   out.force_scale = force_scale;
   out.contact = std::move(contact);

@@ -29,6 +29,9 @@ struct SessionOptions {
   // -20. {0, 0} leaves them.
   PriorityRequest priority{-20, 10};
   int warmup_queries = 50;  // queries at the first pose before the loop starts
+  // The rigid contact's time the frame reserves for it (ms), when measured already (the
+  // main job measures it before choosing the strategy); else measured here.
+  std::optional<double> contact_ms;
 };
 
 struct SessionResult {

@@ -89,6 +89,11 @@ double contact_cost_ms(const std::function<ContactWrench(const Pose&)>& contact,
   return quantile(ms, 0.99);
 }
 
+double reserved_contact_ms(double measured_ms) {
+  if (!(measured_ms > 0)) return 0;
+  return std::ceil(measured_ms * 10.0 - 1e-9) / 10.0;
+}
+
 TuningResult tuning_beside_contact(const TuningResult& tuning, double contact_ms) {
   if (!(contact_ms > 0) || tuning.points.empty()) return tuning;
   // The frame's work is the query plus the contact: the query's target shrinks by the
@@ -108,11 +113,11 @@ TuningResult tuning_beside_contact(const TuningResult& tuning, double contact_ms
 
 LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
                            const TuningResult& tuned, double& force_scale,
-                           std::shared_ptr<const RigidContactModel> contact) {
+                           std::shared_ptr<const RigidContactModel> contact, std::optional<double> contact_ms) {
   LoopConfig config = scene_loop_config(scene, coupling_for(scene, part2_mesh));
   if (contact) {
     config.contact = contact_evaluator(contact);
-    config.contact_ms = contact_cost_ms(config.contact, *contact, scene);
+    config.contact_ms = contact_ms ? *contact_ms : contact_cost_ms(config.contact, *contact, scene);
   }
   const TuningResult tuning = tuning_beside_contact(tuned, config.contact_ms);
   engine.set_modes(tuning.chosen_modes);

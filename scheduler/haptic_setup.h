@@ -3,6 +3,7 @@
 // needs: the virtual coupling, the device limits, the geometric gain, and the test of
 // whether a run ended assembled.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "mesh/mesh.h"
@@ -59,11 +60,18 @@ TuningResult tuning_beside_contact(const TuningResult& tuning, double contact_ms
 // `engine` is set to the tuned m' and probed at gain_probe_poses for the gain; the
 // largest force it saw goes to `force_scale`.
 // `contact`, when not null, is the rigid contact the loop adds (scheduler/rigid_contact.h);
-// its measured time (contact_cost_ms, in LoopConfig::contact_ms) is taken out of the
-// frame's budget before the loop's m' levels are set (tuning_beside_contact).
+// its time (`contact_ms` when given, else measured by contact_cost_ms; in
+// LoopConfig::contact_ms) is taken out of the frame's budget before the loop's m' levels
+// are set (tuning_beside_contact).
 LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double spacing, QueryEngine& engine,
                            const TuningResult& tuning, double& force_scale,
-                           std::shared_ptr<const RigidContactModel> contact = nullptr);
+                           std::shared_ptr<const RigidContactModel> contact = nullptr,
+                           std::optional<double> contact_ms = std::nullopt);
+
+// The contact's time the frame reserves for it: contact_cost_ms rounded up to a tenth of
+// a millisecond, so that the strategy chosen for it (AccuracyOptions::reserved_ms) stays
+// the same from one run to the next on the same machine.
+double reserved_contact_ms(double measured_ms);
 
 struct PoseError {
   double position = 0;  // scene units
