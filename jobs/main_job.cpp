@@ -13,7 +13,7 @@
 #include "pipeline/scene_summary.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/loop_devices.h"
-#include "scheduler/parallel_contact.h"
+#include "scheduler/contact_reserve.h"
 #include "scheduler/session_text.h"
 #include "snapfit/error.h"
 #include "snapfit/job.h"
@@ -108,11 +108,14 @@ void reserve_contact_time(const AssemblyPair& pair, const JobRequest& request, c
   record.contact = rigid_contact_for(scene, pair.part(1).mesh, pair.part(2).mesh, pair.spectra.spacing,
                                      &record.contact_off);
   if (!record.contact || request.modes) return;
-  const double measured = contact_cost_ms(contact_evaluator(record.contact), *record.contact, scene);
-  record.contact_reserved_ms = reserved_contact_ms(measured);
+  const ContactReserve reserve = contact_reserve(scene, pair.part(1).mesh, pair.part(2).mesh, record.contact,
+                                                 record.device, request.retune, out.note);
+  record.contact_reserved_ms = reserve.reserved_ms;
   std::ostringstream line;
-  line << "    rigid contact: " << measured << " ms a frame (p99 near the fit); " << record.contact_reserved_ms
-       << " ms of the " << scene.frame_budget_ms << " ms frame reserved for it before m' is chosen\n";
+  line << "    rigid contact: " << reserve.measured_ms << " ms a frame (p99 near the fit"
+       << (reserve.from_file ? ", from " + reserve.file : std::string(", measured")) << "); "
+       << record.contact_reserved_ms << " ms of the " << scene.frame_budget_ms
+       << " ms frame reserved for it before m' is chosen\n";
   out.say(line.str());
 }
 

@@ -89,11 +89,6 @@ double contact_cost_ms(const std::function<ContactWrench(const Pose&)>& contact,
   return quantile(ms, 0.99);
 }
 
-double reserved_contact_ms(double measured_ms) {
-  if (!(measured_ms > 0)) return 0;
-  return std::ceil(measured_ms * 10.0 - 1e-9) / 10.0;
-}
-
 TuningResult tuning_beside_contact(const TuningResult& tuning, double contact_ms) {
   if (!(contact_ms > 0) || tuning.points.empty()) return tuning;
   // The frame's work is the query plus the contact: the query's target shrinks by the

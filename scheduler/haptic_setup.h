@@ -68,11 +68,6 @@ LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double sp
                            std::shared_ptr<const RigidContactModel> contact = nullptr,
                            std::optional<double> contact_ms = std::nullopt);
 
-// The contact's time the frame reserves for it: contact_cost_ms rounded up to a tenth of
-// a millisecond, so that the strategy chosen for it (AccuracyOptions::reserved_ms) stays
-// the same from one run to the next on the same machine.
-double reserved_contact_ms(double measured_ms);
-
 struct PoseError {
   double position = 0;  // scene units
   double angle_deg = 0;
