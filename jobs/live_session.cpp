@@ -304,7 +304,7 @@ JobResult LiveSession::stop_recording() {
   s.recorded = LoopReport{};
   s.recording = false;
   lock.unlock();
-  judge_session_end(session, s.scene);
+  judge_session_end(session, s.scene, s.job.pair->part(2).mesh);
   record->session = std::move(session);
   return job_result(std::move(record));
 }
