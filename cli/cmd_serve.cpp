@@ -39,7 +39,8 @@ void print_end(const Scene& scene, const LiveStatus& s, const BridgeStats& b) {
   std::cout << "session ended: " << s.frames << " frames in " << s.elapsed_s << " s, " << s.misses << " misses, "
             << s.sanitised << " non-finite wrenches sent as zero; bridge: " << b.states << " states, " << b.malformed
             << " malformed, " << b.refused << " refused\n"
-            << "final pose error " << s.position_error << " " << scene.units << ", " << s.angle_error_deg << " deg: "
+            << "final pose error " << s.position_error << " " << scene.units << ", " << s.angle_error_deg
+            << " deg, surface " << s.surface_deviation << " " << scene.units << " off: "
             << (!s.evaluated ? "not evaluated (the scene has no assembled pose)"
                 : s.assembled ? "ASSEMBLED"
                               : "NOT assembled")

@@ -52,6 +52,7 @@ JobResult job_result(std::shared_ptr<JobRecord> record) {
     r.assembled = s.assembled;
     r.final_position_error = s.final_error.position;
     r.final_angle_deg = s.final_error.angle_deg;
+    r.final_surface_deviation = s.surface_deviation;
   }
   r.record = std::move(record);
   return r;

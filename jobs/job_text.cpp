@@ -39,8 +39,9 @@ std::string session_text(const Scene& scene, const SessionResult& session) {
   for (const ModeChange& c : loop.mode_changes)
     out << "      t = " << c.time_s << " s: m' " << c.from << " -> " << c.to << " (" << c.reason << ")\n";
   out << "    final pose error " << session.final_error.position << " " << scene.units << ", "
-      << session.final_error.angle_deg << " deg (tolerance " << session.position_tolerance << " " << scene.units
-      << ", " << session.angle_tolerance_deg << " deg): "
+      << session.final_error.angle_deg << " deg, surface " << session.surface_deviation << " " << scene.units
+      << " off (tolerance " << session.position_tolerance << " " << scene.units << ", " << session.angle_tolerance_deg
+      << " deg): "
       << (!session.evaluated  ? "not evaluated (the scene has no assembled pose)"
           : session.assembled ? "ASSEMBLED"
                               : "NOT assembled")

@@ -6,10 +6,12 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "jobs/job_steps.h"
 #include "jobs/live_device.h"
+#include "scheduler/assembly_verdict.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/rigid_contact.h"
 #include "scheduler/thread_priority.h"
@@ -21,6 +23,13 @@ namespace {
 
 constexpr double kSegmentS = 10;  // loop time per segment
 constexpr int kWarmupQueries = 50;
+// A status measures part 2's surface deviation at most this often, and at most a tenth
+// of the time (a measure takes milliseconds; a page asks 60 times a second).
+constexpr double kSurfacePeriodS = 0.1;
+
+bool same_pose(const Pose& a, const Pose& b) {
+  return a.translation == b.translation && a.rotation.coeffs() == b.rotation.coeffs();
+}
 
 // Appends a segment's report to the recording's.
 void append_segment(LoopReport& all, const LoopReport& segment) {
@@ -69,6 +78,7 @@ struct LiveSession::State {
   PreparedJob job;
   LoopConfig config;
   SessionResult session;  // the loop's facts, for a recording's result
+  std::optional<AssemblyJudge> judge;  // when the scene has an assembled pose
   BodyState initial;
   std::unique_ptr<LiveDevice> device;
   WrenchEvaluator evaluator;
@@ -79,7 +89,7 @@ struct LiveSession::State {
 
   // Published by the loop's thread (try_lock: a reader never makes a frame wait).
   mutable std::mutex frame_mutex;
-  LiveFrame latest;
+  LiveFrame latest_frame;
   std::uint64_t frames_before_segment = 0;  // frames published so far (the loop's thread only)
   std::atomic<std::uint64_t> misses{0};     // frames that ended after their deadline
   double time_before_segment = 0;
@@ -93,7 +103,22 @@ struct LiveSession::State {
   std::uint64_t segments_done = 0;
   PriorityChange priority;
 
+  // The status's last surface measure (surface_deviation()).
+  struct SurfaceMeasure {
+    bool made = false;
+    Pose pose;
+    double distance = 0;
+    std::chrono::steady_clock::time_point at;
+    double cost_s = 0;
+  };
+  mutable std::mutex surface_mutex;
+  mutable SurfaceMeasure surface;
+
   void publish(const FrameRecord& f);
+  LiveFrame latest() const;
+  // `fresh`: measure part 2's surface now if the pose moved, not at most every kSurfacePeriodS.
+  LiveStatus make_status(bool fresh) const;
+  double surface_deviation(const Pose& pose, bool fresh) const;
   void run();
   void after_segment(const LoopReport& segment, BodyState& part);
 };
@@ -120,7 +145,7 @@ void LiveSession::State::publish(const FrameRecord& f) {
   frame.missed = f.missed;
   if (f.missed) ++misses;
   if (frame_mutex.try_lock()) {
-    latest = frame;
+    latest_frame = frame;
     frame_mutex.unlock();
   }
   if (options.on_frame) options.on_frame(frame);
@@ -192,6 +217,9 @@ LiveSession::LiveSession(const Scene& scene, const JobRequest& request, const Li
   s.config = loop_config_for(scene, pair.part(2).mesh, pair.spectra.spacing, *s.job.loop_engine, s.job.record->tuning,
                              force_scale, contact, contact_ms);
   s.session = session_before_loop(scene, pair.spectra.spacing, s.config);
+  if (scene.assembled_pose)
+    s.judge.emplace(pair.part(2).mesh, *scene.assembled_pose, s.session.position_tolerance,
+                    s.session.angle_tolerance_deg);
   s.session.force_scale = force_scale;
   s.session.contact = contact;
   s.session.contact_off = contact_off;
@@ -200,7 +228,7 @@ LiveSession::LiveSession(const Scene& scene, const JobRequest& request, const Li
   s.device = std::make_unique<LiveDevice>(s.initial, s.session.limits, options.late_s, options.fade_s);
   s.evaluator = wrench_evaluator(*s.job.loop_engine);
   s.prepared = job_result(s.job.record);
-  s.latest.part = s.latest.device = s.initial.pose;
+  s.latest_frame.part = s.latest_frame.device = s.initial.pose;
   s.status.part = s.initial.pose;
 }
 
@@ -231,7 +259,7 @@ LiveStatus LiveSession::stop() {
     restore_process_priority(s.priority);
   }
   if (s.error) std::rethrow_exception(std::exchange(s.error, nullptr));
-  return status();
+  return s.make_status(true);
 }
 
 void LiveSession::set_device_state(const BodyState& state, std::uint32_t sequence) {
@@ -249,33 +277,52 @@ void LiveSession::reset() {
   state_->segment_stop = true;
 }
 
-LiveFrame LiveSession::latest() const {
-  const std::lock_guard<std::mutex> lock(state_->frame_mutex);
-  return state_->latest;
+LiveFrame LiveSession::State::latest() const {
+  const std::lock_guard<std::mutex> lock(frame_mutex);
+  return latest_frame;
 }
 
-LiveStatus LiveSession::status() const {
-  const State& s = *state_;
-  LiveStatus status;
+LiveFrame LiveSession::latest() const { return state_->latest(); }
+
+double LiveSession::State::surface_deviation(const Pose& pose, bool fresh) const {
+  const std::lock_guard<std::mutex> lock(surface_mutex);
+  const auto now = std::chrono::steady_clock::now();
+  const double age = std::chrono::duration<double>(now - surface.at).count();
+  const bool due = !surface.made || fresh || age >= std::max(kSurfacePeriodS, 10 * surface.cost_s);
+  if (due && !(surface.made && same_pose(pose, surface.pose))) {
+    surface.distance = judge->surface(pose).distance;
+    surface.made = true;
+    surface.pose = pose;
+    surface.at = now;
+    surface.cost_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - now).count();
+  }
+  return surface.distance;
+}
+
+LiveStatus LiveSession::State::make_status(bool fresh) const {
+  LiveStatus out;
   {
-    const std::lock_guard<std::mutex> lock(s.mutex);
-    status = s.status;
+    const std::lock_guard<std::mutex> lock(mutex);
+    out = status;
   }
   const LiveFrame frame = latest();
-  status.frames = frame.frame;
-  status.elapsed_s = frame.time_s;
-  status.misses = s.misses;
-  status.sanitised = s.device->sanitised_count();
-  if (frame.frame > 0) status.part = frame.part;
-  if (s.scene.assembled_pose) {
-    const PoseError e = pose_error(status.part, *s.scene.assembled_pose);
-    status.evaluated = true;
-    status.position_error = e.position;
-    status.angle_error_deg = e.angle_deg;
-    status.assembled = e.within(s.session.position_tolerance, s.session.angle_tolerance_deg);
+  out.frames = frame.frame;
+  out.elapsed_s = frame.time_s;
+  out.misses = misses;
+  out.sanitised = device->sanitised_count();
+  if (frame.frame > 0) out.part = frame.part;
+  if (judge) {
+    const PoseError e = pose_error(out.part, *scene.assembled_pose);
+    out.evaluated = true;
+    out.position_error = e.position;
+    out.angle_error_deg = e.angle_deg;
+    out.surface_deviation = surface_deviation(out.part, fresh);
+    out.assembled = judge->assembled(e, out.surface_deviation);
   }
-  return status;
+  return out;
 }
+
+LiveStatus LiveSession::status() const { return state_->make_status(false); }
 
 void LiveSession::start_recording() {
   State& s = *state_;
@@ -304,7 +351,7 @@ JobResult LiveSession::stop_recording() {
   s.recorded = LoopReport{};
   s.recording = false;
   lock.unlock();
-  judge_session_end(session, s.scene);
+  judge_session_end(session, s.scene, s.job.pair->part(2).mesh);
   record->session = std::move(session);
   return job_result(std::move(record));
 }

@@ -100,7 +100,7 @@ JobResult run_vps_job(std::shared_ptr<AssemblyPair> pair, const JobRequest& requ
   run_session_step(scene, request, out, hybrid ? "VPS - constraint hybrid" : "Voxmap PointShell", *record,
                    [&](const SessionOptions& session) {
                      return run_scripted_session(
-                         scene, pair->grids.spacing, vps_loop_config(scene, model, coupling),
+                         scene, pair->part(2).mesh, pair->grids.spacing, vps_loop_config(scene, model, coupling),
                          hybrid ? hybrid_evaluator(*hybrid, *hybrid_state) : vps_evaluator(model), session);
                    });
   return job_result(std::move(record));

@@ -114,6 +114,8 @@ double MeshDistanceIndex::distance(const Eigen::Vector3d& p) const {
   // faces) away, so the search stops once the best distance is within that.
   const Eigen::Vector3i c = cell_of(p);
   const Eigen::Vector3d q = (p - lo_) / cell_;  // p in cell units (may lie outside the grid)
+  // How far p lies outside the mesh's box along each axis, cell units (0 within its span).
+  const Eigen::Vector3d outside = ((lo_ - p).cwiseMax(p - hi_) / cell_).cwiseMax(0.0);
   double best2 = std::numeric_limits<double>::infinity();
   const int max_r = dims_.maxCoeff();
   for (int r = 0; r <= max_r; ++r) {
@@ -131,13 +133,19 @@ double MeshDistanceIndex::distance(const Eigen::Vector3d& p) const {
                                         .squaredNorm());
           }
         }
-    // The searched block spans cells c - r .. c + r; its faces are this far from p.
-    double reach = std::numeric_limits<double>::infinity();
+    // The searched block spans cells c - r .. c + r. A triangle not yet seen lies in the
+    // mesh's box and beyond one of the block's inner faces, along axis a: at least that
+    // face's gap from p along a, and at least p's distance outside the box along the other
+    // axes (which keeps the search short for a point far outside the part's box).
+    double reach2 = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
-      if (c[a] - r > 0) reach = std::min(reach, q[a] - (c[a] - r));
-      if (c[a] + r < dims_[a] - 1) reach = std::min(reach, (c[a] + r + 1) - q[a]);
+      double gap = std::numeric_limits<double>::infinity();
+      if (c[a] - r > 0) gap = std::min(gap, q[a] - (c[a] - r));
+      if (c[a] + r < dims_[a] - 1) gap = std::min(gap, (c[a] + r + 1) - q[a]);
+      if (std::isfinite(gap))
+        reach2 = std::min(reach2, gap * gap + outside.squaredNorm() - outside[a] * outside[a]);
     }
-    if (std::isfinite(best2) && std::sqrt(best2) <= reach * cell_) break;
+    if (std::isfinite(best2) && best2 <= reach2 * cell_ * cell_) break;
   }
   return std::sqrt(best2);
 }

@@ -389,17 +389,17 @@ Model build_model(Scene& scene, const BenchMethod& method, const Cell& cell, con
 }
 
 // One user's insertion with the method's model, on simulated time; each frame's work into `work`.
-SessionResult run_trial(const Scene& scene, double spacing, Model& model, const BenchMethod& method, long modes,
-                        FrameWork& work) {
+SessionResult run_trial(const Scene& scene, const Mesh& part2, double spacing, Model& model, const BenchMethod& method,
+                        long modes, FrameWork& work) {
   SessionOptions options;
   options.simulated_time = true;
   SessionResult run;
   if (model.hybrid) {
     HybridState state = hybrid_state_for(*model.hybrid);  // each user starts disengaged
-    run = run_scripted_session(scene, spacing, vps_loop_config(scene, *model.vps, model.coupling),
+    run = run_scripted_session(scene, part2, spacing, vps_loop_config(scene, *model.vps, model.coupling),
                                timed(hybrid_evaluator(*model.hybrid, state), work), options);
   } else if (method.voxel_based()) {
-    run = run_scripted_session(scene, spacing, vps_loop_config(scene, *model.vps, model.coupling),
+    run = run_scripted_session(scene, part2, spacing, vps_loop_config(scene, *model.vps, model.coupling),
                                timed(vps_evaluator(*model.vps), work), options);
   } else {
     const TuningResult fixed =
@@ -409,7 +409,7 @@ SessionResult run_trial(const Scene& scene, double spacing, Model& model, const 
     LoopConfig config =
         loop_config_for(scene, model.pair->part(2).mesh, spacing, *model.engine, fixed, force_scale, model.rigid);
     if (config.contact) config.contact = timed_contact(config.contact, work);
-    run = run_scripted_session(scene, spacing, config, timed(wrench_evaluator(*model.engine), work), options);
+    run = run_scripted_session(scene, part2, spacing, config, timed(wrench_evaluator(*model.engine), work), options);
   }
   return run;
 }
@@ -470,7 +470,7 @@ Summary run_method(const Options& o, TrialFiles& out, const Cell& cell, const Be
     scene.part2.pose = scene.trajectory.keyframes.front().pose;
     FrameWork work;
     work.wall_ms.reserve(8000), work.cpu_ms.reserve(8000);
-    const SessionResult run = run_trial(scene, spacing, model, method, o.modes, work);
+    const SessionResult run = run_trial(scene, m2, spacing, model, method, o.modes, work);
     const TrialResult r = measure(cell, run, work, m1, i1, m2, i2, static_cast<std::size_t>(o.stride));
     write_trial(out, cell, method, scene, t, user, run, r);
     summary.trials.push_back(r);

@@ -76,6 +76,7 @@ nlohmann::json summary_json(const JobRecord& run) {
     s["verdict"] = session_verdict(*run.session);
     s["final_error"] = {{"position", run.session->final_error.position},
                         {"angle_deg", run.session->final_error.angle_deg},
+                        {"surface_deviation", run.session->surface_deviation},
                         {"axial", run.session->axial_error},
                         {"lateral", run.session->lateral_error},
                         {"final_force_n", run.session->final_force.norm()},

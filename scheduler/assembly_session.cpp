@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "scheduler/assembly_verdict.h"
 #include "scheduler/scripted_device.h"
 #include "snapfit/error.h"
 
@@ -20,7 +21,7 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part1_mesh, 
   double force_scale = 0;
   const LoopConfig config =
       loop_config_for(scene, part2_mesh, spacing, engine, tuning, force_scale, contact, options.contact_ms);
-  SessionResult out = run_scripted_session(scene, spacing, config, wrench_evaluator(engine), options);
+  SessionResult out = run_scripted_session(scene, part2_mesh, spacing, config, wrench_evaluator(engine), options);
   out.force_scale = force_scale;
   out.contact = std::move(contact);
   out.contact_build_s = build_s;
@@ -58,10 +59,14 @@ SessionResult session_before_loop(const Scene& scene, double spacing, const Loop
   return out;
 }
 
-void judge_session_end(SessionResult& out, const Scene& scene) {
-  out.final_error = pose_error(out.loop.final_part.pose, out.target);
+void judge_session_end(SessionResult& out, const Scene& scene, const Mesh& part2_mesh) {
+  const AssemblyJudge judge(part2_mesh, out.target, out.position_tolerance, out.angle_tolerance_deg);
+  const AssemblyVerdict verdict = judge.judge(out.loop.final_part.pose);
+  out.final_error = verdict.pose;
+  out.surface_deviation = verdict.surface.distance;
+  out.surface_deviation_at = verdict.surface.where;
   out.evaluated = scene.assembled_pose.has_value();
-  out.assembled = out.evaluated && out.final_error.within(out.position_tolerance, out.angle_tolerance_deg);
+  out.assembled = out.evaluated && verdict.assembled;
   out.insertion_direction = insertion_direction(scene.trajectory, out.target);
   const Eigen::Vector3d d = out.loop.final_part.pose.translation - out.target.translation;
   out.axial_error = d.dot(out.insertion_direction);
@@ -75,7 +80,7 @@ PriorityRequest loop_priority(const PriorityRequest& request, LoopWait wait) {
   return priority;
 }
 
-SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfig config,
+SessionResult run_scripted_session(const Scene& scene, const Mesh& part2_mesh, double spacing, LoopConfig config,
                                    const WrenchEvaluator& evaluator, const SessionOptions& options) {
   if (scene.trajectory.keyframes.empty())
     throw Error(scene.source_path + ": no trajectory: a scripted assembly needs one (or use a real device)");
@@ -102,7 +107,7 @@ SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfi
     out.loop = loop.join();
   }
   if (raise) restore_process_priority(out.priority);
-  judge_session_end(out, scene);
+  judge_session_end(out, scene, part2_mesh);
   return out;
 }
 

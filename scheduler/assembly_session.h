@@ -1,8 +1,8 @@
 #pragma once
 // A scripted assembly session: the scene's trajectory played by a ScriptedDevice into
 // the haptic loop, with the engine at the tuned m', the coupling and gain from the
-// scene's `haptics` section, and the final pose compared with the assembled pose.
-// `snapfit run` and perf/bench_haptic_loop use it.
+// scene's `haptics` section, and the final pose judged against the assembled pose
+// (scheduler/assembly_verdict.h). `snapfit run` and perf/bench_haptic_loop use it.
 #include <optional>
 
 #include "mesh/mesh.h"
@@ -49,10 +49,17 @@ struct SessionResult {
   Eigen::Vector3d insertion_direction = Eigen::Vector3d::UnitZ();
   double axial_error = 0, lateral_error = 0;
   Eigen::Vector3d final_force = Eigen::Vector3d::Zero();  // sent to the device in the last frame, N
-  double position_tolerance = 0;                          // scene units
+  // How far part 2's surface at the final pose lies from its surface at the target (the
+  // two-sided Hausdorff distance, scene units; 0 for a round peg turned about its axis),
+  // and the sample farthest off, in part 2's own frame.
+  double surface_deviation = 0;
+  Eigen::Vector3d surface_deviation_at = Eigen::Vector3d::Zero();
+  double position_tolerance = 0;  // scene units
   double angle_tolerance_deg = 0;
-  bool evaluated = false;                            // the scene has an assembled pose to judge the end against
-  bool assembled = false;                            // evaluated, and final_error within the tolerances
+  bool evaluated = false;  // the scene has an assembled pose to judge the end against
+  // evaluated, and final_error within both tolerances or surface_deviation within the
+  // position tolerance
+  bool assembled = false;
   PriorityChange priority;                           // what raising the threads' priority did
   std::shared_ptr<const RigidContactModel> contact;  // null: the loop rendered no rigid contact
   double contact_build_s = 0;
@@ -80,17 +87,19 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part1_mesh, 
 // and the loop's coupling, gain and bounds.
 SessionResult session_before_loop(const Scene& scene, double spacing, const LoopConfig& config);
 
-// After it (out.loop set): the final pose judged against the target, the error along and
-// across the insertion, the last force sent.
-void judge_session_end(SessionResult& out, const Scene& scene);
+// After it (out.loop set): the final pose judged against the target (its pose and part
+// 2's surface, scheduler/assembly_verdict.h), the error along and across the insertion,
+// the last force sent. Throws snapfit::Error for an empty part 2 mesh.
+void judge_session_end(SessionResult& out, const Scene& scene, const Mesh& part2_mesh);
 
 // The threads' priority for a loop that waits by `wait`: no SCHED_FIFO for a spinning
 // loop (the kernel throttles a real-time thread that never sleeps).
 PriorityRequest loop_priority(const PriorityRequest& request, LoopWait wait);
 
 // The same for any method's evaluator and loop configuration (a Voxmap PointShell run:
-// scheduler/vps/vps_method.h); `spacing` is the default position tolerance.
-SessionResult run_scripted_session(const Scene& scene, double spacing, LoopConfig config,
+// scheduler/vps/vps_method.h); `spacing` is the default position tolerance; part 2's mesh
+// is for the verdict.
+SessionResult run_scripted_session(const Scene& scene, const Mesh& part2_mesh, double spacing, LoopConfig config,
                                    const WrenchEvaluator& evaluator, const SessionOptions& options = {});
 
 }  // namespace snapfit

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "jobs/job_record.h"
+#include "scheduler/assembly_verdict.h"
 #include "snapfit/bridge.h"
 #include "snapfit/live.h"
 #include "tests/test_support.h"
@@ -213,7 +214,18 @@ TEST_CASE("live session: a recording becomes a job result with the recorded fram
   std::this_thread::sleep_for(50ms);
   CHECK((session.latest().device.translation - scene.part2.pose.translation).norm() < 1e-12);
   CHECK((session.status().part.translation - scene.part2.pose.translation).norm() < 1);
-  session.stop();
+  const LiveStatus end = session.stop();
+  // The verdict, with part 2 back near its start ~30 mm above the fit: its surface is
+  // measured afresh at the final pose, with the judge `snapfit run` uses.
+  const AssemblyJudge judge(recorded.record->pair->part(2).mesh, *scene.assembled_pose,
+                            recorded.record->session->position_tolerance,
+                            recorded.record->session->angle_tolerance_deg);
+  CHECK(end.evaluated);
+  CHECK(!end.assembled);
+  CHECK(end.surface_deviation > 20);
+  CHECK(end.surface_deviation == doctest::Approx(judge.surface(end.part).distance).epsilon(1e-12));
+  CHECK(recorded.final_surface_deviation == recorded.record->session->surface_deviation);
+  CHECK(recorded.final_surface_deviation > 20);
 
   Scene vps = scene;
   vps.method = Method::vps;

@@ -63,3 +63,19 @@ TEST_CASE("mesh distance: the indexed signed distance equals brute force on the 
   }
   CHECK(inside > 10);  // the sample reaches inside the part too
 }
+
+TEST_CASE("mesh distance: the indexed distance equals brute force far outside the part's box") {
+  // Points up to 5 part sizes off along every axis and diagonal: the search stops early
+  // there, on a bound that counts how far outside the grid the point lies.
+  const Mesh peg = test::peg_mesh(5, 30);
+  const MeshDistanceIndex index(peg);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-150, 150);
+  for (int i = 0; i < 300; ++i) {
+    Eigen::Vector3d p(u(rng), u(rng), u(rng));
+    if (i % 3 == 0) p.x() = 0.1 * p.x();  // beside the peg's axis, far above or below it
+    if (i % 3 == 1) p.z() = 15 + 0.1 * p.z();  // level with its side, far out
+    CAPTURE(p.transpose());
+    CHECK(index.distance(p) == doctest::Approx(std::abs(signed_distance(peg, p))).epsilon(1e-12));
+  }
+}

@@ -124,7 +124,8 @@ SessionResult insert_cube(double voxel, double clearance) {
   const VpsModel model = vps_model_for(scene, cup, cube, voxel, coupling);
   SessionOptions options;
   options.simulated_time = true;
-  return run_scripted_session(scene, voxel, vps_loop_config(scene, model, coupling), vps_evaluator(model), options);
+  return run_scripted_session(scene, cube, voxel, vps_loop_config(scene, model, coupling), vps_evaluator(model),
+                              options);
 }
 
 }  // namespace

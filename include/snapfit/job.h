@@ -57,9 +57,15 @@ struct JobResult {
   TuningResult tuning;              // m' for the loop (chosen_modes); empty for the VPS peer
   std::optional<LoopReport> loop;   // the scripted session, when the scene has a trajectory
   bool evaluated = false;           // the scene has an assembled pose to judge the end against
-  bool assembled = false;           // evaluated, and the final pose within the scene's tolerances
+  // evaluated, and the final pose within the scene's position and angle tolerances, or
+  // part 2's surface within the position tolerance of where the assembled pose puts it
+  // (a round peg turned about its own axis is assembled)
+  bool assembled = false;
   double final_position_error = 0;  // scene units
   double final_angle_deg = 0;
+  // The two-sided Hausdorff distance between part 2's surface at the final pose and at
+  // the assembled pose, scene units
+  double final_surface_deviation = 0;
   std::shared_ptr<JobRecord> record;
 };
 

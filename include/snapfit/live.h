@@ -55,9 +55,17 @@ struct LiveStatus {
   double elapsed_s = 0;
   bool recording = false;
   Pose part;                    // part 2 now
-  // Part 2's pose against the scene's assembled pose (when it has one).
+  // Part 2 against the scene's assembled pose (when it has one), with `snapfit run`'s
+  // rule: assembled when the pose is within the position and angle tolerances, or part
+  // 2's surface is within the position tolerance of where the assembled pose puts it
+  // (a round peg turned about its axis is assembled).
   bool evaluated = false, assembled = false;
   double position_error = 0, angle_error_deg = 0;
+  // The two-sided Hausdorff distance between part 2's surface now and at the assembled
+  // pose, scene units. It takes milliseconds, so status() measures it at most every
+  // 0.1 s, or ten times the measure's own time when that is longer (the last measure
+  // stands until then); stop() measures it at the final pose.
+  double surface_deviation = 0;
 };
 
 class LiveSession {

@@ -163,7 +163,8 @@ function main() {
     const verdict = document.getElementById('verdict');
     verdict.textContent = !s.status.evaluated ? 'no assembled pose' :
       `${s.status.assembled ? 'yes' : 'no'} (${formatNumber(s.status.position_error, 3)} ${data.units}, ` +
-      `${formatNumber(s.status.angle_error_deg, 3)} deg)`;
+      `${formatNumber(s.status.angle_error_deg, 3)} deg, surface ${formatNumber(s.status.surface_deviation, 3)} ` +
+      `${data.units})`;
     verdict.className = s.status.assembled ? 'good' : '';
     document.getElementById('source').textContent = f.late ? `silent (fade ${formatNumber(f.fade, 2)})` : 'live';
     record.textContent = s.status.recording ? 'Stop recording' : 'Record';

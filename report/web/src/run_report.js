@@ -57,7 +57,8 @@ function renderSummary(root, s) {
                                                  : s.assembled ? 'ASSEMBLED' : 'NOT assembled',
                             s.assembled === null ? null : s.assembled ? 'good' : 'bad'));
     list.append(summaryItem('final_error', 'final pose error', s.final_error,
-                            `${formatNumber(s.final_error.position)} ${s.units}: ${s.final_error.text}`));
+                            `${formatNumber(s.final_error.position)} ${s.units}, surface ` +
+                            `${formatNumber(s.final_error.surface_deviation)} ${s.units} off: ${s.final_error.text}`));
     if (s.stiffness_at_fit) list.append(stiffnessItem(s.stiffness_at_fit));
   } else {
     list.append(summaryItem('misses', 'missed frames', null, 'no loop (the scene has no trajectory)'));
