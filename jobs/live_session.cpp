@@ -23,8 +23,8 @@ namespace {
 
 constexpr double kSegmentS = 10;  // loop time per segment
 constexpr int kWarmupQueries = 50;
-// A status measures part 2's surface deviation at most this often, and at most a tenth
-// of the time (a measure takes milliseconds; a page asks 60 times a second).
+// A status measures part 2's surface deviation at most this often, and no more than a
+// tenth of the time (a measure takes milliseconds; a page asks 60 times a second).
 constexpr double kSurfacePeriodS = 0.1;
 
 bool same_pose(const Pose& a, const Pose& b) {

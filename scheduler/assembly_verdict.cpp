@@ -4,7 +4,8 @@ namespace snapfit {
 namespace {
 
 // Samples two to a tolerance: the sampled deviation misses little at the tolerance's
-// scale, and the default peg's ~14,000 samples take about 10 ms.
+// scale. The default peg's 13,900 samples take 5 ms to build and 8 ms to measure at the
+// fit (19 ms 30 mm away from it).
 constexpr double kSamplesPerTolerance = 2;
 
 }  // namespace
