@@ -10,7 +10,7 @@
 
 using namespace snapfit;
 
-TEST_CASE("collision: the assembly's tails bound the truncated overlap; a deep overlap is proven") {
+TEST_CASE("collision: the assembly's tails bound the truncated overlap, a deep overlap is proven") {
   AssemblyOptions options;
   options.note = [](const std::string&) {};
   const Assembly assembly(indicator_scene(test::shipped_scene("collision_only.json")), options);

@@ -141,7 +141,7 @@ TEST_CASE("cad import: the default deflection is tied to the grid spacing") {
   CHECK(load_cad_mesh(file, coarse).mesh.triangles.size() > coarse_triangles);
 }
 
-TEST_CASE("cad import: an unknown length unit is refused by name; a part far too large says its size") {
+TEST_CASE("cad import: an unknown length unit is refused by name, a part far too large says its size") {
   const test::TempDir dir;
   const std::string mm = dir.file("block_mm.step");
   test::write_cad_part(mm, block_spec(), "MM");

@@ -34,7 +34,7 @@ TEST_CASE("compute plan: 6-DOF scenes get part 2's deconvolved spectrum and a to
   CHECK_FALSE(pt.torque);
 }
 
-TEST_CASE("compute plan: a part with spectra from balls is named, with the grid path recommended; grid scenes say so") {
+TEST_CASE("compute plan: a part with spectra from balls is named, with the grid path recommended, grid scenes say so") {
   Scene scene = load_scene(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/collision_only.json");
   const ComputePlan grid = plan_computation(scene);
   CHECK(grid.warnings.empty());

@@ -43,7 +43,7 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 }  // namespace
 
-TEST_CASE("contact cache: a cached model renders what the built one does; a corrupt entry is rebuilt") {
+TEST_CASE("contact cache: a cached model renders what the built one does, a corrupt entry is rebuilt") {
   test::CacheDirScope cache;
   const Scene scene = load_scene(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/default.json");
   const AssemblyPair pair = prepare_assembly_pair(scene);

@@ -186,7 +186,7 @@ TEST_CASE("live bridge: a wrench that is not finite goes to the client as zero, 
   CHECK((got[0].flags & bridge_sanitised) != 0);
 }
 
-TEST_CASE("live session: a recording becomes a job result with the recorded frames; bad requests are named") {
+TEST_CASE("live session: a recording becomes a job result with the recorded frames, bad requests are named") {
   const Scene scene = load_scene(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/default.json");
   JobRequest request;
   request.modes = 2048;

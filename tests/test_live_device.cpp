@@ -15,7 +15,7 @@ TEST_CASE("live device: the fade is 1 while fresh, linear after late, 0 after la
   CHECK(LiveDevice::fade_at(0.006, 0.005, 0.0) == 0.0f);
 }
 
-TEST_CASE("live device: a late state is held at rest and its wrench faded; a NaN wrench goes out as zero") {
+TEST_CASE("live device: a late state is held at rest and its wrench faded, a NaN wrench goes out as zero") {
   BodyState initial;
   LiveDevice device(initial, DeviceLimits{}, 0.005, 0.1);
   BodyState moving;

@@ -67,7 +67,7 @@ TEST_CASE("map FFT choice: every backend built is measured, the fastest kept, th
   CHECK(describe_map_fft_choice(again).find("cached") != std::string::npos);
 }
 
-TEST_CASE("map FFT names: each backend built parses back; an unknown name is an error naming it") {
+TEST_CASE("map FFT names: each backend built parses back, an unknown name is an error naming it") {
   for (const MapFft f : map_ffts_built()) CHECK(parse_map_fft(map_fft_name(f)) == f);
   CHECK(map_ffts_built().front() == MapFft::clfft);
   CHECK_THROWS_WITH_AS(parse_map_fft("cufft"), doctest::Contains("cufft"), Error);

@@ -174,7 +174,7 @@ TEST_CASE("query strategy: snapfit run measures the strategies, renders the most
   CHECK(variant_name(engine->variant()) == api_name);
 }
 
-TEST_CASE("query strategy: --strategy names one; a translation-only scene has only its lines") {
+TEST_CASE("query strategy: --strategy names one, a translation-only scene has only its lines") {
   const test::TempDir out;
   const std::string cli = std::string(SNAPFIT_CLI_PATH);
   const test::Command named =

@@ -127,7 +127,7 @@ TEST_CASE("search: a bad request or spectra that do not decode is an error that 
   CHECK(test::error_of([&] { search(scene, small_request(), truncated); }).find("truncated") != std::string::npos);
 }
 
-TEST_CASE("search codec: spectra and candidates round-trip; a foreign rotation index is refused") {
+TEST_CASE("search codec: spectra and candidates round-trip, a foreign rotation index is refused") {
   PairSpectra s;
   s.dims = {4, 3, 2};
   s.spacing = 0.5;

@@ -56,7 +56,7 @@ TEST_CASE("wrench trust: continuous in the error and the value, and never opposi
   }
 }
 
-TEST_CASE("wrench trust: the whole wrench by the smaller of the force's and the torque's weights; off renders all") {
+TEST_CASE("wrench trust: the whole wrench by the smaller of the force's and the torque's weights, off renders all") {
   WrenchTrust t;
   Wrench w{Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0.01, 0)};
   CHECK(wrench_trust(w, ErrorEstimate{0, 0.1, 0.001}, t) == 1.0);
