@@ -19,8 +19,8 @@ constexpr std::size_t kSharesPerThread = 4;
 // are added in order, so the result does not depend on which thread took which share.
 class ContactTeam {
  public:
-  ContactTeam(std::shared_ptr<const RigidContactModel> model, unsigned threads)
-      : model_(std::move(model)), shares_(threads * kSharesPerThread), results_(shares_) {
+  ContactTeam(std::shared_ptr<const RigidContactModel> model, unsigned threads, ContactShareFunction share)
+      : model_(std::move(model)), share_(share), shares_(threads * kSharesPerThread), results_(shares_) {
     helpers_.reserve(threads - 1);
     for (unsigned i = 1; i < threads; ++i) helpers_.emplace_back([this] { serve(); });
   }
@@ -58,7 +58,7 @@ class ContactTeam {
  private:
   void take_shares(const Pose& pose) {
     for (std::size_t s = next_share_.fetch_add(1); s < shares_; s = next_share_.fetch_add(1))
-      results_[s] = contact_wrench_share(*model_, pose, s, shares_);
+      results_[s] = share_(*model_, pose, s, shares_);
   }
 
   void serve() {
@@ -83,6 +83,7 @@ class ContactTeam {
   }
 
   std::shared_ptr<const RigidContactModel> model_;
+  ContactShareFunction share_;
   std::size_t shares_;
   std::vector<ContactWrench> results_;  // one per share, written by the thread that took it
   std::atomic<std::size_t> next_share_{0};
@@ -104,11 +105,16 @@ unsigned contact_threads_for(const RigidContactModel& model, unsigned max_thread
 }
 
 std::function<ContactWrench(const Pose&)> contact_evaluator(std::shared_ptr<const RigidContactModel> model,
-                                                            unsigned threads) {
+                                                            unsigned threads, ContactShareFunction share) {
   if (!model) return nullptr;
   if (threads == 0) threads = contact_threads_for(*model);
-  if (threads <= 1) return [model](const Pose& pose) { return contact_wrench(*model, pose); };
-  auto team = std::make_shared<ContactTeam>(std::move(model), threads);
+  if (threads <= 1)
+    return [model, share](const Pose& pose) {
+      ContactWrench c = share(*model, pose, 0, 1);
+      finish_contact(*model, c);
+      return c;
+    };
+  auto team = std::make_shared<ContactTeam>(std::move(model), threads, share);
   return [team](const Pose& pose) { return team->evaluate(pose); };
 }
 
