@@ -90,7 +90,10 @@ SignedDistanceGrid build_signed_distance_grid(const Mesh& mesh, double spacing, 
   return g;
 }
 
-double sample_signed_distance(const SignedDistanceGrid& g, const Eigen::Vector3d& p, Eigen::Vector3d* gradient) {
+namespace {
+
+// sample_signed_distance, also giving the spacing of the cell interpolated (0 outside the grid).
+double sample(const SignedDistanceGrid& g, const Eigen::Vector3d& p, Eigen::Vector3d* gradient, double& cell_spacing) {
   const Eigen::Vector3d local = (p - g.origin) / g.coarse;
   Eigen::Vector3i cell;
   bool inside_grid = true;
@@ -102,6 +105,7 @@ double sample_signed_distance(const SignedDistanceGrid& g, const Eigen::Vector3d
     const Eigen::Vector3d away = (p - p.cwiseMax(g.part_min).cwiseMin(g.part_max));
     const double d = away.norm();
     if (gradient) *gradient = d > 0 ? Eigen::Vector3d(away / d) : Eigen::Vector3d::Zero();
+    cell_spacing = 0;
     return d;
   }
   const std::size_t nx = g.dims.x(), ny = g.dims.y(), cx = nx - 1, cy = ny - 1;
@@ -111,6 +115,7 @@ double sample_signed_distance(const SignedDistanceGrid& g, const Eigen::Vector3d
   if (brick < 0) {
     for (int n = 0; n < 8; ++n)
       c[n] = g.coarse_values[(cell.x() + (n & 1)) + nx * ((cell.y() + (n >> 1 & 1)) + ny * (cell.z() + (n >> 2)))];
+    cell_spacing = g.coarse;
     return trilinear(c, f, g.coarse, gradient);
   }
   const int r = g.refine;
@@ -124,7 +129,21 @@ double sample_signed_distance(const SignedDistanceGrid& g, const Eigen::Vector3d
   const float* v = g.brick_values.data() + std::size_t(brick) * g.brick_nodes();
   for (int n = 0; n < 8; ++n)
     c[n] = v[(sub.x() + (n & 1)) + side * ((sub.y() + (n >> 1 & 1)) + side * (sub.z() + (n >> 2)))];
+  cell_spacing = g.fine_spacing();
   return trilinear(c, f, g.fine_spacing(), gradient);
+}
+
+}  // namespace
+
+double sample_signed_distance(const SignedDistanceGrid& g, const Eigen::Vector3d& p, Eigen::Vector3d* gradient) {
+  double cell_spacing = 0;
+  return sample(g, p, gradient, cell_spacing);
+}
+
+double signed_distance_lower_bound(const SignedDistanceGrid& g, const Eigen::Vector3d& p) {
+  double cell_spacing = 0;
+  const double d = sample(g, p, nullptr, cell_spacing);
+  return d - (0.5 * std::sqrt(3.0) + 1e-4) * cell_spacing - 1e-6 * std::abs(d);
 }
 
 }  // namespace snapfit

@@ -44,4 +44,10 @@ SignedDistanceGrid build_signed_distance_grid(const Mesh& mesh, double spacing, 
 // distance to the mesh's box, with the gradient pointing away from it.
 double sample_signed_distance(const SignedDistanceGrid& grid, const Eigen::Vector3d& p, Eigen::Vector3d* gradient);
 
+// A lower bound of the exact signed distance at p, for a broad phase: the interpolated
+// distance less the interpolation's largest error in p's cell (sqrt(3)/2 of the cell's
+// spacing: the distance is 1-Lipschitz) and the nodes' single-precision rounding; outside
+// the grid, the distance to the mesh's box.
+double signed_distance_lower_bound(const SignedDistanceGrid& grid, const Eigen::Vector3d& p);
+
 }  // namespace snapfit

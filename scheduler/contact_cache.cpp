@@ -102,6 +102,11 @@ std::optional<RigidContactModel> load_cached_contact(const std::string& key) {
   const bool ok = get_grid(r, m.part1_distance) && get_grid(r, m.part2_distance) &&
                   get_samples(r, m.part1_samples) && get_samples(r, m.part2_samples);
   if (!ok || !r.finished()) return std::nullopt;
+  try {
+    prepare_rigid_contact(m);  // the model as build_rigid_contact returns it
+  } catch (const Error&) {
+    return std::nullopt;  // samples that cannot be blocked (a spacing <= 0): malformed
+  }
   return m;
 }
 

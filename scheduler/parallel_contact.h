@@ -17,10 +17,16 @@ namespace snapfit {
 // `max_threads` (0: at most 4).
 unsigned contact_threads_for(const RigidContactModel& model, unsigned max_threads = 0);
 
+// A share of the contact's sum, as contact_wrench_share computes it.
+using ContactShareFunction = ContactWrench (*)(const RigidContactModel&, const Pose&, std::size_t share,
+                                               std::size_t shares);
+
 // The loop's view of a model (LoopConfig::contact), on `threads` threads (0: as
 // contact_threads_for says); it keeps the model and its helper threads alive and is not
-// to be called from two threads at once.
+// to be called from two threads at once. `share` computes the shares (another
+// evaluation of the same sum, for a benchmark's reference).
 std::function<ContactWrench(const Pose&)> contact_evaluator(std::shared_ptr<const RigidContactModel> model,
-                                                            unsigned threads = 0);
+                                                            unsigned threads = 0,
+                                                            ContactShareFunction share = contact_wrench_share);
 
 }  // namespace snapfit

@@ -24,6 +24,7 @@
 #include <memory>
 #include <string>
 
+#include "mesh/contact_blocks.h"
 #include "mesh/contact_samples.h"
 #include "mesh/mesh.h"
 #include "mesh/signed_distance_grid.h"
@@ -37,6 +38,8 @@ struct RigidContactModel {
   SignedDistanceGrid part1_distance, part2_distance;  // each in its part's frame
   ContactSamples part1_samples;                       // sharp-edge points of part 1
   ContactSamples part2_samples;                       // surface and sharp-edge points of part 2
+  // The samples as the per-frame evaluation reads them (prepare_rigid_contact).
+  ContactBlocks part1_blocks, part2_blocks;
   double pressure_stiffness = 0;                      // k, N / m^3
   // Contact acts from an interpolated depth of `skin` (scene units) on: the distance
   // grid's interpolation error, so that surfaces that only touch do not push.
@@ -52,6 +55,10 @@ RigidContactModel build_rigid_contact(const Mesh& part1, const Mesh& part2, doub
                                       double distance_spacing, double band, double pressure_stiffness_n_per_m3,
                                       double metres_per_unit);
 
+// Fills the model's point blocks from its samples (build_rigid_contact and the contact
+// cache do): needed after changing the samples by hand.
+void prepare_rigid_contact(RigidContactModel& model);
+
 // The scene's model (haptics.contact_*): samples at contact_spacing (default the grid
 // spacing h), distances at a third of it within two sample spacings of the surface; or
 // the geometry comes from the contact cache when it holds it (scheduler/contact_cache.h);
@@ -62,6 +69,14 @@ std::shared_ptr<const RigidContactModel> rigid_contact_for(const Scene& scene, c
                                                            double grid_spacing, std::string* why_off = nullptr);
 
 // The contact at part 2's pose `pose` (relative to part 1). No heap allocation.
+//
+// Evaluated in groups and blocks of nearby points (scheduler/contact_block.h): a group or
+// block whose sphere lies farther from the other part than a lower bound of the distance
+// allows is skipped; otherwise its points' distances are interpolated in single
+// precision, and only the points deeper than the skin get a gradient and terms. The
+// result agrees with the all-double evaluation to single precision's round-off
+// (tests/test_contact_precision.cpp). Throws snapfit::Error when the model's point blocks
+// do not match its samples (see prepare_rigid_contact).
 ContactWrench contact_wrench(const RigidContactModel& model, const Pose& pose);
 
 // One of `shares` disjoint shares of contact_wrench's sum (share in [0, shares)), for

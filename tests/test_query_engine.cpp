@@ -10,34 +10,30 @@
 #include <vector>
 
 #include "engine/query/query_engine.h"
+#include "tests/allocation_count.h"
 #include "tests/stability_support.h"
+
+// Allocations made by a thread while counting is on (tests/allocation_count.h; the OpenCL
+// runtime's own worker threads are not the frame's thread and are not counted).
+thread_local bool snapfit::test::counting_allocations = false;
+std::atomic<long> snapfit::test::allocations{0};
 
 namespace {
 
-// Allocations made by this thread while counting is on (the OpenCL runtime's own
-// worker threads are not the frame's thread and are not counted).
-thread_local bool counting = false;
-std::atomic<long> allocations{0};
+using snapfit::test::CountAllocations;
 
 void* counted_alloc(std::size_t size) {
-  if (counting) allocations.fetch_add(1, std::memory_order_relaxed);
+  if (snapfit::test::counting_allocations) snapfit::test::allocations.fetch_add(1, std::memory_order_relaxed);
   if (void* p = std::malloc(size ? size : 1)) return p;
   throw std::bad_alloc();
 }
 
 void* counted_aligned_alloc(std::size_t size, std::align_val_t align) {
-  if (counting) allocations.fetch_add(1, std::memory_order_relaxed);
+  if (snapfit::test::counting_allocations) snapfit::test::allocations.fetch_add(1, std::memory_order_relaxed);
   const std::size_t a = static_cast<std::size_t>(align);
   if (void* p = std::aligned_alloc(a, (size + a - 1) / a * a)) return p;
   throw std::bad_alloc();
 }
-
-struct CountAllocations {
-  long before = allocations.load();
-  CountAllocations() { counting = true; }
-  ~CountAllocations() { counting = false; }
-  long count() const { return allocations.load() - before; }
-};
 
 }  // namespace
 

@@ -21,6 +21,7 @@
 #include "tests/shipped_engine.h"
 #include "scheduler/scripted_device.h"
 #include "scheduler/virtual_coupling.h"
+#include "tests/allocation_count.h"
 
 using namespace snapfit;
 
@@ -199,6 +200,29 @@ TEST_CASE("rigid contact: evaluated on several threads it equals the single-thre
   CHECK(contact_wrench(m, poses[1]).points > 100);  // tilted and lowered into the rim and the wall
   CHECK(contact_wrench(m, poses[2]).points > 100);
   CHECK(contact_threads_for(m, 1) == 1);
+}
+
+TEST_CASE("rigid contact: no heap allocation per evaluation, on one thread and on several") {
+  const auto model = std::make_shared<const RigidContactModel>(default_contact());
+  const Pose fit = *default_pair().scene.assembled_pose;
+  const std::vector<Pose> poses = {fit, moved(fit, Eigen::Vector3d(0.2, 0, -0.1), Eigen::Vector3d::Zero()),
+                                   moved(fit, Eigen::Vector3d(0, 0, -2.5), Eigen::Vector3d(0.01, 0, 0)),
+                                   at(0.3, 0, -15, Eigen::Vector3d::UnitX(), 1.0)};
+  for (unsigned threads : {1u, 2u}) {
+    CAPTURE(threads);
+    const auto evaluate = contact_evaluator(model, threads);
+    std::size_t touching = 0;
+    for (const Pose& pose : poses) touching += evaluate(pose).points;  // helpers started
+    long allocations = 0;
+    {
+      test::CountAllocations count;
+      for (int round = 0; round < 50; ++round)
+        for (const Pose& pose : poses) touching += evaluate(pose).points;
+      allocations = count.count();
+    }
+    CHECK(allocations == 0);
+    CHECK(touching > 0);
+  }
 }
 
 TEST_CASE("rigid contact: the rendered potential rests at the fit of the shipped scenes (m' 8192)") {
