@@ -13,7 +13,7 @@
 namespace snapfit {
 
 // Changes with the contact's evaluation code, so that timings of older code are not reused.
-constexpr const char* kContactEvaluation = "rigid contact evaluation 2";
+constexpr const char* kContactEvaluation = "rigid contact evaluation 3";
 
 double rounded_reserve_ms(double measured_ms) {
   if (!(measured_ms > 0)) return 0;
