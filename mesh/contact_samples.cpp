@@ -10,6 +10,7 @@
 #include <numeric>
 #include <utility>
 
+#include "mesh/cell_key.h"
 #include "mesh/triangle_refine.h"
 #include "snapfit/error.h"
 
@@ -88,13 +89,8 @@ ContactSamples build_contact_samples(const Mesh& mesh, double spacing, bool feat
       const double area = 0.5 * (b - a).cross(c - a).norm();
       if (!(area > 0)) continue;
       const Eigen::Vector3d centroid = (a + b + c) / 3.0;
-      std::uint64_t key = 0;
       Eigen::Vector3d centre;
-      for (int k = 0; k < 3; ++k) {
-        const double cell = std::floor(centroid[k] / spacing);
-        centre[k] = (cell + 0.5) * spacing;
-        key = key * 2097152 + static_cast<std::uint64_t>(static_cast<std::int64_t>(cell) + 1048576) % 2097152;
-      }
+      const std::uint64_t key = cell_key(centroid, spacing, centre);
       const double d2 = (centroid - centre).squaredNorm();
       const auto [it, fresh] = cell_point.emplace(key, s.points.size());
       if (fresh) {

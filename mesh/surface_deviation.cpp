@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "mesh/cell_key.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -69,13 +70,8 @@ class CellSampler {
   }
 
   void offer(const Eigen::Vector3d& p, Rank rank) {
-    std::uint64_t key = 0;
     Eigen::Vector3d centre;
-    for (int k = 0; k < 3; ++k) {
-      const double cell = std::floor(p[k] / spacing_);
-      centre[k] = (cell + 0.5) * spacing_;
-      key = key * 2097152 + static_cast<std::uint64_t>(static_cast<std::int64_t>(cell) + 1048576) % 2097152;
-    }
+    const std::uint64_t key = cell_key(p, spacing_, centre);
     const Kept candidate{p, rank, (p - centre).squaredNorm()};
     const auto [it, fresh] = cells_.emplace(key, candidate);
     Kept& kept = it->second;
