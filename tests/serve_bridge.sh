@@ -14,6 +14,7 @@ trap cleanup EXIT
 read -r http bridge pid < <(bash "$source/tests/serve_session.sh" "$snapfit" "$source/scenes/default.json" \
                               "$work/serve" --modes 2048 --strategy tricubic)
 post() { python3 -c 'import sys, urllib.request as u; print(u.urlopen(u.Request(sys.argv[1], data=b"{}", method="POST")).read().decode())' "http://127.0.0.1:$http$1"; }
+jq_states() { python3 -c 'import json, sys; print(json.loads(sys.argv[1])["states"])' "$1"; }
 check_client() {  # name, its JSON line
   python3 - "$1" "$2" <<'PY'
 import json, sys
@@ -34,5 +35,6 @@ for _ in $(seq 1 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
 kill -0 "$pid" 2>/dev/null && { echo "FAIL: snapfit serve did not end after POST /quit"; exit 1; }
 pid=
 tail -n 2 "$work/serve.log"
-grep -q "bridge: 11000 states, 0 malformed, 0 refused" "$work/serve.log" || { echo "FAIL: bridge counts"; exit 1; }
+sent=$(( $(jq_states "$python_out") + $(jq_states "$cpp_out") ))
+grep -q "bridge: $sent states, 0 malformed, 0 refused" "$work/serve.log" || { echo "FAIL: bridge counts (the clients sent $sent states)"; exit 1; }
 grep -q ": ASSEMBLED" "$work/serve.log" || { echo "FAIL: the session did not end assembled"; exit 1; }

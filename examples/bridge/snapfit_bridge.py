@@ -122,6 +122,7 @@ def main():
     frames = scene_trajectory(args.scene)
     bridge = Bridge(args.port)
     duration = frames[-1][0] - frames[0][0] + args.settle
+    total = int(round(duration * args.rate))  # a fixed count, however late this process runs
     sent_at, round_trips, wrenches, last = {}, [], 0, None
     start = time.perf_counter()
     n = 0
@@ -139,10 +140,9 @@ def main():
                         round_trips.append(1e3 * (time.perf_counter() - sent_at.pop(w.sequence)))
                         for older in [s for s in sent_at if s < w.sequence]:  # states the loop skipped
                             del sent_at[older]
-            t = time.perf_counter() - start
-            if t > duration:
+            if n >= total:
                 break
-            position, quaternion = pose_at(frames, frames[0][0] + t)
+            position, quaternion = pose_at(frames, frames[0][0] + n / args.rate)  # the state's own time
             sent_at[bridge.sequence + 1] = time.perf_counter()
             bridge.send_state(position, quaternion)
             n += 1
