@@ -395,8 +395,35 @@ DescriptorParams read_descriptor(const Ctx& c, const json& v, const std::string&
   return d;
 }
 
+// "reach", "whole", or a workspace box {"min": [x, y, z], "max": [x, y, z]}.
+RegionParams read_region(const Ctx& c, const json& v, const std::string& path) {
+  RegionParams r;
+  if (v.is_string()) {
+    const std::string kind = v.get<std::string>();
+    if (kind == "reach")
+      r.kind = RegionKind::reach;
+    else if (kind == "whole")
+      r.kind = RegionKind::whole;
+    else
+      fail(c, path, "expected \"reach\", \"whole\" or a box {\"min\": [x, y, z], \"max\": [x, y, z]} (got \"" +
+                        kind + "\")");
+    return r;
+  }
+  if (!v.is_object())
+    fail(c, path, std::string("expected \"reach\", \"whole\" or a box object, got ") + v.type_name());
+  check_fields(c, v, path, {"min", "max"});
+  r.kind = RegionKind::workspace;
+  r.workspace_min = vec3(c, require(c, v, path, "min"), join(path, "min"));
+  r.workspace_max = vec3(c, require(c, v, path, "max"), join(path, "max"));
+  for (int a = 0; a < 3; ++a)
+    if (!(r.workspace_min[a] <= r.workspace_max[a]))
+      fail(c, path, "min must not exceed max on any axis (axis " + std::string(1, char('x' + a)) + ": " +
+                        fmt(r.workspace_min[a]) + " > " + fmt(r.workspace_max[a]) + ")");
+  return r;
+}
+
 GridParams read_grid(const Ctx& c, const json& v, const std::string& path) {
-  check_fields(c, v, path, {"spacing", "resolution", "padding"});
+  check_fields(c, v, path, {"spacing", "resolution", "padding", "region", "region_margin"});
   GridParams g;
   const json* spacing = find(v, "spacing");
   const json* resolution = find(v, "resolution");
@@ -414,6 +441,9 @@ GridParams read_grid(const Ctx& c, const json& v, const std::string& path) {
     g.resolution = static_cast<int>(r);
   }
   if (const json* x = find(v, "padding")) g.padding = non_negative(c, *x, join(path, "padding"));
+  if (const json* x = find(v, "region")) g.region = read_region(c, *x, join(path, "region"));
+  if (const json* x = find(v, "region_margin"))
+    g.region.margin = non_negative(c, *x, join(path, "region_margin"));
   return g;
 }
 
@@ -781,6 +811,12 @@ std::string scene_to_json(const Scene& s) {
   if (s.grid.spacing) g["spacing"] = *s.grid.spacing;
   if (s.grid.resolution) g["resolution"] = *s.grid.resolution;
   g["padding"] = s.grid.padding;
+  const RegionParams& r = s.grid.region;
+  if (r.kind == RegionKind::whole) g["region"] = "whole";
+  if (r.kind == RegionKind::workspace)
+    g["region"] = {{"min", {r.workspace_min.x(), r.workspace_min.y(), r.workspace_min.z()}},
+                   {"max", {r.workspace_max.x(), r.workspace_max.y(), r.workspace_max.z()}}};
+  if (r.margin) g["region_margin"] = *r.margin;
   j["grid"] = g;
 
   j["frame"] = {{"budget_ms", s.frame_budget_ms}, {"rate_hz", s.loop_rate_hz}};

@@ -36,6 +36,10 @@ std::string session_text(const Scene& scene, const SessionResult& session) {
       << quantile(loop.frame_ms, 1.0) << " ms; " << loop.misses << " misses (" << 100 * loop.miss_rate() << " %; "
       << loop.late_wakeup_misses << " late wake-ups, " << loop.stall_misses << " stalls), "
       << loop.mode_changes.size() << " m' changes; threads: " << session.priority.describe() << "\n";
+  if (loop.out_of_region_frames > 0)
+    out << "    " << loop.out_of_region_frames
+        << " frames with part 2 outside the region part 1's fields cover (grid.region): the engine's wrench was "
+           "not rendered there\n";
   for (const ModeChange& c : loop.mode_changes)
     out << "      t = " << c.time_s << " s: m' " << c.from << " -> " << c.to << " (" << c.reason << ")\n";
   out << "    final pose error " << session.final_error.position << " " << scene.units << ", "

@@ -42,6 +42,7 @@ void append_segment(LoopReport& all, const LoopReport& segment) {
   all.flagged_frames += segment.flagged_frames;
   all.trust_scaled_frames += segment.trust_scaled_frames;
   all.trust_withheld_frames += segment.trust_withheld_frames;
+  all.out_of_region_frames += segment.out_of_region_frames;
   all.bad_device_reads += segment.bad_device_reads;
   all.part_resets += segment.part_resets;
   all.passivity_frames += segment.passivity_frames;
@@ -193,9 +194,22 @@ void LiveSession::State::run() {
   }
 }
 
-LiveSession::LiveSession(const Scene& scene, const JobRequest& request, const LiveOptions& options)
+namespace {
+
+// A person moves the device anywhere, not along the scene's trajectory: only a declared
+// workspace bounds part 1's region (pipeline/reach_region.h).
+Scene live_scene(const Scene& scene) {
+  Scene live = scene;
+  if (live.grid.region.kind == RegionKind::reach) live.grid.region.kind = RegionKind::whole;
+  return live;
+}
+
+}  // namespace
+
+LiveSession::LiveSession(const Scene& scene_in, const JobRequest& request, const LiveOptions& options)
     : state_(std::make_unique<State>()) {
   State& s = *state_;
+  const Scene scene = live_scene(scene_in);
   if (uses_vps(scene.method))
     throw Error("a live session renders the snapfit method; scene method '" + std::string(method_name(scene.method)) +
                 "' runs with `snapfit run`");
@@ -216,6 +230,7 @@ LiveSession::LiveSession(const Scene& scene, const JobRequest& request, const Li
   if (s.job.record->contact_reserved_ms > 0) contact_ms = s.job.record->contact_reserved_ms;
   s.config = loop_config_for(scene, pair.part(2).mesh, pair.spectra.spacing, *s.job.loop_engine, s.job.record->tuning,
                              force_scale, contact, contact_ms);
+  s.config.in_region = region_guard(pair.region);
   s.session = session_before_loop(scene, pair.spectra.spacing, s.config);
   if (scene.assembled_pose)
     s.judge.emplace(pair.part(2).mesh, *scene.assembled_pose, s.session.position_tolerance,

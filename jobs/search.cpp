@@ -234,6 +234,8 @@ SearchResult search(const Scene& scene, const SearchRequest& request, SearchExch
     if (!root) return;
     Scene turning = scene;
     turning.motion = Motion::six_dof;  // part 2 in its own frame: the search turns it
+    // The search goes everywhere, not along the trajectory (a declared workspace still bounds it).
+    if (turning.grid.region.kind == RegionKind::reach) turning.grid.region.kind = RegionKind::whole;
     const ComputeContext ctx = make_compute_context(select_device(device_for(request, 0)));
     const FftLibrary fft;
     PairOptions options;

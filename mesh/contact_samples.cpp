@@ -125,4 +125,19 @@ ContactSamples build_contact_samples(const Mesh& mesh, double spacing, bool feat
   return s;
 }
 
+ContactSamples samples_inside(const ContactSamples& samples, const Eigen::AlignedBox3d& box) {
+  ContactSamples out;
+  out.spacing = samples.spacing;
+  for (std::size_t i = 0; i < samples.points.size(); ++i) {
+    if (!box.contains(samples.points[i])) continue;
+    out.points.push_back(samples.points[i]);
+    out.areas.push_back(samples.areas[i]);
+  }
+  // The kinds are told apart by the area a feature point stands for (spacing^2, exactly).
+  const double feature_area = samples.spacing * samples.spacing;
+  for (double a : out.areas) ++(a == feature_area && samples.feature_points ? out.feature_points : out.face_points);
+  chunk(out, 8 * samples.spacing);
+  return out;
+}
+
 }  // namespace snapfit

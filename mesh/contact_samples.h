@@ -11,6 +11,7 @@
 //     of one part can cut a face of the other between that part's face points; these
 //     points see it.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <vector>
 
 #include "mesh/mesh.h"
@@ -29,5 +30,10 @@ struct ContactSamples {
 // Face points (unless `features_only`) and feature points of `mesh`. Throws
 // snapfit::Error for an empty mesh or a spacing that is not positive.
 ContactSamples build_contact_samples(const Mesh& mesh, double spacing, bool features_only, double sharp_angle_deg = 30);
+
+// The samples inside `box` (the part's frame), chunked again. The counts of face and
+// feature points are told apart by the area a feature point stands for (spacing^2), so a
+// face point of exactly that area counts as a feature point.
+ContactSamples samples_inside(const ContactSamples& samples, const Eigen::AlignedBox3d& box);
 
 }  // namespace snapfit

@@ -31,7 +31,7 @@ double trilinear(const float c[8], const Eigen::Vector3d& f, double h, Eigen::Ve
 }  // namespace
 
 SignedDistanceGrid build_signed_distance_grid(const Mesh& mesh, double spacing, double band, double margin,
-                                              int refine) {
+                                              int refine, const Eigen::AlignedBox3d* keep) {
   if (mesh.empty()) throw Error("signed distance grid: the mesh has no triangles");
   if (!(std::isfinite(spacing) && spacing > 0)) throw Error("signed distance grid: spacing must be > 0");
   if (!(std::isfinite(band) && band > 0)) throw Error("signed distance grid: band must be > 0");
@@ -48,6 +48,15 @@ SignedDistanceGrid build_signed_distance_grid(const Mesh& mesh, double spacing, 
   g.origin = g.part_min - Eigen::Vector3d::Constant(grow);
   const Eigen::Vector3d size = g.part_max - g.part_min + Eigen::Vector3d::Constant(2 * grow);
   for (int a = 0; a < 3; ++a) g.dims[a] = static_cast<int>(std::ceil(size[a] / g.coarse)) + 1;
+  if (keep) {  // the nodes of the whole grid that cover `keep`: the same values where both have them
+    for (int a = 0; a < 3; ++a) {
+      const int first = std::max(0, static_cast<int>(std::floor((keep->min()[a] - g.origin[a]) / g.coarse)));
+      const int last = std::min(g.dims[a] - 1, static_cast<int>(std::ceil((keep->max()[a] - g.origin[a]) / g.coarse)));
+      if (last - first < 1) throw Error("signed distance grid: the box kept does not overlap the part's grid");
+      g.origin[a] += first * g.coarse;
+      g.dims[a] = last - first + 1;
+    }
+  }
   const std::size_t nx = g.dims.x(), ny = g.dims.y(), nz = g.dims.z();
   if (nx * ny * nz > 200000000) throw Error("signed distance grid: too many coarse nodes; use a larger spacing");
 

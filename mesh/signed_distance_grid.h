@@ -10,6 +10,7 @@
 // |d| > band + its diagonal holds no point within `band` of the surface, so the fine level
 // covers every point that close; farther out the coarse trilinear value is used.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <vector>
 
@@ -36,8 +37,11 @@ struct SignedDistanceGrid {
 // Samples `mesh` (closed, outward-oriented) with fine spacing `spacing` (coarse spacing
 // `spacing * refine`) and a coarse margin of at least `margin` around its box. Throws
 // snapfit::Error for an empty mesh or a spacing, band or margin that is not positive.
+// With `keep`, the grid covers only the part of that box within the grown box (a part
+// much larger than the region in use); outside the grid the distance is then only a
+// lower bound, as everywhere outside.
 SignedDistanceGrid build_signed_distance_grid(const Mesh& mesh, double spacing, double band, double margin,
-                                              int refine = 4);
+                                              int refine = 4, const Eigen::AlignedBox3d* keep = nullptr);
 
 // The interpolated signed distance at p and its gradient (the trilinear interpolant's,
 // in scene units per scene unit). Outside the grid: a lower bound of the distance, the

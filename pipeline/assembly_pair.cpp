@@ -1,8 +1,7 @@
 #include "pipeline/assembly_pair.h"
 
-#include <sstream>
-
 #include <iostream>
+#include <sstream>
 
 #include "pipeline/spectra_cache.h"
 #include "pipeline/sphere_spectra.h"
@@ -43,6 +42,9 @@ AssemblyPair prepare_assembly_pair(const Scene& scene) {
     throw Error(m.str());
   }
   if (uses_vps(scene.method)) pair.plan = plan_computation(scene, pair.grids.spacing);
+  pair.region = scene_region(scene, pair.grids.part1, pair.grids.part2);
+  pair.grids.part1 = pair.region.part1_grid;
+  if (!uses_vps(scene.method)) pair.plan.lines.push_back(pair.region.reason);
   return pair;
 }
 
@@ -55,6 +57,10 @@ void compute_assembly_fields(AssemblyPair& pair, const ComputeContext& ctx, cons
     PartFieldsResult& out = part == 1 ? pair.fields1 : pair.fields2;
     out = part_fields(ctx, pair.part(part).mesh, pair.grid(part), pair.scene.descriptor, options.descriptors,
                       options.use_cache, note);
+    // Outside the region part 1's affinity fades to zero (pipeline/reach_region.h); the
+    // indicator's is a threshold of w, so it is cut at the grid's edge instead.
+    if (part == 1 && pair.region.bounded && !out.fields.skeletal_density.empty())
+      fade_outside(out.fields.grid, pair.region.box, pair.region.fade, out.fields.skeletal_density);
   }
 }
 

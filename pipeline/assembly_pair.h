@@ -24,6 +24,7 @@
 #include "pipeline/compute_plan.h"
 #include "pipeline/part_fields.h"
 #include "pipeline/prepare_parts.h"
+#include "pipeline/reach_region.h"
 #include "snapfit/collision.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
@@ -45,6 +46,9 @@ struct AssemblyPair {
   // R = identity, with no spectrum rotation at all).
   PreparedParts parts;
   ScenePartGrids grids;
+  // Where part 2 can reach: part 1's grid covers it (grids.part1 is cropped to it, and
+  // part 1's fields fade to zero outside it); not bounded: all of part 1.
+  ReachRegion region;
   PartFieldsResult fields1, fields2;  // empty until stage 2
   PairSpectra spectra;                // empty until stage 3
   bool spectra_from_cache = false;

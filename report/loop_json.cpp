@@ -24,7 +24,8 @@ nlohmann::json loop_json(const LoopReport& loop) {
           {"wake_late_ms", spread_ms(loop.wake_late_ms)},
           {"miss_rate", loop.miss_rate()},
           {"flagged_frames", loop.flagged_frames},
-          {"trust", {{"scaled_frames", loop.trust_scaled_frames}, {"withheld_frames", loop.trust_withheld_frames}}},
+          {"trust", {{"scaled_frames", loop.trust_scaled_frames}, {"withheld_frames", loop.trust_withheld_frames},
+                     {"out_of_region_frames", loop.out_of_region_frames}}},
           {"frame_ms", spread_ms(loop.frame_ms)}};
 }
 

@@ -19,8 +19,9 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part1_mesh, 
       rigid_contact_for(scene, part1_mesh, part2_mesh, spacing, &contact_off);
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
   double force_scale = 0;
-  const LoopConfig config =
+  LoopConfig config =
       loop_config_for(scene, part2_mesh, spacing, engine, tuning, force_scale, contact, options.contact_ms);
+  config.in_region = region_guard(scene_region(scene, part1_mesh, part2_mesh, spacing));
   SessionResult out = run_scripted_session(scene, part2_mesh, spacing, config, wrench_evaluator(engine), options);
   out.force_scale = force_scale;
   out.contact = std::move(contact);

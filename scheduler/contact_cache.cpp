@@ -82,11 +82,13 @@ bool get_samples(PayloadReader& r, ContactSamples& s) {
 }  // namespace
 
 std::string contact_cache_key(const Mesh& part1, const Mesh& part2, double sample_spacing, double distance_spacing,
-                              double band) {
+                              double band, const Eigen::AlignedBox3d* part1_region) {
   std::ostringstream key;
   key.precision(17);
   key << "part1=" << hex64(mesh_hash(part1)) << "|part2=" << hex64(mesh_hash(part2)) << "|samples=" << sample_spacing
       << "|distance=" << distance_spacing << "|band=" << band;
+  if (part1_region)
+    key << "|region=" << part1_region->min().transpose() << " " << part1_region->max().transpose();
   return key.str();
 }
 

@@ -12,7 +12,7 @@
 namespace snapfit {
 
 std::string contact_cache_key(const Mesh& part1, const Mesh& part2, double sample_spacing, double distance_spacing,
-                              double band);
+                              double band, const Eigen::AlignedBox3d* part1_region = nullptr);
 std::string contact_cache_path(const std::string& key);
 
 // The cached geometry, or nothing (missing, stale, corrupt or malformed: recompute).

@@ -280,6 +280,10 @@ ErrorEstimate geometric_wrench(const QueryResult& q, const Pose& queried, const 
     error = {q.error_estimate.energy, config.geometry_gain * q.error_estimate.force,
              config.geometry_gain * config.coupling.metres_per_unit * q.error_estimate.torque};
     s.trust = wrench_trust(s.geometric, error, config.trust);
+    if (config.in_region && !config.in_region(queried)) {
+      s.trust = 0;  // part 1's fields do not cover where part 2 is: nothing to vouch for
+      ++report.out_of_region_frames;
+    }
     s.geometric.force *= s.trust;
     s.geometric.torque *= s.trust;
     if (s.trust < 1) ++(s.trust > 0 ? report.trust_scaled_frames : report.trust_withheld_frames);

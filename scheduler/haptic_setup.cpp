@@ -129,8 +129,16 @@ LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double sp
 LoopConfig loop_config(const Assembly& assembly, QueryEngine& engine, const TuningResult& tuning) {
   const AssemblyPair& pair = AssemblyAccess::pair(assembly);
   double force_scale = 0;
-  return loop_config_for(pair.scene, pair.part(2).mesh, pair.grids.spacing, engine, tuning, force_scale,
-                         rigid_contact_for(pair.scene, pair.part(1).mesh, pair.part(2).mesh, pair.grids.spacing));
+  LoopConfig config =
+      loop_config_for(pair.scene, pair.part(2).mesh, pair.grids.spacing, engine, tuning, force_scale,
+                      rigid_contact_for(pair.scene, pair.part(1).mesh, pair.part(2).mesh, pair.grids.spacing));
+  config.in_region = region_guard(pair.region);
+  return config;
+}
+
+std::function<bool(const Pose&)> region_guard(const ReachRegion& region) {
+  if (!region.bounded) return nullptr;
+  return [region](const Pose& pose) { return pose_in_region(region, pose); };
 }
 
 }  // namespace snapfit

@@ -2,11 +2,13 @@
 // From a scene's `haptics` section (snapfit/scene.h HapticsParams) to what the haptic loop
 // needs: the virtual coupling, the device limits, the geometric gain, and the test of
 // whether a run ended assembled.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "mesh/mesh.h"
+#include "pipeline/reach_region.h"
 #include "scheduler/rigid_contact.h"
 #include "scheduler/virtual_coupling.h"
 #include "snapfit/haptic_device.h"
@@ -67,6 +69,9 @@ LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double sp
                            const TuningResult& tuning, double& force_scale,
                            std::shared_ptr<const RigidContactModel> contact = nullptr,
                            std::optional<double> contact_ms = std::nullopt);
+
+// LoopConfig::in_region for a region (pipeline/reach_region.h); null when it is not bounded.
+std::function<bool(const Pose&)> region_guard(const ReachRegion& region);
 
 struct PoseError {
   double position = 0;  // scene units

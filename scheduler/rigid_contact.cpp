@@ -1,10 +1,12 @@
 #include "scheduler/rigid_contact.h"
 
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "mesh/fine_distance_view.h"
 #include "mesh/mesh_report.h"
+#include "pipeline/reach_region.h"
 #include "scheduler/contact_block.h"
 #include "scheduler/contact_cache.h"
 #include "scheduler/contact_sum.h"
@@ -39,12 +41,19 @@ void set_contact_parameters(RigidContactModel& m, double distance_spacing, doubl
 
 RigidContactModel build_rigid_contact(const Mesh& part1, const Mesh& part2, double sample_spacing,
                                       double distance_spacing, double band, double pressure_stiffness_n_per_m3,
-                                      double metres_per_unit) {
+                                      double metres_per_unit, const Eigen::AlignedBox3d* part1_region) {
   RigidContactModel m;
   set_contact_parameters(m, distance_spacing, pressure_stiffness_n_per_m3, metres_per_unit);
-  m.part1_distance = build_signed_distance_grid(part1, distance_spacing, band, band);
+  std::optional<Eigen::AlignedBox3d> keep;  // the region grown by the band and a coarse cell
+  if (part1_region) {
+    keep = *part1_region;
+    keep->min().array() -= band + 4 * distance_spacing;
+    keep->max().array() += band + 4 * distance_spacing;
+  }
+  m.part1_distance = build_signed_distance_grid(part1, distance_spacing, band, band, 4, keep ? &*keep : nullptr);
   m.part2_distance = build_signed_distance_grid(part2, distance_spacing, band, band);
   m.part1_samples = build_contact_samples(part1, sample_spacing, true);
+  if (keep) m.part1_samples = samples_inside(m.part1_samples, *keep);
   m.part2_samples = build_contact_samples(part2, sample_spacing, false);
   prepare_rigid_contact(m);
   return m;
@@ -76,14 +85,17 @@ std::shared_ptr<const RigidContactModel> rigid_contact_for(const Scene& scene, c
   const double band = 2 * samples;
   const double u = metres_per_unit(scene.units);
   const double k = scene.haptics.contact_stiffness_n_per_mm3 * 1e9;
+  // Part 1 only where part 2 can reach (pipeline/reach_region.h).
+  const ReachRegion region = scene_region(scene, part1, part2, grid_spacing);
+  const Eigen::AlignedBox3d* part1_region = region.bounded ? &region.box : nullptr;
   // The geometry from the contact cache (scheduler/contact_cache.h) when it has it.
-  const std::string key = contact_cache_key(part1, part2, samples, distance, band);
+  const std::string key = contact_cache_key(part1, part2, samples, distance, band, part1_region);
   RigidContactModel model;
   if (std::optional<RigidContactModel> cached = load_cached_contact(key)) {
     model = std::move(*cached);
     set_contact_parameters(model, distance, k, u);
   } else {
-    model = build_rigid_contact(part1, part2, samples, distance, band, k, u);
+    model = build_rigid_contact(part1, part2, samples, distance, band, k, u, part1_region);
     save_cached_contact(key, model);  // not cached (unwritable folder, full disk): rebuilt next time
   }
   model.translation_only = scene.motion == Motion::translation;

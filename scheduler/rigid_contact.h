@@ -50,10 +50,11 @@ struct RigidContactModel {
 
 // The model of two meshes: surface samples at `sample_spacing`, distance grids at
 // `distance_spacing` (scene units) within `band` of each surface. Throws snapfit::Error
-// for bad input.
+// for bad input. With `part1_region` (part 1's frame), part 1's distance grid and samples
+// cover only that box (and the band around it): where part 2 can reach.
 RigidContactModel build_rigid_contact(const Mesh& part1, const Mesh& part2, double sample_spacing,
                                       double distance_spacing, double band, double pressure_stiffness_n_per_m3,
-                                      double metres_per_unit);
+                                      double metres_per_unit, const Eigen::AlignedBox3d* part1_region = nullptr);
 
 // Fills the model's point blocks from its samples (build_rigid_contact and the contact
 // cache do): needed after changing the samples by hand.
@@ -64,7 +65,9 @@ void prepare_rigid_contact(RigidContactModel& model);
 // the geometry comes from the contact cache when it holds it (scheduler/contact_cache.h);
 // null when the scene turns contact off or renders with another method, or when a part
 // is not watertight (its inside, and so the sign of its distance, is not defined):
-// `why_off`, when given, then says which part and why (empty otherwise).
+// `why_off`, when given, then says which part and why (empty otherwise). Part 1's
+// geometry covers only the region part 2 can reach when the scene bounds it
+// (pipeline/reach_region.h scene_region).
 std::shared_ptr<const RigidContactModel> rigid_contact_for(const Scene& scene, const Mesh& part1, const Mesh& part2,
                                                            double grid_spacing, std::string* why_off = nullptr);
 

@@ -177,6 +177,10 @@ struct LoopConfig {
   // stiffness integrated implicitly; null: none (Behandish & Ilies 2016's energy alone).
   std::function<ContactWrench(const Pose&)> contact;
   double contact_ms = 0;  // its measured time per frame (p99), left out of the query's share of the budget
+  // False where part 2 leaves the region part 1's fields cover (the scene's grid.region):
+  // there the engine's wrench is not rendered (counted in LoopReport::out_of_region_frames);
+  // null: everywhere.
+  std::function<bool(const Pose&)> in_region;
   // The most the coupling's force on the device may change per second (N/s; 0: no bound):
   // a frame that would change it faster damps the part instead (passive: the energy is
   // dissipated, not sent to the hand). See docs/haptics.md.
@@ -201,6 +205,7 @@ struct LoopReport {
   std::size_t flagged_frames = 0;       // frames whose query returned flags (zero geometric wrench)
   std::size_t trust_scaled_frames = 0;    // frames whose engine wrench was rendered in part (WrenchTrust)
   std::size_t trust_withheld_frames = 0;  // frames whose engine wrench was not rendered: its estimate vouched for none
+  std::size_t out_of_region_frames = 0;   // frames with part 2 outside the region its fields cover (not rendered)
   std::size_t bad_device_reads = 0;     // non-finite device states, replaced by the last good one
   std::size_t part_resets = 0;          // non-finite part states, reset to the device state
   std::size_t passivity_frames = 0;     // frames in which the passivity controller damped the part

@@ -72,10 +72,25 @@ struct DescriptorParams {
   double tolerance = 0.1;
 };
 
+// Which part of part 1 its fields, spectra and rigid contact cover (docs/scenes.md "Grid"):
+// only the region part 2 can reach, plus a margin, when the scene says where that is.
+enum class RegionKind {
+  reach,      // the region swept by part 2 along the scene's trajectory (whole without one)
+  whole,      // all of part 1
+  workspace,  // part 2's origin anywhere in a declared box, at any orientation
+};
+
+struct RegionParams {
+  RegionKind kind = RegionKind::reach;
+  Eigen::Vector3d workspace_min = Eigen::Vector3d::Zero(), workspace_max = Eigen::Vector3d::Zero();  // part 1's frame
+  std::optional<double> margin;  // scene units, added on every side; default: a quarter of part 2's padded diagonal
+};
+
 struct GridParams {
   std::optional<double> spacing;  // grid spacing in scene units, or
   std::optional<int> resolution;  // points along the longest axis of the padded box
   double padding = 0.0;           // added on every side of the parts' box, scene units
+  RegionParams region;            // where part 1's grid is needed
 };
 
 enum class Motion { translation, six_dof };
