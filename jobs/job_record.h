@@ -49,6 +49,7 @@ struct JobRecord {
   std::string contact_off;  // why the scene's contact is off (a part not watertight); empty otherwise
   double contact_reserved_ms = 0;
   double seconds = 0;                        // the whole job so far
+  double seconds_to_first_frame = 0;         // from the job's start to the loop's first frame (0: no loop)
   std::optional<VpsFacts> vps;               // set for a scene whose method is "vps" (no fields, spectra or tuning)
 };
 

@@ -2,6 +2,7 @@
 // the parts, the device and its self-check, the fields, the spectra, the strategy and m',
 // and the scripted session; a VPS scene goes to jobs/vps_job.cpp after the parts.
 #include <algorithm>
+#include <chrono>
 #include <sstream>
 
 #include "core/progress.h"
@@ -216,6 +217,7 @@ std::shared_ptr<AssemblyPair> prepare_job_parts(const Scene& scene, const JobReq
 }
 
 JobResult run_job(const Scene& scene, const JobRequest& request) {
+  const auto started = std::chrono::steady_clock::now();
   const JobOutput out = job_output(request);
   std::shared_ptr<AssemblyPair> pair = prepare_job_parts(scene, request, out);
   if (uses_vps(scene.method)) return run_vps_job(pair, request, out);
@@ -224,10 +226,20 @@ JobResult run_job(const Scene& scene, const JobRequest& request) {
                    [&](const SessionOptions& session) {
                      SessionOptions with_contact = session;
                      if (job.record->contact_reserved_ms > 0) with_contact.contact_ms = job.record->contact_reserved_ms;
-                     return run_scripted_assembly(scene, pair->part(1).mesh, pair->part(2).mesh,
-                                                  pair->spectra.spacing, *job.loop_engine, job.record->tuning,
-                                                  with_contact);
+                     const double before =
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+                     SessionResult result = run_scripted_assembly(scene, pair->part(1).mesh, pair->part(2).mesh,
+                                                                  pair->spectra.spacing, *job.loop_engine,
+                                                                  job.record->tuning, with_contact);
+                     job.record->seconds_to_first_frame = before + result.setup_s;
+                     return result;
                    });
+  if (job.record->seconds_to_first_frame > 0) {
+    std::ostringstream ready;
+    ready << "    ready to touch: the loop's first frame came " << job.record->seconds_to_first_frame
+          << " s after the job started\n";
+    out.say(ready.str());
+  }
   return job_result(std::move(job.record));
 }
 

@@ -166,6 +166,7 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
       {"haptic_loop", loop},
       {"report_html", report_html},
       {"seconds", run.seconds},
+      {"seconds_to_first_frame", run.seconds_to_first_frame},
   };
   write_text_file((out / "summary.json").string(), summary.dump(2) + "\n");
   return written;

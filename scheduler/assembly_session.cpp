@@ -22,7 +22,9 @@ SessionResult run_scripted_assembly(const Scene& scene, const Mesh& part1_mesh, 
   LoopConfig config =
       loop_config_for(scene, part2_mesh, spacing, engine, tuning, force_scale, contact, options.contact_ms);
   config.in_region = region_guard(scene_region(scene, part1_mesh, part2_mesh, spacing));
+  const double setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
   SessionResult out = run_scripted_session(scene, part2_mesh, spacing, config, wrench_evaluator(engine), options);
+  out.setup_s = setup_s;
   out.force_scale = force_scale;
   out.contact = std::move(contact);
   out.contact_build_s = build_s;

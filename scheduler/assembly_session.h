@@ -63,6 +63,7 @@ struct SessionResult {
   PriorityChange priority;                           // what raising the threads' priority did
   std::shared_ptr<const RigidContactModel> contact;  // null: the loop rendered no rigid contact
   double contact_build_s = 0;
+  double setup_s = 0;           // from the call to the loop's first frame (contact, coupling, gain)
   std::string contact_off;      // why the scene's rigid contact is off (a part not watertight); empty otherwise
   double contact_ms = 0;        // its measured time per frame, reserved from the budget (LoopConfig::contact_ms)
   std::size_t start_modes = 0;  // the m' the loop started at: the tuned m' less the contact's share
