@@ -9,8 +9,9 @@
 //    plays the scene's trajectory in real time; its summary.json gives the loop's misses
 //    and the verdict.
 // 2. bench_assembly's imprecise 6-DOF users (perf/imprecise_users.h) on simulated time,
-//    with snapfit's engine at a fixed m' (the one the cold run's loop started at, or
-//    --modes), the scene's coupling, gain and rigid contact: per pair the success rate, the deepest true interpenetration of any trial
+//    with snapfit's engine as the cold run's loop rendered it (its query strategy and the
+//    m' it started at; with --modes or without a cold run, bench_assembly's tricubic sum
+//    at that m'), the scene's coupling, gain and rigid contact: per pair the success rate, the deepest true interpenetration of any trial
 //    (mesh/interpenetration.h), the frames whose work took more CPU time than the budget,
 //    and the frame work's p99. The fields and spectra come from the cache the cold run
 //    left (or the default cache with --no-cold-run).
@@ -34,6 +35,7 @@
 #include "perf/bench_options.h"
 #include "perf/imprecise_users.h"
 #include "pipeline/assembly_pair.h"
+#include "scheduler/accuracy.h"
 #include "scheduler/rigid_contact.h"
 #include "tests/cad_pairs.h"
 
@@ -103,7 +105,8 @@ struct ColdRun {
   bool ran = false;
   double first_frame_s = NAN, total_s = NAN;
   long frames = 0, misses = 0;
-  long modes = 0;  // the m' its loop started at
+  long modes = 0;         // the m' its loop started at
+  std::string strategy;   // the query strategy its loop rendered (variant_name)
   std::string verdict;
 };
 
@@ -138,20 +141,33 @@ ColdRun cold_run(const Options& o, const std::string& scene_file, const fs::path
   r.misses = loop.at("misses").get<long>();
   r.modes = loop.at("modes").at("start").get<long>();
   r.verdict = loop.at("verdict").get<std::string>();
+  r.strategy = s.at("query_strategy").at("name").get<std::string>();
   return r;
 }
 
 struct PairResult {
   std::string pair;
   double clearance = 0, prepare_s = 0;
-  long modes = 0;  // the users' m'
+  long modes = 0;        // the users' m'
+  std::string strategy;  // and their engine's variant
   ColdRun cold;
   std::vector<bench::TrialResult> trials;
 };
 
-// The users on one pair: the engine, the rigid contact and every trial.
+// The variant named `strategy` among the strategies the loop chooses from
+// (scheduler/accuracy.h); none named: bench_assembly's, the tricubic sum.
+QueryVariant users_variant(const Scene& scene, const std::string& strategy) {
+  if (strategy.empty()) return query_variant_for(scene, Interpolation::tricubic);
+  for (const QueryVariant& v : accuracy_candidates(accuracy_base_variant(scene)))
+    if (variant_name(v) == strategy) return v;
+  throw Error("the cold run's query strategy '" + strategy + "' is none of the loop's candidates");
+}
+
+// The users on one pair: the engine (the strategy and m' the cold run's loop rendered,
+// else the tricubic sum at `modes`), the rigid contact and every trial.
 PairResult run_users(const Options& o, const test::CadPairInfo& info, const Scene& loaded, long modes,
-                     const ComputeContext& ctx, const FftLibrary& fft, bench::CsvFile& csv) {
+                     const std::string& strategy, const ComputeContext& ctx, const FftLibrary& fft,
+                     bench::CsvFile& csv) {
   PairResult result;
   result.pair = info.name;
   result.clearance = info.clearance;
@@ -166,11 +182,12 @@ PairResult run_users(const Options& o, const test::CadPairInfo& info, const Scen
   const Mesh& m2 = pair.part(2).mesh;
   const double spacing = pair.grids.spacing;
   const std::unique_ptr<QueryEngine> engine =
-      make_query_engine(ctx, pair.spectra, query_variant_for(scene, Interpolation::tricubic));
+      make_query_engine(ctx, pair.spectra, users_variant(scene, strategy));
+  result.strategy = variant_name(engine->variant());
   const auto rigid = rigid_contact_for(scene, m1, m2, spacing);
   const MeshDistanceIndex i1(m1), i2(m2);
   result.prepare_s = bench::seconds_since(start);
-  std::cout << "  users' engine (m' " << modes << ") and contact ready in " << bench::fixed(result.prepare_s, 1)
+  std::cout << "  users' engine (" << result.strategy << ", m' " << modes << ") and contact ready in " << bench::fixed(result.prepare_s, 1)
             << " s:" << std::flush;
   const bench::Fit fit{info.clearance, info.entry, info.engaged};
   std::mt19937 rng(static_cast<unsigned>(o.seed));
@@ -204,10 +221,10 @@ nlohmann::json summarise(const PairResult& p, bench::CsvFile& csv, std::ostrings
   }
   const double n = p.trials.size();
   const double deepest = quantile(pen, 1.0);
-  csv.row(p.pair, p.clearance, p.modes, n, ok / n, in / n, deepest, quantile(pen, 0.5), misses, frames, quantile(p99, 1.0),
+  csv.row(p.pair, p.clearance, bench::quoted(p.strategy), p.modes, n, ok / n, in / n, deepest, quantile(pen, 0.5), misses, frames, quantile(p99, 1.0),
           bench::finite_or_empty(p.cold.first_frame_s), bench::finite_or_empty(p.cold.total_s), p.cold.misses,
           p.cold.frames, p.cold.verdict, p.prepare_s);
-  md << "| " << p.pair << " | " << p.clearance << " | " << p.modes << " | " << n << " | " << bench::fixed(100 * ok / n, 0) << " % | "
+  md << "| " << p.pair << " | " << p.clearance << " | " << p.strategy << ", " << p.modes << " | " << n << " | " << bench::fixed(100 * ok / n, 0) << " % | "
      << bench::fixed(100 * in / n, 0) << " % | " << bench::fixed(deepest, 3) << " | " << misses << " / " << frames
      << " | " << bench::fixed(quantile(p99, 1.0), 3) << " | "
      << (p.cold.ran ? bench::fixed(p.cold.first_frame_s, 0) + " s" : std::string("-")) << " | "
@@ -216,6 +233,7 @@ nlohmann::json summarise(const PairResult& p, bench::CsvFile& csv, std::ostrings
      << " |\n";
   return {{"pair", p.pair},
           {"clearance", p.clearance},
+          {"strategy", p.strategy},
           {"modes", p.modes},
           {"trials", n},
           {"success_rate", ok / n},
@@ -287,7 +305,8 @@ int main(int argc, char** argv) {
         ::setenv("SNAPFIT_CACHE_DIR", cache.c_str(), 1);  // the users reuse its fields and spectra
       }
       const long modes = o.modes ? o.modes : cold.ran ? cold.modes : kFallbackModes;
-      PairResult r = run_users(o, info, load_scene(scene_file), modes, ctx, fft, trials_csv);
+      PairResult r = run_users(o, info, load_scene(scene_file), modes, o.modes ? "" : cold.strategy, ctx, fft,
+                               trials_csv);
       r.cold = cold;
       results.push_back(std::move(r));
     }
@@ -295,10 +314,10 @@ int main(int argc, char** argv) {
 
     std::ostringstream md;
     bench::CsvFile scsv(out / "summary.csv",
-                        "pair,clearance,modes,trials,success_rate,inserted_rate,max_penetration,median_max_penetration,"
+                        "pair,clearance,strategy,modes,trials,success_rate,inserted_rate,max_penetration,median_max_penetration,"
                         "user_misses,user_frames,frame_p99_ms,first_frame_s,cold_run_s,run_misses,run_frames,"
                         "run_verdict,users_prepare_s");
-    md << "| pair | clearance (mm) | m' | users | success | inserted | deepest interpenetration (mm) | users' misses / "
+    md << "| pair | clearance (mm) | strategy, m' | users | success | inserted | deepest interpenetration (mm) | users' misses / "
           "frames | frame work p99 (ms, max) | first frame, cold | `snapfit run`: misses / frames, verdict |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|\n";
     nlohmann::json pairs_json = nlohmann::json::array();
