@@ -4,8 +4,8 @@
 // and a groove), built with OpenCASCADE's modelling API and written as STEP files, with a
 // scene each (tests/tools/make_cad_pairs.cpp writes scenes/parts/cad/ and scenes/cad/).
 //
-// Every pair is assembled along -z: part 1's mating face or hole entry is at z = 0 of its
-// frame, part 2 moves down into it, and the assembled pose is a translation. Lengths in mm.
+// Every pair is assembled along -z of part 1's frame: part 2 moves straight down into its
+// seat, and the assembled pose is a translation. Lengths in mm.
 // The dimensions are here so that tests/test_cad_pairs.cpp can check the files against
 // closed-form volumes and contacts.
 #include <Eigen/Core>
