@@ -13,6 +13,7 @@
 // loop thread's CPU time (and on the wall clock), and a frame whose query took more CPU
 // time than the scene's budget counts as a miss.
 //
+// The users and their judging are shared with perf/bench_real_cad.cpp (perf/imprecise_users.h).
 // Per trial: inserted (axial error <= the scene's position tolerance), success (inserted,
 // lateral error <= tolerance + clearance, angle error <= tolerance + the hole's play
 // atan(2 c / depth)), final position and angle errors, the largest true
@@ -41,6 +42,7 @@
 #include "mesh/procedural/procedural_parts.h"
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
+#include "perf/imprecise_users.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/assembly_session.h"
 #include "scheduler/haptic_setup.h"
@@ -53,49 +55,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// One insertion by the imprecise user (see the top of the file).
-struct UserTrial {
-  double lateral = 0, lateral_dir = 0;  // mm, rad
-  double tilt_deg = 0, tilt_dir = 0;    // degrees, rad (axis in the xy plane)
-  double approach_offset = 0, approach_dir = 0, approach_height = 0;
-  double duration_s = 0;
-};
-
-UserTrial draw_trial(std::mt19937& rng) {
-  std::uniform_real_distribution<double> unit(0, 1);
-  UserTrial t;
-  t.lateral = unit(rng);
-  t.lateral_dir = 2 * M_PI * unit(rng);
-  t.tilt_deg = 3 * unit(rng);
-  t.tilt_dir = 2 * M_PI * unit(rng);
-  t.approach_offset = 4 * unit(rng);
-  t.approach_dir = 2 * M_PI * unit(rng);
-  t.approach_height = 8 + 4 * unit(rng);
-  t.duration_s = 1.5 + 2 * unit(rng);
-  return t;
-}
-
-// The trial's device trajectory: from above and to the side, to just above the entry
-// (`entry` above the assembled pose, already offset and tilted), to the offset target.
-Trajectory user_trajectory(const Pose& assembled, double entry, const UserTrial& t, bool tilt) {
-  const Eigen::Vector3d offset(t.lateral * std::cos(t.lateral_dir), t.lateral * std::sin(t.lateral_dir), 0);
-  Eigen::Quaterniond rotation = assembled.rotation;
-  if (tilt)
-    rotation =
-        Eigen::AngleAxisd(t.tilt_deg * M_PI / 180, Eigen::Vector3d(std::cos(t.tilt_dir), std::sin(t.tilt_dir), 0)) *
-        assembled.rotation;
-  Keyframe start, above, end;
-  start.pose.rotation = above.pose.rotation = end.pose.rotation = rotation;
-  start.pose.translation = assembled.translation + offset +
-                           Eigen::Vector3d(t.approach_offset * std::cos(t.approach_dir),
-                                           t.approach_offset * std::sin(t.approach_dir), entry + t.approach_height);
-  above.pose.translation = assembled.translation + offset + Eigen::Vector3d(0, 0, entry + 1);
-  end.pose.translation = assembled.translation + offset;
-  above.time_s = 0.4 * t.duration_s;
-  end.time_s = t.duration_s;
-  return Trajectory{{start, above, end}};
-}
-
 struct BenchMethod {
   std::string name;  // "snapfit-6dof", "snapfit-translation", "vps-0.25"
   enum Kind { six_dof, translation, vps, vps_hybrid } kind = six_dof;
@@ -105,119 +64,9 @@ struct BenchMethod {
 
 struct Cell {
   std::string pair;  // "peg-in-hole" or "three-pegs"
-  double clearance = 0;
   Scene scene;
-  double entry = 0;    // height of the entry above the assembled pose (part 2's travel to first contact)
-  double engaged = 0;  // length of the fit along the axis, for the play angle
+  bench::Fit fit;
 };
-
-struct TrialResult {
-  bool inserted = false, success = false;
-  double position_error = 0, lateral_error = 0, axial_error = 0, angle_error = 0;
-  double max_penetration = 0, max_force_step = 0, force_hf_rms = 0, peak_force = 0;
-  double frame_p99_ms = 0;             // the query's CPU time per frame
-  double frame_wall_p99_ms = 0;        // the same on the wall clock
-  std::size_t misses = 0, frames = 0;  // frames whose query's CPU time exceeded the budget
-};
-
-// The deepest vertex of either part inside the other at `pose` (part 2 in part 1's frame).
-double penetration_at(const Pose& pose, const Mesh& m1, const MeshDistanceIndex& i1, const Mesh& m2,
-                      const MeshDistanceIndex& i2) {
-  double deepest = 0;
-  const auto check = [&](const Mesh& from, const Pose& to_other, const MeshDistanceIndex& other) {
-    for (const Eigen::Vector3d& v : from.vertices) {
-      const Eigen::Vector3d p = to_other.apply(v);
-      if ((p.array() < other.box_min().array()).any() || (p.array() > other.box_max().array()).any()) continue;
-      if (other.inside(p)) deepest = std::max(deepest, other.distance(p));
-    }
-  };
-  check(m2, pose, i1);
-  check(m1, pose.inverse(), i2);
-  return deepest;
-}
-
-// Per-frame work of the method's query, on the wall clock and as the loop thread's CPU
-// time (the loop runs on simulated time; on a loaded machine the wall clock also counts
-// the time the thread waited for a core, the CPU time only its own work); the rigid
-// contact's wall time is added to both (see timed_contact).
-struct FrameWork {
-  std::vector<double> wall_ms, cpu_ms;
-};
-
-double thread_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
-template <class Query>
-QueryResult timed_query(FrameWork& work, const Query& query) {
-  const auto wall = std::chrono::steady_clock::now();
-  const double cpu = thread_cpu_s();
-  QueryResult q = query();
-  work.cpu_ms.push_back(1e3 * (thread_cpu_s() - cpu));
-  work.wall_ms.push_back(1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count());
-  return q;
-}
-
-WrenchEvaluator timed(const WrenchEvaluator& inner, FrameWork& work) {
-  WrenchEvaluator e = inner;
-  e.evaluate = [inner, &work](const Pose& p) { return timed_query(work, [&] { return inner.evaluate(p); }); };
-  if (inner.evaluate_state)
-    e.evaluate_state = [inner, &work](const BodyState& s) {
-      return timed_query(work, [&] { return inner.evaluate_state(s); });
-    };
-  return e;
-}
-
-// The rigid contact's time goes to the same frame's work as the engine's query (it
-// runs right after it in the loop). It may run on helper threads
-// (scheduler/parallel_contact.h) while the loop's thread waits: its wall time is what
-// the frame spends on it, and counts in both.
-std::function<ContactWrench(const Pose&)> timed_contact(std::function<ContactWrench(const Pose&)> inner,
-                                                        FrameWork& work) {
-  return [inner = std::move(inner), &work](const Pose& p) {
-    const auto wall = std::chrono::steady_clock::now();
-    ContactWrench c = inner(p);
-    if (!work.cpu_ms.empty()) {
-      const double ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
-      work.cpu_ms.back() += ms;
-      work.wall_ms.back() += ms;
-    }
-    return c;
-  };
-}
-
-TrialResult measure(const Cell& cell, const SessionResult& run, const FrameWork& work, const Mesh& m1,
-                    const MeshDistanceIndex& i1, const Mesh& m2, const MeshDistanceIndex& i2, std::size_t stride) {
-  TrialResult r;
-  const LoopReport& loop = run.loop;
-  const Pose& final_pose = loop.final_part.pose;
-  const Eigen::Vector3d d = final_pose.translation - run.target.translation;
-  r.position_error = run.final_error.position;
-  r.angle_error = run.final_error.angle_deg;
-  r.axial_error = std::abs(d.z());
-  r.lateral_error = std::hypot(d.x(), d.y());
-  const double play_deg = std::atan(2 * cell.clearance / cell.engaged) * 180 / M_PI;
-  r.inserted = r.axial_error <= run.position_tolerance;
-  r.success = r.inserted && r.lateral_error <= run.position_tolerance + cell.clearance &&
-              r.angle_error <= run.angle_tolerance_deg + play_deg;
-  for (std::size_t i = 0; i < loop.log.size(); ++i) {
-    const FrameRecord& f = loop.log[i];
-    r.peak_force = std::max(r.peak_force, f.sent.force.norm());
-    if (i > 0) r.max_force_step = std::max(r.max_force_step, (f.sent.force - loop.log[i - 1].sent.force).norm());
-    if (i > 0 && i + 1 < loop.log.size())
-      r.force_hf_rms += (loop.log[i + 1].sent.force - 2 * f.sent.force + loop.log[i - 1].sent.force).squaredNorm();
-    if (i % stride == 0) r.max_penetration = std::max(r.max_penetration, penetration_at(f.part, m1, i1, m2, i2));
-  }
-  if (loop.log.size() > 2) r.force_hf_rms = std::sqrt(r.force_hf_rms / (loop.log.size() - 2));
-  r.max_penetration = std::max(r.max_penetration, penetration_at(final_pose, m1, i1, m2, i2));
-  r.frames = loop.frames;
-  r.frame_p99_ms = quantile(work.cpu_ms, 0.99);
-  r.frame_wall_p99_ms = quantile(work.wall_ms, 0.99);
-  for (double w : work.cpu_ms) r.misses += w > cell.scene.frame_budget_ms;
-  return r;
-}
 
 Scene translation_scene(Scene s) {
   s.motion = Motion::translation;
@@ -328,13 +177,13 @@ std::vector<Cell> make_cells(const Options& o) {
   for (double c : o.clearances) {
     Cell cell;
     cell.pair = "peg-in-hole";
-    cell.clearance = c;
+    cell.fit.clearance = c;
     cell.scene = with_hybrid(load_scene("scenes/peg_hole_clearance_0p5.json"), o.hybrid_json);
     cell.scene.part1.procedural->numbers["clearance"] = c;
     cell.scene.name = "peg in hole, clearance " + bench::fixed(c, 2) + " mm";
     cell.scene.part2.pose = Pose{};
-    cell.entry = 20;  // the hole's depth: the peg's bottom meets the block's top 20 mm above home
-    cell.engaged = 20;
+    cell.fit.entry = 20;  // the hole's depth: the peg's bottom meets the block's top 20 mm above home
+    cell.fit.engaged = 20;
     cells.push_back(cell);
   }
   if (o.three_pegs) {
@@ -342,8 +191,8 @@ std::vector<Cell> make_cells(const Options& o) {
     cell.pair = "three-pegs";
     cell.scene = with_hybrid(load_scene("scenes/three_pegs.json"), o.hybrid_json);
     cell.scene.part2.pose = Pose{};
-    cell.entry = 14;   // above the tallest peg (12 mm) and its fillet
-    cell.engaged = 8;  // the shortest peg's height
+    cell.fit.entry = 14;   // above the tallest peg (12 mm) and its fillet
+    cell.fit.engaged = 8;  // the shortest peg's height
     cells.push_back(cell);
   }
   return cells;
@@ -390,26 +239,19 @@ Model build_model(Scene& scene, const BenchMethod& method, const Cell& cell, con
 
 // One user's insertion with the method's model, on simulated time; each frame's work into `work`.
 SessionResult run_trial(const Scene& scene, const Mesh& part2, double spacing, Model& model, const BenchMethod& method,
-                        long modes, FrameWork& work) {
+                        long modes, bench::FrameWork& work) {
   SessionOptions options;
   options.simulated_time = true;
   SessionResult run;
   if (model.hybrid) {
     HybridState state = hybrid_state_for(*model.hybrid);  // each user starts disengaged
     run = run_scripted_session(scene, part2, spacing, vps_loop_config(scene, *model.vps, model.coupling),
-                               timed(hybrid_evaluator(*model.hybrid, state), work), options);
+                               bench::timed(hybrid_evaluator(*model.hybrid, state), work), options);
   } else if (method.voxel_based()) {
     run = run_scripted_session(scene, part2, spacing, vps_loop_config(scene, *model.vps, model.coupling),
-                               timed(vps_evaluator(*model.vps), work), options);
+                               bench::timed(vps_evaluator(*model.vps), work), options);
   } else {
-    const TuningResult fixed =
-        pick_modes({TimingPoint{std::min<std::size_t>(modes, model.engine->max_modes()), 0, 0, 0, 1}},
-                   scene.frame_budget_ms, 0.25);
-    double force_scale = 0;
-    LoopConfig config =
-        loop_config_for(scene, model.pair->part(2).mesh, spacing, *model.engine, fixed, force_scale, model.rigid);
-    if (config.contact) config.contact = timed_contact(config.contact, work);
-    run = run_scripted_session(scene, part2, spacing, config, timed(wrench_evaluator(*model.engine), work), options);
+    run = bench::run_engine_trial(scene, part2, spacing, *model.engine, model.rigid, modes, work);
   }
   return run;
 }
@@ -417,7 +259,7 @@ SessionResult run_trial(const Scene& scene, const Mesh& part2, double spacing, M
 struct Summary {
   std::string pair, method;
   double clearance = 0;
-  std::vector<TrialResult> trials;
+  std::vector<bench::TrialResult> trials;
 };
 
 // Where the trials go: trials.csv, and for trial 0 of the peg at the middle clearance the
@@ -429,15 +271,15 @@ struct TrialFiles {
 };
 
 void write_trial(TrialFiles& out, const Cell& cell, const BenchMethod& method, const Scene& scene, long t,
-                 const UserTrial& user, const SessionResult& run, const TrialResult& r) {
-  out.csv.row(cell.pair, method.name, cell.clearance, t, r.success, r.inserted, r.position_error, r.lateral_error,
+                 const bench::UserTrial& user, const SessionResult& run, const bench::TrialResult& r) {
+  out.csv.row(cell.pair, method.name, cell.fit.clearance, t, r.success, r.inserted, r.position_error, r.lateral_error,
               r.axial_error, r.angle_error, r.max_penetration, r.max_force_step, r.force_hf_rms, r.peak_force,
               r.frame_p99_ms, r.frame_wall_p99_ms, r.misses, r.frames, user.lateral,
               method.kind == BenchMethod::translation ? 0.0 : user.tilt_deg, user.approach_offset, user.duration_s);
-  if (t == 0 && cell.pair == "peg-in-hole" && cell.clearance == out.depth_clearance) {
+  if (t == 0 && cell.pair == "peg-in-hole" && cell.fit.clearance == out.depth_clearance) {
     for (const FrameRecord& f : run.loop.log) {
-      const double depth = scene.assembled_pose->translation.z() + cell.entry - f.part.translation.z();
-      out.depth_csv.row(cell.pair, method.name, cell.clearance, t, f.time_s, depth, f.sent.force.norm(),
+      const double depth = scene.assembled_pose->translation.z() + cell.fit.entry - f.part.translation.z();
+      out.depth_csv.row(cell.pair, method.name, cell.fit.clearance, t, f.time_s, depth, f.sent.force.norm(),
                         f.sent.torque.norm());
       out.force_depth[method.name].push_back({depth, f.sent.force.norm()});
       out.torque_depth[method.name].push_back({depth, f.sent.torque.norm()});
@@ -461,17 +303,18 @@ Summary run_method(const Options& o, TrialFiles& out, const Cell& cell, const Be
   Model model = build_model(scene, method, cell, parts, ctx, fft, o.contact);
   std::cout << "  " << bench::padr(method.name, 20) << " built in "
             << bench::fixed(bench::seconds_since(build_start), 1) << " s" << std::flush;
-  Summary summary{cell.pair, method.name, cell.clearance, {}};
+  Summary summary{cell.pair, method.name, cell.fit.clearance, {}};
   std::mt19937 rng(static_cast<unsigned>(o.seed));  // the same users for every method of a cell
   for (long t = 0; t < o.trials; ++t) {
-    const UserTrial user = draw_trial(rng);
-    scene.trajectory = user_trajectory(scene.assembled_pose.value_or(Pose{}), cell.entry, user,
+    const bench::UserTrial user = bench::draw_trial(rng);
+    scene.trajectory = bench::user_trajectory(scene.assembled_pose.value_or(Pose{}), cell.fit.entry, user,
                                        method.kind != BenchMethod::translation);
     scene.part2.pose = scene.trajectory.keyframes.front().pose;
-    FrameWork work;
+    bench::FrameWork work;
     work.wall_ms.reserve(8000), work.cpu_ms.reserve(8000);
     const SessionResult run = run_trial(scene, m2, spacing, model, method, o.modes, work);
-    const TrialResult r = measure(cell, run, work, m1, i1, m2, i2, static_cast<std::size_t>(o.stride));
+    const bench::TrialResult r =
+        bench::measure(cell.fit, cell.scene.frame_budget_ms, run, work, m1, i1, m2, i2, static_cast<std::size_t>(o.stride));
     write_trial(out, cell, method, scene, t, user, run, r);
     summary.trials.push_back(r);
     std::cout << (r.success ? " +" : r.inserted ? " ~" : " -") << std::flush;
@@ -486,7 +329,7 @@ nlohmann::json summarise(const Summary& s, bench::CsvFile& scsv, std::ostringstr
                          std::map<std::string, Series>& success_series) {
   std::vector<double> pos, ang, pen, step, hf, p99, wall99;
   double ok = 0, in = 0, misses = 0;
-  for (const TrialResult& r : s.trials) {
+  for (const bench::TrialResult& r : s.trials) {
     pos.push_back(r.position_error), ang.push_back(r.angle_error), pen.push_back(r.max_penetration);
     step.push_back(r.max_force_step), hf.push_back(r.force_hf_rms), p99.push_back(r.frame_p99_ms);
     wall99.push_back(r.frame_wall_p99_ms);

@@ -32,6 +32,7 @@
 
 #include "io/cad_format.h"
 #include "io/isolated_import.h"
+#include "tests/cad_shape_writer.h"
 
 namespace snapfit::test {
 namespace {
@@ -158,6 +159,10 @@ void write_cad_part(const std::string& file, const ProceduralPartSpec& spec, con
   else
     throw std::runtime_error("cad fixture: no B-rep for procedural type '" + spec.type + "'");
   write_shape(file, first_solid(shape), unit, {solid_name});
+}
+
+void write_cad_shape(const std::string& file, const TopoDS_Shape& mm_shape, const std::string& solid_name) {
+  write_shape(file, first_solid(mm_shape), "MM", {solid_name});
 }
 
 void write_cad_boxes(const std::string& file, const std::vector<NamedBox>& boxes, const std::string& product) {
