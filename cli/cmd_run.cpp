@@ -87,7 +87,8 @@ void add_run_command(CLI::App& app) {
                 "Measure m' and the strategies' errors again even when the tuning and strategy files match");
   cmd->add_option("--strategy", opt->strategy,
                   "Query strategy: auto (default: the lowest error that fits the frame, measured once per scene and "
-                  "device against the exact reference; tricubic with --modes), tricubic, trilinear or exact-product")
+                  "device against the exact reference, after the first run's loop, which starts on tricubic; "
+                  "tricubic with --modes), tricubic, trilinear or exact-product")
       ->check(CLI::IsMember({"auto", "tricubic", "trilinear", "exact-product"}));
   cmd->add_flag("--simulated-time", opt->simulated_time,
                 "Run the loop on simulated time: deterministic, as fast as the queries go, no timing meaning");

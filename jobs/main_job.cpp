@@ -120,8 +120,24 @@ void reserve_contact_time(const AssemblyPair& pair, const JobRequest& request, c
   out.say(line.str());
 }
 
+// What the strategies' errors are measured with: the scene's budget less the contact's share.
+AccuracyOptions strategy_accuracy_options(const Scene& scene, const JobRequest& request, const JobOutput& out,
+                                          const JobRecord& record) {
+  AccuracyOptions accuracy;
+  accuracy.budget_ms = scene.frame_budget_ms;
+  accuracy.margin = request.margin;
+  accuracy.reserved_ms = record.contact_reserved_ms;
+  accuracy.retune = request.retune;
+  accuracy.note = out.note;
+  if (request.progress) accuracy.progress = pass_progress_bars();
+  return accuracy;
+}
+
 // "[6/7]" tuned: m' on this device (and the others with no device named), then with
-// strategy "auto" every strategy's error at the budget and the most accurate that fits.
+// strategy "auto" the most accurate strategy that fits, from the strategy file. Not
+// measured yet, the loop starts on the tuned variant (tricubic): whatever it renders, its
+// error estimate vouches for (scheduler/wrench_trust.h), and the strategies are measured
+// after the loop (measure_strategies_after_loop) rather than before its first frame.
 LoopDevices tuned_loop_devices(const ComputeContext& ctx, const AssemblyPair& pair, const QueryVariant& variant,
                                const JobRequest& request, const JobOutput& out, JobRecord& record) {
   const Scene& scene = pair.scene;
@@ -144,21 +160,21 @@ LoopDevices tuned_loop_devices(const ComputeContext& ctx, const AssemblyPair& pa
   LoopDevices devices = tune_loop_devices(ctx, scene, pair.spectra, variant, tune);
   record.strategy_chosen_by = "--strategy";
   if (request.strategy == "auto") {
-    AccuracyOptions accuracy;
-    accuracy.budget_ms = scene.frame_budget_ms;
-    accuracy.margin = request.margin;
-    accuracy.reserved_ms = record.contact_reserved_ms;
-    accuracy.retune = request.retune;
-    accuracy.note = out.note;
-    if (request.progress) accuracy.progress = pass_progress_bars();
-    const StrategyChoice choice = choose_query_strategy(devices.loop().ctx, scene, pair.spectra, accuracy);
-    out.say(strategies_text(choice));
-    record.strategies = choice.report;
-    record.strategy_file = choice.path;
-    record.strategy_chosen_by =
-        std::string("lowest error that fits (") + (choice.from_file ? "strategy file" : "measured") + ")";
-    if (variant_name(choice.chosen().variant) != variant_name(variant))
-      use_variant_on_loop_device(devices, scene, pair.spectra, choice.chosen().variant, tune);
+    const AccuracyOptions accuracy = strategy_accuracy_options(scene, request, out, record);
+    if (const std::optional<StrategyChoice> choice =
+            stored_query_strategy(devices.loop().ctx, scene, pair.spectra, accuracy)) {
+      out.say(strategies_text(*choice));
+      record.strategies = choice->report;
+      record.strategy_file = choice->path;
+      record.strategy_chosen_by = "lowest error that fits (strategy file)";
+      if (variant_name(choice->chosen().variant) != variant_name(variant))
+        use_variant_on_loop_device(devices, scene, pair.spectra, choice->chosen().variant, tune);
+    } else {
+      record.strategy_chosen_by = "safe start (the strategies are measured after the loop)";
+      out.say("    the strategies' errors are not measured yet on this device: the loop starts on " +
+              variant_name(variant) +
+              ", whose error estimate vouches for what it renders, and they are measured after it\n");
+    }
   }
   const TunedDevice& chosen = devices.loop();
   record.strategy = variant_name(chosen.engine->variant());
@@ -171,6 +187,22 @@ LoopDevices tuned_loop_devices(const ComputeContext& ctx, const AssemblyPair& pa
   record.tuning_key = chosen.key.text();
   record.loop_device = chosen.ctx.device.info;
   return devices;
+}
+
+// The strategies the loop did not wait for: measured and saved after it, so that the
+// next run renders the most accurate one that fits; the record says what this run rendered.
+void measure_strategies_after_loop(const AssemblyPair& pair, const LoopDevices& devices, const JobRequest& request,
+                                   const JobOutput& out, JobRecord& record) {
+  out.say("    measuring the strategies' errors for the next run (the loop did not wait for them)\n");
+  const AccuracyOptions accuracy = strategy_accuracy_options(pair.scene, request, out, record);
+  const StrategyChoice choice = choose_query_strategy(devices.loop().ctx, pair.scene, pair.spectra, accuracy);
+  out.say(strategies_text(choice));
+  record.strategies = choice.report;
+  record.strategies->why = "this run rendered " + record.strategy +
+                           " (a safe start: the strategies were not measured yet); measured after the loop, the next "
+                           "run renders " +
+                           variant_name(choice.chosen().variant) + ": " + choice.report.why;
+  record.strategy_file = choice.path;
 }
 
 }  // namespace
@@ -234,6 +266,8 @@ JobResult run_job(const Scene& scene, const JobRequest& request) {
                      job.record->seconds_to_first_frame = before + result.setup_s;
                      return result;
                    });
+  if (request.strategy == "auto" && !request.modes && !job.record->strategies)
+    measure_strategies_after_loop(*job.pair, *job.devices, request, out, *job.record);
   if (job.record->seconds_to_first_frame > 0) {
     std::ostringstream ready;
     ready << "    ready to touch: the loop's first frame came " << job.record->seconds_to_first_frame

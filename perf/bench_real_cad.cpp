@@ -198,7 +198,9 @@ PairResult run_users(const Options& o, const test::CadPairInfo& info, const Scen
     scene.part2.pose = scene.trajectory.keyframes.front().pose;
     bench::FrameWork work;
     work.wall_ms.reserve(8000), work.cpu_ms.reserve(8000);
-    const SessionResult run = bench::run_engine_trial(scene, m2, spacing, *engine, rigid, modes, work);
+    // The users leave the scene's trajectory: the region it gave still bounds part 1.
+    const SessionResult run =
+        bench::run_engine_trial(scene, m2, spacing, *engine, rigid, modes, work, region_guard(pair.region));
     const bench::TrialResult r =
         bench::measure(fit, scene.frame_budget_ms, run, work, m1, i1, m2, i2, static_cast<std::size_t>(o.stride));
     csv.row(info.name, info.clearance, t, r.success, r.inserted, r.position_error, r.lateral_error, r.axial_error,

@@ -145,15 +145,18 @@ inline std::function<ContactWrench(const Pose&)> timed_contact(std::function<Con
 
 // One user's insertion with snapfit's engine at a fixed m' (at most the engine's), the
 // scene's coupling and gain, and the rigid contact when `rigid` is given; simulated time.
+// `in_region`: the loop's check that part 2 is inside the region part 1's fields cover
+// (scheduler/haptic_setup.h region_guard; null: everywhere).
 inline SessionResult run_engine_trial(const Scene& scene, const Mesh& part2, double spacing, QueryEngine& engine,
                                       const std::shared_ptr<const RigidContactModel>& rigid, long modes,
-                                      FrameWork& work) {
+                                      FrameWork& work, std::function<bool(const Pose&)> in_region = nullptr) {
   SessionOptions options;
   options.simulated_time = true;
   const TuningResult fixed = pick_modes({TimingPoint{std::min<std::size_t>(modes, engine.max_modes()), 0, 0, 0, 1}},
                                         scene.frame_budget_ms, 0.25);
   double force_scale = 0;
   LoopConfig config = loop_config_for(scene, part2, spacing, engine, fixed, force_scale, rigid);
+  config.in_region = std::move(in_region);
   if (config.contact) config.contact = timed_contact(config.contact, work);
   return run_scripted_session(scene, part2, spacing, config, timed(wrench_evaluator(engine), work), options);
 }

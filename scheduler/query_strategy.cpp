@@ -22,18 +22,25 @@ std::string strategy_key(const DeviceInfo& device, const Scene& scene, const Pai
   return key.str();
 }
 
+std::optional<StrategyChoice> stored_query_strategy(const ComputeContext& ctx, const Scene& scene,
+                                                    const PairSpectra& spectra, const AccuracyOptions& options) {
+  if (options.retune) return std::nullopt;
+  const std::string key = strategy_key(ctx.device.info, scene, spectra, options);
+  std::optional<AccuracyReport> stored = load_strategy(key, accuracy_base_variant(scene), options.note);
+  if (!stored) return std::nullopt;
+  StrategyChoice choice;
+  choice.path = strategy_file_path(key);
+  choice.report = std::move(*stored);
+  choice.from_file = true;
+  return choice;
+}
+
 StrategyChoice choose_query_strategy(const ComputeContext& ctx, const Scene& scene, const PairSpectra& spectra,
                                      const AccuracyOptions& options) {
+  if (std::optional<StrategyChoice> stored = stored_query_strategy(ctx, scene, spectra, options)) return *stored;
   StrategyChoice choice;
   const std::string key = strategy_key(ctx.device.info, scene, spectra, options);
   choice.path = strategy_file_path(key);
-  if (!options.retune) {
-    if (auto stored = load_strategy(key, accuracy_base_variant(scene), options.note)) {
-      choice.report = std::move(*stored);
-      choice.from_file = true;
-      return choice;
-    }
-  }
   choice.report = measure_accuracy(ctx, scene, spectra, options);
   try {
     save_strategy(key, choice.report);

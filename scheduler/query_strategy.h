@@ -6,6 +6,7 @@
 // modes as the frame allows; on a CPU whichever of the interpolated sums and the product
 // is more accurate at the m' each affords.
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "engine/runtime/compute_context.h"
@@ -26,6 +27,11 @@ struct StrategyChoice {
 // margin, poses): every candidate's tuning key.
 std::string strategy_key(const DeviceInfo& device, const Scene& scene, const PairSpectra& spectra,
                          const AccuracyOptions& options);
+
+// The choice kept in the strategy file, or nothing (absent, stale, corrupt, or
+// options.retune): nothing is measured.
+std::optional<StrategyChoice> stored_query_strategy(const ComputeContext& ctx, const Scene& scene,
+                                                    const PairSpectra& spectra, const AccuracyOptions& options);
 
 // Reads the choice from the strategy file, or (absent, stale, corrupt, or
 // options.retune) measures it with measure_accuracy on ctx's device and saves it; a save
