@@ -9,7 +9,7 @@
 //    plays the scene's trajectory in real time; its summary.json gives the loop's misses
 //    and the verdict.
 // 2. bench_assembly's imprecise 6-DOF users (perf/imprecise_users.h) on simulated time,
-//    with snapfit's engine as the cold run's loop rendered it (its query strategy and the
+//    with snapfit's engine as a second, warm run's loop rendered it (its query strategy and the
 //    m' it started at; with --modes or without a cold run, bench_assembly's tricubic sum
 //    at that m'), the scene's coupling, gain and rigid contact: per pair the success rate, the deepest true interpenetration of any trial
 //    (mesh/interpenetration.h), the frames whose work took more CPU time than the budget,
@@ -18,7 +18,7 @@
 //
 //   bench_real_cad --help lists its options.
 // Writes trials.csv (one row per trial), summary.csv, summary.md, summary.json,
-// charts.html, and per pair run/<pair>/ (the cold run's report) and run/<pair>.log.
+// charts.html, and per pair run/<pair>/ and run/<pair>_warm/ (the two runs' reports) and their logs.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -50,7 +50,7 @@ struct Options {
   bool quick = false, cold_run = true;
   std::string device_spec, out_dir = "results/bench_real_cad", snapfit_cli;
   long trials = 20, seed = 1, stride = 10;
-  long modes = 0;  // 0: the m' the cold run's loop started at, else kFallbackModes
+  long modes = 0;  // 0: the m' the warm run's loop started at, else kFallbackModes
   std::vector<std::string> pairs;
 };
 
@@ -75,7 +75,7 @@ Options parse_options(int argc, char** argv) {
   const auto* trials = app.add_option("--trials", o.trials, "users per pair")->check(CLI::Range(1L, 100000L));
   app.add_option("--seed", o.seed, "the users' seed")->check(CLI::Range(0L, 1L << 30));
   const auto* modes =
-      app.add_option("--modes", o.modes, "m' of the users' engine (0: the m' the cold run's loop started at, else 16384)")
+      app.add_option("--modes", o.modes, "m' of the users' engine (0: the m' the warm run's loop started at, else 16384)")
           ->check(CLI::Range(0L, 1L << 24));
   app.add_option("--penetration-stride", o.stride, "every K-th frame's true interpenetration")
       ->check(CLI::Range(1L, 100000L));
@@ -110,11 +110,12 @@ struct ColdRun {
   std::string verdict;
 };
 
-// Runs `snapfit run` on the scene with `cache` as its (emptied) cache folder; the time from
-// launch to the "[7/7]" line, and the loop's misses and verdict from summary.json.
+// Runs `snapfit run` on the scene with `cache` as its cache folder (emptied first when
+// `cold`); the time from launch to the "[7/7]" line, and the loop's misses and verdict
+// from summary.json.
 ColdRun cold_run(const Options& o, const std::string& scene_file, const fs::path& cache, const fs::path& report,
-                 const fs::path& log_file) {
-  fs::remove_all(cache);
+                 const fs::path& log_file, bool cold = true) {
+  if (cold) fs::remove_all(cache);
   fs::create_directories(cache);
   fs::remove_all(report);
   const std::string command = "SNAPFIT_CACHE_DIR='" + cache.string() + "' '" + o.snapfit_cli + "' run '" + scene_file +
@@ -160,10 +161,10 @@ QueryVariant users_variant(const Scene& scene, const std::string& strategy) {
   if (strategy.empty()) return query_variant_for(scene, Interpolation::tricubic);
   for (const QueryVariant& v : accuracy_candidates(accuracy_base_variant(scene)))
     if (variant_name(v) == strategy) return v;
-  throw Error("the cold run's query strategy '" + strategy + "' is none of the loop's candidates");
+  throw Error("the warm run's query strategy '" + strategy + "' is none of the loop's candidates");
 }
 
-// The users on one pair: the engine (the strategy and m' the cold run's loop rendered,
+// The users on one pair: the engine (the strategy and m' the warm run's loop rendered,
 // else the tricubic sum at `modes`), the rigid contact and every trial.
 PairResult run_users(const Options& o, const test::CadPairInfo& info, const Scene& loaded, long modes,
                      const std::string& strategy, const ComputeContext& ctx, const FftLibrary& fft,
@@ -297,17 +298,23 @@ int main(int argc, char** argv) {
       const test::CadPairInfo& info = pair_named(name);
       const std::string scene_file = "scenes/cad/" + name + ".json";
       std::cout << "== " << name << "\n";
-      ColdRun cold;
+      ColdRun cold, warm;
       if (o.cold_run) {
         const fs::path cache = out / "cache" / name;
         fs::create_directories(out / "run");
         cold = cold_run(o, scene_file, cache, out / "run" / name, out / "run" / (name + ".log"));
         std::cout << "  cold `snapfit run`: first frame after " << bench::fixed(cold.first_frame_s, 1) << " s, "
                   << cold.misses << " of " << cold.frames << " frames missed, " << cold.verdict << "\n";
+        // The first run's loop starts on a safe strategy and measures the strategies after
+        // it; a second run renders the measured choice, as every later run does: the users take that.
+        warm = cold_run(o, scene_file, cache, out / "run" / (name + "_warm"), out / "run" / (name + "_warm.log"), false);
+        std::cout << "  warm `snapfit run`: first frame after " << bench::fixed(warm.first_frame_s, 1) << " s, "
+                  << warm.strategy << " at m' " << warm.modes << ", " << warm.misses << " of " << warm.frames
+                  << " frames missed, " << warm.verdict << "\n";
         ::setenv("SNAPFIT_CACHE_DIR", cache.c_str(), 1);  // the users reuse its fields and spectra
       }
-      const long modes = o.modes ? o.modes : cold.ran ? cold.modes : kFallbackModes;
-      PairResult r = run_users(o, info, load_scene(scene_file), modes, o.modes ? "" : cold.strategy, ctx, fft,
+      const long modes = o.modes ? o.modes : warm.ran ? warm.modes : kFallbackModes;
+      PairResult r = run_users(o, info, load_scene(scene_file), modes, o.modes ? "" : warm.strategy, ctx, fft,
                                trials_csv);
       r.cold = cold;
       results.push_back(std::move(r));
