@@ -46,6 +46,7 @@ MeshFileRequest mesh_file_request(const MeshInfoOptions& opt) {
   if (is_cad_file(opt.file)) {  // the units matter to STEP and IGES files alone
     try {
       request.metres_per_unit = metres_per_unit(opt.units);
+      request.units = opt.units;
     } catch (const Error& e) {
       throw Error(std::string("--units: ") + e.what());
     }

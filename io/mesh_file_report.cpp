@@ -15,6 +15,7 @@ MeshFileReport inspect_mesh_file(const MeshFileRequest& request) {
   }
   CadImportOptions options;
   options.metres_per_unit = request.metres_per_unit;
+  options.units = request.units;
   options.scale = request.scale;
   if (!request.solid.empty()) options.solid = request.solid;
   options.linear_deflection = request.deflection;

@@ -167,6 +167,12 @@ TEST_CASE("cad import: an unknown length unit is refused by name, a part far too
   CHECK(too_fine.find("the solid spans 30000 x 30000 x 30000 mm from the file's length unit metre") !=
         std::string::npos);
   CHECK(too_fine.find("\"scale\"") != std::string::npos);
+  // `snapfit mesh-info` says it in the unit it was asked for.
+  const test::Command cli = test::run_command(
+      std::string(SNAPFIT_CLI_PATH) + " mesh-info " + dir.file("metres.step") + " --units cm --deflection 0.00005");
+  INFO(cli.output);
+  CHECK(cli.status != 0);
+  CHECK(cli.output.find("the solid spans 3000 x 3000 x 3000 cm from the file's length unit metre") != std::string::npos);
 }
 
 TEST_CASE("cad import: the file's length unit is converted to the output's") {

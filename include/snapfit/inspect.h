@@ -72,6 +72,7 @@ struct MeshFileRequest {
   double scale = 1.0;  // multiplies every coordinate (file units -> your units)
   // STEP and IGES only:
   double metres_per_unit = 1e-3;     // the output's length unit (metres_per_unit in scene.h)
+  std::string units = "mm";          // its name, for messages
   std::string solid;                 // the solid to tessellate, for a file with several
   std::optional<double> deflection;  // linear deflection in output units (default: the grid spacing / 40)
   std::optional<double> spacing;     // grid spacing the default deflection is tied to
