@@ -20,6 +20,15 @@ Eigen::AlignedBox3d grid_box(const GridSpec& g) {
   return Eigen::AlignedBox3d(g.origin, g.origin + g.spacing * (g.dims.cast<double>().array() - 1.0).matrix());
 }
 
+// The distance from part 2's origin to the farthest corner of its box: how far any of
+// the box reaches from the origin at any orientation.
+double farthest_corner(const Eigen::AlignedBox3d& box) {
+  double reach = 0;
+  for (int c = 0; c < 8; ++c)
+    reach = std::max(reach, box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).norm());
+  return reach;
+}
+
 // Grows `region` by part 2's box at `pose` (its 8 corners).
 void add_box_at(const Eigen::AlignedBox3d& box, const Pose& pose, Eigen::AlignedBox3d& region) {
   for (int c = 0; c < 8; ++c) region.extend(pose.apply(box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c))));
@@ -62,7 +71,7 @@ ReachRegion reach_region(const Scene& scene, const GridSpec& part2_grid) {
   ReachRegion r;
   const Eigen::AlignedBox3d box = grid_box(part2_grid);
   r.part2_box = box;
-  const double radius = std::max(box.min().norm(), box.max().norm()) + box.diagonal().norm();  // bounds every corner
+  const double radius = farthest_corner(box);
   r.margin = scene.grid.region.margin.value_or(0.25 * box.diagonal().norm());
   r.fade = kFadeSpacings * part2_grid.spacing;
   const RegionParams& p = scene.grid.region;
@@ -78,13 +87,10 @@ ReachRegion reach_region(const Scene& scene, const GridSpec& part2_grid) {
   }
   if (p.kind == RegionKind::workspace) {
     // Any orientation: the ball about part 2's origin that holds its box.
-    double reach = 0;
-    for (int c = 0; c < 8; ++c)
-      reach = std::max(reach, box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).norm());
     if (!rotates) {
       r.box = Eigen::AlignedBox3d(p.workspace_min + box.min(), p.workspace_max + box.max());
     } else {
-      r.box = Eigen::AlignedBox3d(p.workspace_min.array() - reach, p.workspace_max.array() + reach);
+      r.box = Eigen::AlignedBox3d(p.workspace_min.array() - radius, p.workspace_max.array() + radius);
     }
     r.reason = "the declared workspace (grid.region)";
   } else {

@@ -138,7 +138,11 @@ LoopConfig loop_config(const Assembly& assembly, QueryEngine& engine, const Tuni
 
 std::function<bool(const Pose&)> region_guard(const ReachRegion& region) {
   if (!region.bounded) return nullptr;
-  return [region](const Pose& pose) { return pose_in_region(region, pose); };
+  ReachRegion check;  // only what the per-frame test reads
+  check.bounded = true;
+  check.box = region.box;
+  check.part2_box = region.part2_box;
+  return [check](const Pose& pose) { return pose_in_region(check, pose); };
 }
 
 }  // namespace snapfit
