@@ -27,7 +27,7 @@ struct RunOptions {
   bool retune = false;
   bool simulated_time = false;
   std::string loop_wait = "spin";
-  std::string strategy = "auto";  // auto | tricubic | trilinear | exact-product
+  std::string strategy = "auto";  // auto | tricubic | trilinear | exact-product | near-far
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
@@ -88,8 +88,8 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--strategy", opt->strategy,
                   "Query strategy: auto (default: the lowest error that fits the frame, measured once per scene and "
                   "device against the exact reference, after the first run's loop, which starts on tricubic; "
-                  "tricubic with --modes), tricubic, trilinear or exact-product")
-      ->check(CLI::IsMember({"auto", "tricubic", "trilinear", "exact-product"}));
+                  "tricubic with --modes), tricubic, trilinear, exact-product or near-far")
+      ->check(CLI::IsMember({"auto", "tricubic", "trilinear", "exact-product", "near-far"}));
   cmd->add_flag("--simulated-time", opt->simulated_time,
                 "Run the loop on simulated time: deterministic, as fast as the queries go, no timing meaning");
   cmd->add_option("--loop-wait", opt->loop_wait,

@@ -109,8 +109,8 @@ void add_serve_command(CLI::App& app) {
   cmd->add_option("--device", opt->device, "OpenCL device (see `snapfit devices`)");
   cmd->add_option("--modes", opt->modes, "m': a fixed number of Fourier modes instead of the tuned one")
       ->check(positive_number());
-  cmd->add_option("--strategy", opt->strategy, "Query strategy: auto (default), tricubic, trilinear or exact-product")
-      ->check(CLI::IsMember({"auto", "tricubic", "trilinear", "exact-product"}));
+  cmd->add_option("--strategy", opt->strategy, "Query strategy: auto (default), tricubic, trilinear, exact-product or near-far")
+      ->check(CLI::IsMember({"auto", "tricubic", "trilinear", "exact-product", "near-far"}));
   cmd->add_option("--loop-wait", opt->loop_wait, "How the loop waits for its tick: spin (default) or sleep")
       ->check(CLI::IsMember({"spin", "sleep"}));
   cmd->add_option("--late-ms", opt->late_ms, "A device state older than this is late: held, the wrench fading (5)")

@@ -25,8 +25,8 @@ namespace {
 // The variant the request's strategy names for `scene` (auto: the scene's tricubic
 // variant, the starting point of the measured choice).
 QueryVariant named_strategy(const Scene& scene, const std::string& name) {
-  if (name != "auto" && name != "tricubic" && name != "trilinear" && name != "exact-product")
-    throw Error("strategy '" + name + "': expected auto, tricubic, trilinear or exact-product");
+  if (name != "auto" && name != "tricubic" && name != "trilinear" && name != "exact-product" && name != "near-far")
+    throw Error("strategy '" + name + "': expected auto, tricubic, trilinear, exact-product or near-far");
   QueryVariant v = query_variant_for(scene, Interpolation::tricubic);
   if (v.translation_only) {
     if (name != "auto" && name != "tricubic")
@@ -34,9 +34,10 @@ QueryVariant named_strategy(const Scene& scene, const std::string& name) {
     return v;
   }
   if (name == "trilinear") v.interpolation = Interpolation::trilinear;
-  if (name == "exact-product") {
+  if (name == "exact-product" || name == "near-far") {
     v.rotation = RotationMethod::exact_product;
     v.product_update = ProductUpdate::background;
+    v.near_far = name == "near-far";
   }
   return v;
 }
@@ -70,6 +71,7 @@ void compute_fields_and_spectra(AssemblyPair& pair, const ComputeContext& ctx, c
   PairOptions options;
   if (request.progress) options.descriptors.progress = pass_progress_bars();
   options.note = out.note;
+  options.near_field = true;  // a candidate strategy of the loop (scheduler/accuracy.h)
   for (int part = 1; part <= 2; ++part) {
     const GridSpec& grid = pair.grid(part);
     std::ostringstream line;

@@ -159,7 +159,7 @@ struct PairResult {
 // (scheduler/accuracy.h); none named: bench_assembly's, the tricubic sum.
 QueryVariant users_variant(const Scene& scene, const std::string& strategy) {
   if (strategy.empty()) return query_variant_for(scene, Interpolation::tricubic);
-  for (const QueryVariant& v : accuracy_candidates(accuracy_base_variant(scene)))
+  for (const QueryVariant& v : accuracy_candidates(accuracy_base_variant(scene), true))
     if (variant_name(v) == strategy) return v;
   throw Error("the warm run's query strategy '" + strategy + "' is none of the loop's candidates");
 }

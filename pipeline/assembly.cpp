@@ -20,6 +20,7 @@ Assembly::Assembly(const Scene& scene, const AssemblyOptions& options) {
   pair_options.use_cache = options.use_cache;
   pair_options.spectrum.oversampling = options.oversampling;
   pair_options.note = options.note;
+  pair_options.near_field = options.near_field;
   if (options.progress) pair_options.descriptors.progress = pass_progress_bars();
   const FftLibrary fft;  // clFFT's library state, only while the spectra are computed
   AssemblyPair pair = build_assembly_pair(scene, ctx, fft, pair_options);

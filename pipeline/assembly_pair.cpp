@@ -78,16 +78,24 @@ void compute_assembly_spectra(AssemblyPair& pair, const ComputeContext& ctx, con
                                                                 spectrum_source_key(source2, pair.grids.spacing))
                                             : std::string();
   pair.spectra_from_cache = false;
+  const bool spheres = source1.source == SpectrumSource::spheres || source2.source == SpectrumSource::spheres;
   if (auto cached = options.use_cache ? load_cached_spectra(key, note) : std::nullopt) {
     pair.spectra = std::move(*cached);
     pair.spectra_from_cache = true;
-    return;
+  } else {
+    if (spheres)
+      pair.spectra = compute_sphere_pair_spectra(pair, ctx, fft, spectrum, options.descriptors, note);
+    else
+      pair.spectra = compute_pair_spectra(fft, ctx, pair.fields1.fields, pair.fields2.fields, spectrum);
+    if (options.use_cache) save_cached_spectra(key, pair.spectra, note);
   }
-  if (source1.source == SpectrumSource::spheres || source2.source == SpectrumSource::spheres)
-    pair.spectra = compute_sphere_pair_spectra(pair, ctx, fft, spectrum, options.descriptors, note);
-  else
-    pair.spectra = compute_pair_spectra(fft, ctx, pair.fields1.fields, pair.fields2.fields, spectrum);
-  if (options.use_cache) save_cached_spectra(key, pair.spectra, note);
+  // The near part sums part 2's grid samples, the ones its spectrum was made from.
+  if (options.near_field && pair.plan.rotation && !spheres && pair.spectra.conjugate_pairs()) {
+    std::vector<Complex> rho2;
+    for (float v : affinity_imaginary(pair.fields2.fields)) rho2.emplace_back(0.0f, v);
+    pair.spectra.near = std::make_shared<const NearField>(
+        build_near_field(fft, ctx, pair.spectra, pair.fields2.fields.grid, rho2, options.near));
+  }
 }
 
 AssemblyPair build_assembly_pair(const Scene& scene, const ComputeContext& ctx, const FftLibrary& fft,

@@ -20,6 +20,7 @@
 #include <string>
 
 #include "engine/spectra/fft3d.h"
+#include "engine/query/near_field.h"
 #include "engine/spectra/spectra.h"
 #include "pipeline/compute_plan.h"
 #include "pipeline/part_fields.h"
@@ -34,6 +35,11 @@ namespace snapfit {
 struct PairOptions {
   SpectrumOptions spectrum;
   DescriptorOptions descriptors;
+  // Also the near field of the split sum (engine/query/near_field.h, QueryVariant::near_far)
+  // for a 6-DOF pair whose spectra come from both grids; seconds and tens of MB, so only
+  // where a near-far strategy may run.
+  bool near_field = false;
+  NearFieldOptions near;
   bool use_cache = true;
   std::function<void(const std::string&)> note;  // cache messages; default: stderr
 };

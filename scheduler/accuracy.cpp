@@ -53,9 +53,10 @@ std::vector<TurningAccuracy> turning_accuracy(const ComputeContext& ctx, const P
                                               const QueryVariant& background, std::size_t modes,
                                               const std::vector<Pose>& starts, const std::vector<double>& speeds,
                                               double rate_hz) {
-  QueryVariant exact = background;
+  QueryVariant exact = background;  // the reference: every mode of the exact product, unsplit
   exact.product_update = ProductUpdate::each_query;
   exact.product_modes = spectra.part1.rho.size();
+  exact.near_far = false;
   auto reference = make_query_engine(ctx, spectra, exact);
   reference->set_modes(reference->max_modes());
   auto engine = make_query_engine(ctx, spectra, background);
@@ -109,11 +110,16 @@ QueryVariant accuracy_base_variant(const Scene& scene) {
   return base;
 }
 
-std::vector<QueryVariant> accuracy_candidates(const QueryVariant& base) {
+std::vector<QueryVariant> accuracy_candidates(const QueryVariant& base, bool near_field) {
   if (base.translation_only) return {base};
   QueryVariant trilinear = base;
   trilinear.interpolation = Interpolation::trilinear;
-  return {base, trilinear, exact_product(base, ProductUpdate::background, 0)};
+  std::vector<QueryVariant> candidates{base, trilinear, exact_product(base, ProductUpdate::background, 0)};
+  if (near_field) {
+    candidates.push_back(candidates.back());
+    candidates.back().near_far = true;
+  }
+  return candidates;
 }
 
 double rendered_error(const StrategyAccuracy& s) {
@@ -254,7 +260,7 @@ AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, c
   }
   report.reference_seconds = seconds_since(reference_start);
 
-  std::vector<QueryVariant> strategies = accuracy_candidates(base);
+  std::vector<QueryVariant> strategies = accuracy_candidates(base, spectra.near != nullptr);
   const std::vector<Pose> timing_poses = tuning_poses(scene);
   for (const QueryVariant& timed : strategies) {
     StrategyAccuracy s;
@@ -284,7 +290,10 @@ AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, c
     std::unique_ptr<QueryEngine> measured;
     if (timed.rotation == RotationMethod::exact_product) {
       engine.reset();
-      measured = make_query_engine(ctx, spectra, exact_product(base, ProductUpdate::each_query, s.modes));
+      QueryVariant each = timed;  // the same strategy, its product (and near part) made for each pose
+      each.product_update = ProductUpdate::each_query;
+      each.product_modes = s.modes;
+      measured = make_query_engine(ctx, spectra, each);
       measured->set_modes(s.modes);
       s.product_ms = product_ms(*measured, poses.front());
     } else {

@@ -51,9 +51,10 @@ struct AccuracyOptions {
 QueryVariant accuracy_base_variant(const Scene& scene);
 
 // The strategies measured for a scene whose loop variant is `base` (6-DOF: the
-// interpolated sum with base's interpolation, the same trilinear, and the exact product
-// with background updates over every mode; translation-only: the translation lines).
-std::vector<QueryVariant> accuracy_candidates(const QueryVariant& base);
+// interpolated sum with base's interpolation, the same trilinear, the exact product
+// with background updates over every mode and, when the spectra have a near field, the
+// same split into near and far parts; translation-only: the translation lines).
+std::vector<QueryVariant> accuracy_candidates(const QueryVariant& base, bool near_field = false);
 
 // The error of what the loop renders: the larger relative error of force and torque
 // (of those the variant computes; the energy's when it computes neither).

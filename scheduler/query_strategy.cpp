@@ -17,7 +17,7 @@ std::string strategy_key(const DeviceInfo& device, const Scene& scene, const Pai
   std::ostringstream key;
   key << "poses=" << options.poses;
   if (options.reserved_ms > 0) key << "\nreserved_ms=" << options.reserved_ms;
-  for (const QueryVariant& v : accuracy_candidates(accuracy_base_variant(scene)))
+  for (const QueryVariant& v : accuracy_candidates(accuracy_base_variant(scene), spectra.near != nullptr))
     key << "\n--\n" << tuning_key_for(device, v, spectra, options.budget_ms, options.margin, scene.loop_rate_hz).text();
   return key.str();
 }

@@ -32,6 +32,7 @@ std::string accuracy_report_to_json(const AccuracyReport& r) {
                           {"interpolation", s.variant.interpolation == Interpolation::trilinear ? "trilinear" : "tricubic"},
                           {"exact_product", s.variant.rotation == RotationMethod::exact_product},
                           {"background", s.variant.product_update == ProductUpdate::background},
+                          {"near_far", s.variant.near_far},
                           {"modes", s.modes},
                           {"fits", s.fits},
                           {"frame_ms_p50", s.frame_ms_p50},
@@ -64,6 +65,7 @@ AccuracyReport accuracy_report_from_json(const std::string& text, const QueryVar
         s.variant.rotation = RotationMethod::exact_product;
         s.variant.product_update = e.at("background").get<bool>() ? ProductUpdate::background : ProductUpdate::each_query;
       }
+      s.variant.near_far = e.value("near_far", false);
       s.name = variant_name(s.variant);
       if (s.name != e.at("name").get<std::string>()) throw Error("strategy '" + s.name + "' does not match its name");
       s.modes = e.at("modes").get<std::size_t>();

@@ -51,9 +51,10 @@ inline Pose pose_at(const Eigen::Vector3d& t, double deg = 0, const Eigen::Vecto
   return p;
 }
 
-inline AssemblyPair build_small_pair(const Scene& scene, double oversampling = 2) {
+inline AssemblyPair build_small_pair(const Scene& scene, double oversampling = 2, bool near_field = false) {
   const FftLibrary fft;
   PairOptions options;
+  options.near_field = near_field;
   options.use_cache = false;
   options.note = [](const std::string&) {};
   options.spectrum.oversampling = oversampling;

@@ -16,7 +16,7 @@ TEST_CASE("accuracy cli: strategies, the choice, and the background product whil
   INFO(c.output);
   REQUIRE(c.status == 0);
   const nlohmann::json j = nlohmann::json::parse(c.output);
-  REQUIRE(j["strategies"].size() == 3);
+  REQUIRE(j["strategies"].size() == 4);
   bool named = false;
   for (const auto& s : j["strategies"]) {
     named |= s["strategy"] == j["lowest_error_within_budget"];
@@ -24,17 +24,20 @@ TEST_CASE("accuracy cli: strategies, the choice, and the background product whil
   }
   CHECK(named);
   CHECK(j["why"].get<std::string>().find(j["lowest_error_within_budget"].get<std::string>()) != std::string::npos);
-  const nlohmann::json& product = j["strategies"][2];
-  REQUIRE(product["strategy"] == "6dof energy force torque exact-product background");
-  const nlohmann::json& turning = product["while_turning"];
-  REQUIRE(turning.size() == 2);
-  CHECK(turning[0]["deg_per_s"] == 0.0);
-  CHECK(turning[1]["deg_per_s"] == 90.0);
-  // Held still, the background product is made for the very rotation queried: the same
-  // as the product made for each pose, to float rounding.
-  for (const char* q : {"energy_error", "force_error", "torque_error"}) {
-    CAPTURE(q);
-    CHECK(turning[0][q].get<double>() == doctest::Approx(turning[0]["at_rest"][q].get<double>()).epsilon(1e-3));
-    CHECK(turning[1][q].get<double>() >= 0);
+  REQUIRE(j["strategies"][2]["strategy"] == "6dof energy force torque exact-product background");
+  REQUIRE(j["strategies"][3]["strategy"] == "6dof energy force torque exact-product background near-far");
+  for (int i : {2, 3}) {
+    const nlohmann::json& turning = j["strategies"][i]["while_turning"];
+    CAPTURE(i);
+    REQUIRE(turning.size() == 2);
+    CHECK(turning[0]["deg_per_s"] == 0.0);
+    CHECK(turning[1]["deg_per_s"] == 90.0);
+    // Held still, the background product (and near part) is made for the very pose
+    // queried: the same as made for each pose, to float rounding.
+    for (const char* q : {"energy_error", "force_error", "torque_error"}) {
+      CAPTURE(q);
+      CHECK(turning[0][q].get<double>() == doctest::Approx(turning[0]["at_rest"][q].get<double>()).epsilon(1e-3));
+      CHECK(turning[1][q].get<double>() >= 0);
+    }
   }
 }

@@ -1,10 +1,11 @@
 // The exact-rotation strategy (engine/query/rotated_product_query.h, docs/design.md "Exact
-// rotation") and the consistency of what both 6-DOF strategies render:
+// rotation") and the consistency of what the 6-DOF strategies render:
 // - at every mode and off-lattice rotations the product engine equals a double-precision
 //   sum over part 2's exact rotated spectrum, the DTFT of its samples summed directly;
 // - on the shipped parts (coarsened), at aligned, contact, generic and free poses, the
-//   force and torque of the interpolated (tricubic) and exact strategies are the central
-//   differences of the same engine's energy;
+//   force and torque of the interpolated (tricubic) and exact strategies, and of the exact
+//   one split into near and far parts, are the central differences of the same engine's
+//   energy;
 // - the background product update, at a held pose, ends at the each-query values.
 #include <Eigen/Geometry>
 #include <cmath>
@@ -170,7 +171,7 @@ TEST_CASE("exact rotation: force and torque are the energy's central differences
     if (scene.motion == Motion::translation || !scene.outputs.torque) continue;
     if (scene.grid.spacing) *scene.grid.spacing *= 2;
     if (scene.grid.resolution) *scene.grid.resolution /= 2;
-    const AssemblyPair pair = test::build_small_pair(scene);
+    const AssemblyPair pair = test::build_small_pair(scene, 2, true);
     const Pose assembled = scene.assembled_pose
                                ? *scene.assembled_pose
                                : trajectory_pose(scene.trajectory, scene.trajectory.keyframes.back().time_s);
@@ -191,8 +192,10 @@ TEST_CASE("exact rotation: force and torque are the energy's central differences
     poses.push_back(free);
 
     QueryVariant interpolated = query_variant_for(scene, Interpolation::tricubic);
-    for (const bool exact : {false, true}) {
-      const QueryVariant v = exact ? exact_variant() : interpolated;
+    QueryVariant split = exact_variant();
+    split.near_far = true;
+    for (const int strategy : {0, 1, 2}) {  // interpolated, exact, exact split into near and far
+        const QueryVariant v = strategy == 0 ? interpolated : strategy == 1 ? exact_variant() : split;
       auto engine = make_query_engine(test::test_context(), pair.spectra, v, test::test_program_cache());
       for (const std::size_t modes : {std::size_t(4096), std::size_t(32768)}) {
         engine->set_modes(modes);
@@ -210,7 +213,7 @@ TEST_CASE("exact rotation: force and torque are the energy's central differences
         double t_gap = 0, f_gap = 0;
         for (std::size_t n = 0; n < poses.size(); ++n) {
           CAPTURE(file.filename().string());
-          CAPTURE(exact);
+          CAPTURE(strategy);
           CAPTURE(modes);
           CAPTURE(n);
           const double tg = (d[n].at.torque - d[n].torque).norm() / t_scale;
@@ -222,14 +225,15 @@ TEST_CASE("exact rotation: force and torque are the energy's central differences
           CHECK(tg < 5e-3);
           CHECK(fg < 5e-3);
         }
-        table << "  " << file.filename().string() << (exact ? "  exact       " : "  interpolated") << "  m' " << modes
+        table << "  " << file.filename().string()
+              << (strategy == 2 ? "  near-far    " : strategy == 1 ? "  exact       " : "  interpolated") << "  m' " << modes
               << "  T " << t_gap << "  F " << f_gap << "\n";
         ++checked;
       }
     }
   }
   MESSAGE(table.str());
-  CHECK(checked >= 12);  // three 6-DOF scenes, two strategies, two m'
+  CHECK(checked >= 18);  // three 6-DOF scenes, three strategies, two m'
 }
 
 TEST_CASE("exact rotation: the background product update ends at the each-query values at a held pose") {

@@ -142,7 +142,7 @@ TEST_CASE("query strategy: snapfit run starts safe, measures the strategies afte
   const nlohmann::json s1 = read_json(out.path / "first" / "summary.json")["query_strategy"];
   CHECK(s1["chosen_by"] == "safe start (the strategies are measured after the loop)");
   CHECK(s1["name"] == "6dof energy force torque tricubic");
-  REQUIRE(s1["candidates"].size() == 3);
+  REQUIRE(s1["candidates"].size() == 4);  // tricubic, trilinear, exact product, its near-far split
   // The rule, checked from the JSON alone.
   std::size_t best = 0;
   const auto error = [&](const nlohmann::json& c) {

@@ -16,6 +16,7 @@ std::string variant_name(const QueryVariant& v) {
     name += v.product_update == ProductUpdate::background ? " exact-product background" : " exact-product each-query";
   else
     name += v.interpolation == Interpolation::tricubic ? " tricubic" : " trilinear";
+  if (v.near_far) name += " near-far";
   return name;
 }
 

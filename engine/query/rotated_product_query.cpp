@@ -15,6 +15,7 @@
 #include "engine/spectra/mode_order.h"
 #include "engine/query/query_launch.h"
 #include "engine/query/rotated_product.h"
+#include "engine/query/so3_maps.h"
 #include "engine/query/translation_lines.h"
 #include "snapfit/error.h"
 
@@ -25,36 +26,6 @@ namespace {
 constexpr double kSameRotation = 1e-9;
 // The worker extrapolates the rotation by at most this angle (radians).
 constexpr double kMaxLead = 0.2;
-
-// theta with exp([theta]x) = R (|theta| <= pi).
-Eigen::Vector3d rotation_log(const Eigen::Matrix3d& R) {
-  Eigen::Quaterniond q(R);
-  if (q.w() < 0) q.coeffs() = -q.coeffs();
-  const double s = q.vec().norm();
-  if (s < 1e-12) return 2.0 * q.vec();
-  return (2.0 * std::atan2(s, q.w()) / s) * q.vec();
-}
-
-Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
-
-// The inverse of SO(3)'s left Jacobian: d log(exp(theta e) exp(v)) / dtheta = J_l(v)^-1 e.
-Eigen::Matrix3d left_jacobian_inverse(const Eigen::Vector3d& v) {
-  const double a = v.norm();
-  const Eigen::Matrix3d V = cross_matrix(v);
-  const double c =
-      a < 1e-4 ? 1.0 / 12.0 + a * a / 720.0 : (1.0 - a * std::sin(a) / (2.0 * (1.0 - std::cos(a)))) / (a * a);
-  return Eigen::Matrix3d::Identity() - 0.5 * V + c * V * V;
-}
-
-Eigen::Matrix3d rotation_exp(const Eigen::Vector3d& v) {
-  const double a = v.norm();
-  if (a < 1e-15) return Eigen::Matrix3d::Identity();
-  return Eigen::AngleAxisd(a, v / a).toRotationMatrix();
-}
 
 class RotatedProductQuery final : public QueryEngine, private QueryHooks {
  public:

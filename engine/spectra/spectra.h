@@ -12,6 +12,7 @@
 #include <array>
 #include <complex>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "engine/fields/descriptors.h"
@@ -47,12 +48,17 @@ struct PartSpectrum {
   int sample_parity = 0;
 };
 
+struct NearField;  // engine/query/near_field.h
+
 struct PairSpectra {
   std::array<std::size_t, 3> dims{};                 // common FFT grid
   double spacing = 0;                                // h, scene units
   Eigen::Vector3d length = Eigen::Vector3d::Zero();  // L_a = dims_a * h
   PartSpectrum part1, part2;
   double seconds = 0;
+  // The near part of the split sum (QueryVariant::near_far), when the pair was made with
+  // one (pipeline/assembly_pair.h PairOptions::near_field); not cached with the spectra.
+  std::shared_ptr<const NearField> near;
   // Frequency of FFT index k along axis a (negative for k > dims/2): w = k' / L_a.
   double frequency(int axis, std::size_t k) const;
   // +1 when the terms of the correlation sum at w and -w are complex conjugates (both

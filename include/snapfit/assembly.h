@@ -29,6 +29,9 @@ struct AssemblyOptions {
   bool use_cache = true;      // field, spectra and program caches (under $SNAPFIT_CACHE_DIR)
   double oversampling = 2.0;  // zero padding in space, so the spectra interpolate at rotated frequencies
   bool progress = false;      // progress bars on stderr while fields are computed
+  // Also the near field of the near-far strategy (QueryVariant::near_far) for a 6-DOF
+  // scene: seconds and tens of MB more, so only where that strategy may run.
+  bool near_field = false;
   std::function<void(const std::string&)> note;  // cache and device messages; default: stderr
 };
 

@@ -37,7 +37,8 @@ struct JobRequest {
   bool retune = false;    // measure m' and the strategies' errors even when their files match
   // The query strategy: "auto" (the lowest error of the rendered wrench that fits the
   // frame, most_accurate_strategy in tuning.h; tricubic with a fixed m'), "tricubic",
-  // "trilinear" or "exact-product".
+  // "trilinear", "exact-product" or "near-far" (the exact product's sum split into near and
+  // far parts, QueryVariant::near_far).
   std::string strategy = "auto";
   bool simulated_time = false;  // the loop on simulated time: deterministic, no timing meaning
   LoopWait loop_wait = LoopWait::spin;

@@ -69,6 +69,12 @@ struct QueryVariant {
   // product costs time in proportion to the m' in use, its buffers memory in proportion
   // to this.
   std::size_t product_modes = 0;
+  // Split the sum as Ewald summation splits one (docs/design.md "Near and far"): this
+  // variant's sum over part 1's spectrum smoothed by a Gaussian (the far part, which needs
+  // few modes), plus the rest summed exactly in space over part 2's samples (the near
+  // part), made before each query or on a worker thread that follows the queried poses as
+  // product_update says. Needs spectra made with a near field (6-DOF, grid sources).
+  bool near_far = false;
 };
 
 // The variant in words: "6dof energy force torque tricubic", "translation energy force",
