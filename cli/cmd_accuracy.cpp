@@ -13,6 +13,9 @@
 #include "cli/commands.h"
 #include "cli/parse_options.h"
 #include "report/accuracy_json.h"
+#include "report/chart_spec.h"
+#include "report/strategy_chart.h"
+#include "report/web_assets.h"
 #include "snapfit/accuracy.h"
 #include "snapfit/assembly.h"
 #include "snapfit/devices.h"
@@ -31,6 +34,7 @@ struct AccuracyCommandOptions {
   std::size_t repetitions = 400;
   bool retune = false;
   std::vector<double> turning_deg_per_s = {0, 30, 90, 180};
+  std::string html;  // a chart page of the strategies' errors against their frame time
 };
 
 // The report as one JSON object: the loop's strategy at the top level, every strategy
@@ -66,6 +70,7 @@ void run_accuracy(const AccuracyCommandOptions& opt) {
   if (opt.poses < 2) throw Error("--poses: at least 2");
   for (double w : opt.turning_deg_per_s)
     if (!(std::isfinite(w) && w >= 0)) throw Error("--turning: speeds must be >= 0 deg/s");
+  if (!opt.html.empty()) web_asset("chart_page.js");  // a build without the web report fails before measuring
   const auto note = [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; };
   AssemblyOptions assembly_options;
   assembly_options.device = opt.device;
@@ -85,7 +90,17 @@ void run_accuracy(const AccuracyCommandOptions& opt) {
   request.other_devices = !names_device(opt.device);
   request.note = note;
   request.progress = pass_progress_bars();
-  std::cout << accuracy_json(opt, scene, budget, measure_budget_accuracy(assembly, request)).dump() << std::endl;
+  const BudgetAccuracy measured = measure_budget_accuracy(assembly, request);
+  if (!opt.html.empty()) {
+    const AccuracyReport& r = measured.report;
+    write_chart_page(opt.html, "snapfit accuracy: " + scene.name,
+                     {"device " + measured.device + ", " + std::to_string(r.poses) +
+                          " poses along the trajectory, against the exact-rotation product over every mode",
+                      "chosen: " + r.strategies[r.best].name + " (" + r.why + ")"},
+                     {strategy_chart(r.strategies, budget)});
+    std::cerr << "chart page " << opt.html << "\n";
+  }
+  std::cout << accuracy_json(opt, scene, budget, measured).dump() << std::endl;
 }
 
 }  // namespace
@@ -107,6 +122,8 @@ void add_accuracy_command(CLI::App& app) {
                   "Angular speeds (deg/s) at which the exact product with background updates is also measured "
                   "while part 2 turns (0.2 s at the loop rate from 6 poses)")
       ->delimiter(',');
+  cmd->add_option("--html", opt->html,
+                  "Also write a self-contained page charting each strategy's error against its frame time");
   cmd->callback([opt] { run_accuracy(*opt); });
 }
 

@@ -84,7 +84,9 @@ int main(int argc, char** argv) {
     std::string device_spec, out_dir = "results/bench_near_far", scene_path = "scenes/default.json";
     long pose_count = 8;
     std::vector<double> widths{1.0, 1.5, 2.0, 3.0};   // a, in grid spacings
-    std::vector<int> kernel_widths{3, 4, 5};
+    std::vector<int> kernel_widths{4, 5};
+    double margin = NearFieldOptions{}.margin_widths;
+    int rotation_width = SpectrumOptions{}.exact_rotation_width;
     CLI::App app{"The energy split as Ewald summation splits a sum: a smooth far part at m' modes, an exact near part "
                  "in space",
                  "bench_near_far"};
@@ -93,6 +95,11 @@ int main(int argc, char** argv) {
     app.add_option("--poses", pose_count, "poses along the trajectory")->check(CLI::Range(1, 10000));
     app.add_option("--widths", widths, "Gaussian widths a, in grid spacings");
     app.add_option("--kernel-widths", kernel_widths, "the near part's kernel widths (taps per axis)");
+    app.add_option("--rotation-width", rotation_width,
+                   "the exact rotation's kernel width (the reference's part 2 spectrum: 5 ~1e-4, 7 ~1e-6)")
+        ->check(CLI::Range(2, 15));
+    app.add_option("--margin", margin, "fine nodes kept beyond part 1's samples, in widths a (100: the whole box)")
+        ->check(CLI::PositiveNumber);
     bench::parse(app, argc, argv);
     if (quick) pose_count = 2, widths = {1.5, 3.0};
     const std::string load_start = bench::read_loadavg();
@@ -101,7 +108,9 @@ int main(int argc, char** argv) {
     const Device device = select_device(device_spec_from(device_spec));
     const FftLibrary fft;
     const ComputeContext ctx = make_compute_context(device);
-    const AssemblyPair pair = build_assembly_pair(scene, ctx, fft);
+    PairOptions pair_options;
+    pair_options.spectrum.exact_rotation_width = rotation_width;
+    const AssemblyPair pair = build_assembly_pair(scene, ctx, fft, pair_options);
     const PairSpectra& sp = pair.spectra;
     const std::vector<Pose> poses = accuracy_poses(scene, std::size_t(pose_count));
     const GridSpec& grid2 = pair.fields2.fields.grid;
@@ -142,7 +151,6 @@ int main(int argc, char** argv) {
       std::cerr << "\rreference pose " << p + 1 << "/" << poses.size() << std::flush;
     }
     std::cerr << "\n";
-
     nlohmann::json rows = nlohmann::json::array();
     std::cout << "\n| a (h) | m' | far truncation E / F / T | kernel width | samples evaluated (median) | "
                  "near ms (1 thread, median) | near vs its modes E / F / T | split E / F / T | split, far part tricubic E / F / T |\n"
@@ -170,7 +178,7 @@ int main(int argc, char** argv) {
         NearFieldOptions options;
         options.width_spacings = a_h;
         options.kernel_width = kw;
-        if (getenv("NF_MARGIN")) options.margin_widths = atof(getenv("NF_MARGIN"));
+        options.margin_widths = margin;
         const NearField near_field = build_near_field(fft, ctx, sp, grid2, rho2, options);
         std::cerr << "a " << a_h << " h, kernel width " << kw << ": " << near_field.dims[0] << " x "
                   << near_field.dims[1] << " x " << near_field.dims[2] << " fine nodes, "

@@ -12,6 +12,7 @@
 #include "report/loop_display.h"
 #include "report/page_encoding.h"
 #include "report/part_contact.h"
+#include "report/strategy_chart.h"
 #include "scheduler/haptic_setup.h"
 #include "snapfit/error.h"
 
@@ -279,6 +280,9 @@ nlohmann::json run_page_data(const JobRecord& run, const std::vector<PageFigure>
       {"timeline", nullptr},
       {"tuning_chart",
        run.tuning_key.empty() ? nlohmann::json(nullptr) : chart_json(tuning_chart(run.tuning, run.loop_device.name))},
+      {"strategy_chart", run.strategies && run.strategies->strategies.size() > 1
+                             ? chart_json(strategy_chart(run.strategies->strategies, scene.frame_budget_ms))
+                             : nlohmann::json(nullptr)},
       {"slices", slices},
       {"notes", notes}};
   if (run.session && !run.session->loop.log.empty()) {

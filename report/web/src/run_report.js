@@ -1,5 +1,6 @@
 // report.html of `snapfit run` (report/run_page.h writes the data block):
-//   {kind: "run", title, summary, parts, start_pose, playback, timeline, tuning_chart, slices, notes}
+//   {kind: "run", title, summary, parts, start_pose, playback, timeline, tuning_chart, strategy_chart, slices,
+//    notes}
 // The 3D view plays part 2's recorded poses with the force and torque sent to the device;
 // the time charts share a cursor and show the playback time; a click on one seeks there.
 // Sets window.snapfitReport (ready, range, setTime, time, partScreenBox) for tests.
@@ -246,6 +247,12 @@ function main() {
       charts.push(chart);
       entries.push({ chart, container });
     });
+  }
+  if (data.strategy_chart) {
+    root.append(element('h2', { text: 'Query strategies: error against frame time' }));
+    const strategies = element('div', { class: 'chart', id: 'strategy-chart' });
+    root.append(strategies);
+    entries.push({ chart: createChart(strategies, data.strategy_chart, { height: 320 }), container: strategies });
   }
   root.append(element('h2', { text: "Tuning of m'" }));
   if (data.tuning_chart) {
