@@ -2,11 +2,7 @@
 // the exact-rotation product (engine/query/rotated_product.h) are the lowest |w| (the engine's
 // mode order, a low-pass ball) or the largest per-mode weights. At each pose along the
 // scene's trajectory the product is made for the pose's own rotation over every mode and
-// read back; then, in double on the host, each mode's term (kernels/pose_query.cl
-// rotated_lines at dtheta = 0):
-//   f_k = W_k e^{i phi_k},  phi_k = 2 pi w_k . tau,  tau = t + R c2 - c1,
-//   E_k = -Re f_k,  F_k = Re(2 pi i f_k) w_k,  T_k = Re(G_k e^{i phi_k}),
-//   G_k = D_k + 2 pi i W_k (R c2 x w_k),
+// read back; then, in double on the host, each mode's term (perf/product_modes.h),
 // summed over each selection at each m'. Selections: "lowest frequency" (lowest |w|);
 // "largest product" (largest |W_k|: the energy's error is at most the sum of the dropped
 // |W_k|); "largest torque weight" (largest |G_k|, the same for the torque); "largest
@@ -23,12 +19,10 @@
 #include <numeric>
 
 #include "engine/query/query_engine.h"
-#include "engine/query/rotated_product.h"
-#include "engine/query/translation_lines.h"
 #include "engine/runtime/device.h"
-#include "engine/spectra/mode_order.h"
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
+#include "perf/product_modes.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/accuracy.h"
 
@@ -47,30 +41,19 @@ constexpr int kSelections = 4;
 const char* const kSelectionNames[kSelections] = {"lowest frequency", "largest product", "largest torque weight",
                                                   "largest normalised sum"};
 
-// Each mode's term at the pose (the product's node `node[i]` of `host`, frequency w[i]),
-// their sums E, F, T, and each mode's score for the selections after the first.
-void mode_terms(const std::vector<float>& host, const std::vector<std::size_t>& node,
-                const std::vector<Eigen::Vector3d>& w, const Eigen::Vector3d& Rc2, const Eigen::Vector3d& tau,
-                Terms& terms, std::vector<double> (&score)[kSelections], double& E, Eigen::Vector3d& F,
-                Eigen::Vector3d& T) {
+// Each mode's term into `terms`, their sums E, F, T, and each mode's score for the
+// selections after the first.
+void mode_terms(const std::vector<bench::ModeTerm>& modes, const std::vector<Eigen::Vector3d>& w, Terms& terms,
+                std::vector<double> (&score)[kSelections], double& E, Eigen::Vector3d& F, Eigen::Vector3d& T) {
   double sums[3] = {0, 0, 0};
-  const std::size_t M = node.size();
+  const std::size_t M = modes.size();
   for (std::size_t i = 0; i < M; ++i) {
-    const float* n = &host[8 * node[i]];
-    const Cd W(n[0], n[1]);
-    const Cd two_pi_i_W = Cd(0, 2 * M_PI) * W;
-    const Eigen::Vector3d a = Rc2.cross(w[i]);
-    const Cd G[3] = {Cd(n[2], n[3]) + two_pi_i_W * a.x(), Cd(n[4], n[5]) + two_pi_i_W * a.y(),
-                     Cd(n[6], n[7]) + two_pi_i_W * a.z()};
-    const double phi = 2 * M_PI * w[i].dot(tau);
-    const Cd e(std::cos(phi), std::sin(phi));
-    terms.e[i] = -(W * e).real();
-    terms.f[i] = (two_pi_i_W * e).real() * w[i];
-    terms.t[i] = Eigen::Vector3d((G[0] * e).real(), (G[1] * e).real(), (G[2] * e).real());
-    E += terms.e[i], F += terms.f[i], T += terms.t[i];
-    score[1][i] = std::abs(W);
-    score[2][i] = std::sqrt(std::norm(G[0]) + std::norm(G[1]) + std::norm(G[2]));
-    score[3][i] = std::abs(W) * w[i].norm();  // the force's weight, for the sum below
+    const bench::ModeTerm& m = modes[i];
+    terms.e[i] = m.e, terms.f[i] = m.f, terms.t[i] = m.t;
+    E += m.e, F += m.f, T += m.t;
+    score[1][i] = std::abs(m.W);
+    score[2][i] = std::sqrt(std::norm(m.G[0]) + std::norm(m.G[1]) + std::norm(m.G[2]));
+    score[3][i] = std::abs(m.W) * w[i].norm();  // the force's weight, for the sum below
     sums[0] += score[1][i], sums[1] += score[2][i], sums[2] += score[3][i];
   }
   for (std::size_t i = 0; i < M; ++i)
@@ -128,24 +111,12 @@ int main(int argc, char** argv) {
     const PairSpectra& sp = pair.spectra;
     const std::vector<Pose> poses = accuracy_poses(scene, std::size_t(pose_count));
 
-    const std::vector<std::size_t> order = mode_order(sp);
-    const std::size_t M = order.size();
+    bench::ProductModes product(ctx, sp);
+    const std::size_t M = product.size();
     std::vector<std::size_t> levels;
     for (std::size_t m = 4096; m <= (quick ? 16384u : 262144u) && m < M; m *= 2) levels.push_back(m);
+    std::vector<bench::ModeTerm> modes;
 
-    // The product over every mode, unfolded, so that each mode's node holds its own term.
-    const TranslationLines lines = build_translation_lines(sp.dims, order, false, M);
-    RotatedProduct product(ctx, sp, lines);
-    cl::Buffer box(ctx.context, CL_MEM_READ_WRITE, product.box_bytes());
-    cl::CommandQueue queue(ctx.context, ctx.device.device, 0);
-    std::vector<float> host(product.box_bytes() / sizeof(float));
-    std::vector<Eigen::Vector3d> w(M);
-    std::vector<std::size_t> node(M);
-    for (std::size_t i = 0; i < M; ++i) {
-      const std::array<int, 3> k = signed_node(sp.dims, order[i]);
-      w[i] = Eigen::Vector3d(k[0] / sp.length.x(), k[1] / sp.length.y(), k[2] / sp.length.z());
-      node[i] = box_node(lines, k[0], k[1], k[2]);
-    }
     // The engine's all-mode exact query, to check the host sums against.
     auto engine = make_query_engine(
         ctx, sp, bench::exact_reference_variant(query_variant_for(scene, Interpolation::tricubic), M));
@@ -160,14 +131,10 @@ int main(int argc, char** argv) {
     for (auto& s : score) s.resize(M);
     std::vector<std::uint32_t> idx(M);
     for (std::size_t p = 0; p < poses.size(); ++p) {
-      const Eigen::Matrix3d R = poses[p].rotation.normalized().toRotationMatrix();
-      product.compute(queue, R, M, box);
-      queue.enqueueReadBuffer(box, CL_TRUE, 0, product.box_bytes(), host.data());
-      const Eigen::Vector3d tau = poses[p].translation + R * sp.part2.centre - sp.part1.centre;
-      const Eigen::Vector3d Rc2 = R * sp.part2.centre;
+      product.terms(poses[p], modes);
       double E = 0;
       Eigen::Vector3d F = Eigen::Vector3d::Zero(), T = Eigen::Vector3d::Zero();
-      mode_terms(host, node, w, Rc2, tau, terms, score, E, F, T);
+      mode_terms(modes, product.frequencies(), terms, score, E, F, T);
       const QueryResult ref = engine->query(poses[p]);
       const double diff[3] = {std::abs(ref.energy - E), (ref.force - F).norm(), (ref.torque - T).norm()},
                    size[3] = {std::abs(E), F.norm(), T.norm()};

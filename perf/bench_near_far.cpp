@@ -1,7 +1,7 @@
 // The energy split as Ewald summation splits a sum (engine/query/near_field.h): what it
 // costs and what it buys. Per pose along the trajectory, in double on the host:
-//   - the per-mode terms of the exact-rotation product over every mode (as
-//     perf/bench_mode_selection), which give the reference E, F, T, the split's exact near
+//   - the per-mode terms of the exact-rotation product over every mode
+//     (perf/product_modes.h), which give the reference E, F, T, the split's exact near
 //     part sum_k (1 - G) W_k e^{i phi_k} and its far part's truncation at each m';
 //   - the near part in space (near_wrench), its time on one thread and its error against
 //     its own modes;
@@ -18,13 +18,11 @@
 #include <numeric>
 
 #include "engine/query/query_engine.h"
-#include "engine/query/rotated_product.h"
-#include "engine/query/translation_lines.h"
 #include "engine/runtime/device.h"
 #include "engine/query/near_field.h"
-#include "engine/spectra/mode_order.h"
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
+#include "perf/product_modes.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/accuracy.h"
 
@@ -41,31 +39,6 @@ struct Wrench {
     return *this;
   }
 };
-
-// The per-mode terms of the all-mode exact-rotation product at one pose (as
-// perf/bench_mode_selection), folded into running sums by the caller.
-struct ModeTerms {
-  std::vector<Wrench> term;
-};
-
-void mode_terms(const std::vector<float>& host, const std::vector<std::size_t>& node,
-                const std::vector<Eigen::Vector3d>& w, const Eigen::Vector3d& Rc2, const Eigen::Vector3d& tau,
-                ModeTerms& out) {
-  for (std::size_t i = 0; i < node.size(); ++i) {
-    const float* n = &host[8 * node[i]];
-    const Cd W(n[0], n[1]);
-    const Cd two_pi_i_W = Cd(0, 2 * M_PI) * W;
-    const Eigen::Vector3d a = Rc2.cross(w[i]);
-    const Cd G[3] = {Cd(n[2], n[3]) + two_pi_i_W * a.x(), Cd(n[4], n[5]) + two_pi_i_W * a.y(),
-                     Cd(n[6], n[7]) + two_pi_i_W * a.z()};
-    const double phi = 2 * M_PI * w[i].dot(tau);
-    const Cd e(std::cos(phi), std::sin(phi));
-    Wrench& t = out.term[i];
-    t.e = -(W * e).real();
-    t.f = (two_pi_i_W * e).real() * w[i];
-    t.t = Eigen::Vector3d((G[0] * e).real(), (G[1] * e).real(), (G[2] * e).real());
-  }
-}
 
 struct ErrorSums {
   double d[3] = {0, 0, 0}, r[3] = {0, 0, 0};
@@ -117,37 +90,24 @@ int main(int argc, char** argv) {
     std::vector<Complex> rho2;
     for (float v : affinity_imaginary(pair.fields2.fields)) rho2.emplace_back(0.0f, v);
 
-    const std::vector<std::size_t> order = mode_order(sp);
-    const std::size_t M = order.size();
+    bench::ProductModes product(ctx, sp);
+    const std::size_t M = product.size();
+    const std::vector<Eigen::Vector3d>& w = product.frequencies();
     std::vector<std::size_t> levels;
     for (std::size_t m = 4096; m <= 131072 && m < M; m *= 2) levels.push_back(m);
-
-    const TranslationLines lines = build_translation_lines(sp.dims, order, false, M);
-    RotatedProduct product(ctx, sp, lines);
-    cl::Buffer box(ctx.context, CL_MEM_READ_WRITE, product.box_bytes());
-    cl::CommandQueue queue(ctx.context, ctx.device.device, 0);
-    std::vector<float> host(product.box_bytes() / sizeof(float));
-    std::vector<Eigen::Vector3d> w(M);
-    std::vector<std::size_t> node(M);
-    for (std::size_t i = 0; i < M; ++i) {
-      const std::array<int, 3> k = signed_node(sp.dims, order[i]);
-      w[i] = Eigen::Vector3d(k[0] / sp.length.x(), k[1] / sp.length.y(), k[2] / sp.length.z());
-      node[i] = box_node(lines, k[0], k[1], k[2]);
-    }
     std::cout << "scene " << scene_path << ": FFT box " << sp.dims[0] << " x " << sp.dims[1] << " x " << sp.dims[2]
               << " (" << M << " modes), h " << sp.spacing << ", part 2 samples " << rho2.size() << "\n";
 
     // Per pose: every mode's term (the reference and the split's exact parts).
-    std::vector<ModeTerms> terms(poses.size());
+    std::vector<std::vector<Wrench>> terms(poses.size());
     std::vector<Wrench> reference(poses.size());
+    std::vector<bench::ModeTerm> modes;
     for (std::size_t p = 0; p < poses.size(); ++p) {
-      const Eigen::Matrix3d R = poses[p].rotation.normalized().toRotationMatrix();
-      product.compute(queue, R, M, box);
-      queue.enqueueReadBuffer(box, CL_TRUE, 0, product.box_bytes(), host.data());
-      const Eigen::Vector3d tau = poses[p].translation + R * sp.part2.centre - sp.part1.centre;
-      terms[p].term.resize(M);
-      mode_terms(host, node, w, R * sp.part2.centre, tau, terms[p]);
-      for (const Wrench& t : terms[p].term) reference[p] += t;
+      product.terms(poses[p], modes);
+      for (const bench::ModeTerm& m : modes) {
+        terms[p].push_back(Wrench{m.e, m.f, m.t});
+        reference[p] += terms[p].back();
+      }
       std::cerr << "\rreference pose " << p + 1 << "/" << poses.size() << std::flush;
     }
     std::cerr << "\n";
@@ -166,7 +126,7 @@ int main(int argc, char** argv) {
         Wrench far;
         std::size_t lv = 0;
         for (std::size_t i = 0; i < M; ++i) {
-          const Wrench& t = terms[p].term[i];
+          const Wrench& t = terms[p][i];
           far.e += gk[i] * t.e, far.f += gk[i] * t.f, far.t += gk[i] * t.t;
           if (lv < levels.size() && i + 1 == levels[lv]) far_at[p][lv++] = far;
         }

@@ -177,6 +177,7 @@ PairResult run_users(const Options& o, const test::CadPairInfo& info, const Scen
   scene.haptics.settle_s = 1;
   const auto start = std::chrono::steady_clock::now();
   PairOptions options;
+  options.near_field = true;  // the warm run's strategy may be the near-far split
   options.note = [](const std::string& m) { std::cerr << "  " << m << "\n"; };
   const AssemblyPair pair = build_assembly_pair(scene, ctx, fft, options);
   const Mesh& m1 = pair.part(1).mesh;
