@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -120,7 +121,15 @@ struct LiveHttpServer::State {
   std::mutex record_mutex;  // one recording written at a time
   int recordings = 0;
   std::chrono::steady_clock::time_point record_start;
+  // The POST handlers by path. A POST with no body at all (no Content-Length, not
+  // chunked: `curl -X POST URL`) is refused with 400 by the server library before
+  // routing, so these answer it first, as a POST with an empty body.
+  std::map<std::string, httplib::Server::Handler> posts;
 
+  void post(const std::string& path, httplib::Server::Handler handler) {
+    posts[path] = handler;
+    server.Post(path, std::move(handler));
+  }
   void routes();
 };
 
@@ -132,24 +141,24 @@ void LiveHttpServer::State::routes() {
   server.Get("/state", [this](const httplib::Request&, httplib::Response& res) {
     reply(res, 200, state_json(session.latest(), session.status(), bridge.stats()));
   });
-  server.Post("/device", [this](const httplib::Request& req, httplib::Response& res) {
+  post("/device", [this](const httplib::Request& req, httplib::Response& res) {
     std::string why;
     const std::optional<Pose> pose = device_pose(req.body, why);
     if (!pose) return reply(res, 400, {{"error", "POST /device: " + why}});
     session.hold_device_pose(*pose);  // a mouse's pose holds until the next
     reply(res, 200, {{"ok", true}});
   });
-  server.Post("/reset", [this](const httplib::Request&, httplib::Response& res) {
+  post("/reset", [this](const httplib::Request&, httplib::Response& res) {
     session.reset();
     reply(res, 200, {{"ok", true}});
   });
-  server.Post("/record/start", [this](const httplib::Request&, httplib::Response& res) {
+  post("/record/start", [this](const httplib::Request&, httplib::Response& res) {
     const std::lock_guard<std::mutex> lock(record_mutex);
     session.start_recording();
     record_start = std::chrono::steady_clock::now();
     reply(res, 200, {{"recording", true}});
   });
-  server.Post("/record/stop", [this](const httplib::Request&, httplib::Response& res) {
+  post("/record/stop", [this](const httplib::Request&, httplib::Response& res) {
     const std::lock_guard<std::mutex> lock(record_mutex);
     try {
       const JobResult recorded = session.stop_recording();
@@ -161,9 +170,18 @@ void LiveHttpServer::State::routes() {
       reply(res, 409, {{"error", e.what()}});
     }
   });
-  server.Post("/quit", [this](const httplib::Request&, httplib::Response& res) {
+  post("/quit", [this](const httplib::Request&, httplib::Response& res) {
     quit = true;
     reply(res, 200, {{"ok", true}});
+  });
+  server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    using Answer = httplib::Server::HandlerResponse;
+    if (req.method != "POST" || req.has_header("Content-Length") || req.has_header("Transfer-Encoding"))
+      return Answer::Unhandled;
+    const auto handler = posts.find(req.path);
+    if (handler == posts.end()) return Answer::Unhandled;
+    handler->second(req, res);
+    return Answer::Handled;
   });
 }
 

@@ -117,7 +117,7 @@ void Progress::advance(std::uint64_t n) {
   if (!lock.owns_lock() || finished_.load() || !due()) return;
   const std::uint64_t now_done = done_.load();
   next_draw_ns_.store(t + (terminal_ ? kTerminalPeriodNs : kPlainPeriodNs));
-  if (!terminal_) next_count_.store(next_tenth(now_done, total_));
+  if (!terminal_) next_count_.store(next_tenth(now_done, total_.load()));
   draw(false);
 }
 
@@ -127,13 +127,22 @@ void Progress::finish() {
   draw(true);
 }
 
+void Progress::extend_to(std::uint64_t total) {
+  std::uint64_t now = total_.load();
+  while (total > now)
+    if (total_.compare_exchange_weak(now, total)) {
+      if (!terminal_) next_count_.store(next_tenth(done_.load(), total));
+      return;
+    }
+}
+
 std::function<void(std::uint64_t)> Progress::advancer() {
   return [this](std::uint64_t n) { advance(n); };
 }
 
 void Progress::draw(bool final) {
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-  const std::string line = progress_line(label_, done_.load(), total_, elapsed, final, terminal_, rate_unit_);
+  const std::string line = progress_line(label_, done_.load(), total_.load(), elapsed, final, terminal_, rate_unit_);
   if (terminal_) {
     // Blank what is left of a longer previous line.
     const std::string pad(last_width_ > line.size() ? last_width_ - line.size() : 0, ' ');
@@ -162,6 +171,7 @@ std::function<void(const std::string&, std::uint64_t, std::uint64_t)> pass_progr
       state->bar = std::make_unique<Progress>(pass, total, out);
       state->reported = 0;
     }
+    state->bar->extend_to(total);  // a pass that found more work than it first said
     state->bar->advance(done - state->reported);
     state->reported = done;
     if (done >= total) state->bar->finish();

@@ -56,7 +56,12 @@ class Progress {
   // must outlive it.
   std::function<void(std::uint64_t)> advancer();
 
+  // The work turned out larger than first said (a tuning level measured twice): the
+  // total becomes `total` when that is more, so the bar never runs past 100 %.
+  void extend_to(std::uint64_t total);
+
   std::uint64_t done() const { return done_.load(); }
+  std::uint64_t total() const { return total_.load(); }
   bool terminal() const { return terminal_; }
 
  private:
@@ -64,7 +69,7 @@ class Progress {
   void draw(bool final);  // with mutex_ held
 
   const std::string label_;
-  const std::uint64_t total_;
+  std::atomic<std::uint64_t> total_;
   std::ostream& out_;
   const bool terminal_;
   const Clock::time_point start_;

@@ -17,9 +17,9 @@
 #include <iostream>
 #include <numeric>
 
+#include "engine/query/near_field.h"
 #include "engine/query/query_engine.h"
 #include "engine/runtime/device.h"
-#include "engine/query/near_field.h"
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
 #include "perf/product_modes.h"
@@ -56,13 +56,14 @@ int main(int argc, char** argv) {
     bool quick = false;
     std::string device_spec, out_dir = "results/bench_near_far", scene_path = "scenes/default.json";
     long pose_count = 8;
-    std::vector<double> widths{1.0, 1.5, 2.0, 3.0};   // a, in grid spacings
+    std::vector<double> widths{1.0, 1.5, 2.0, 3.0};  // a, in grid spacings
     std::vector<int> kernel_widths{4, 5};
     double margin = NearFieldOptions{}.margin_widths;
     int rotation_width = SpectrumOptions{}.exact_rotation_width;
-    CLI::App app{"The energy split as Ewald summation splits a sum: a smooth far part at m' modes, an exact near part "
-                 "in space",
-                 "bench_near_far"};
+    CLI::App app{
+        "The energy split as Ewald summation splits a sum: a smooth far part at m' modes, an exact near part "
+        "in space",
+        "bench_near_far"};
     bench::add_common_options(app, quick, device_spec, out_dir, "2 poses, two widths");
     app.add_option("--scene", scene_path, "scene");
     app.add_option("--poses", pose_count, "poses along the trajectory")->check(CLI::Range(1, 10000));
@@ -113,7 +114,8 @@ int main(int argc, char** argv) {
     std::cerr << "\n";
     nlohmann::json rows = nlohmann::json::array();
     std::cout << "\n| a (h) | m' | far truncation E / F / T | kernel width | samples evaluated (median) | "
-                 "near ms (1 thread, median) | near vs its modes E / F / T | split E / F / T | split, far part tricubic E / F / T |\n"
+                 "near ms (1 thread, median) | near vs its modes E / F / T | split E / F / T | split, far part "
+                 "tricubic E / F / T |\n"
               << "|---|---|---|---|---|---|---|---|---|\n";
     for (double a_h : widths) {
       const double a = a_h * sp.spacing;
@@ -141,9 +143,9 @@ int main(int argc, char** argv) {
         options.margin_widths = margin;
         const NearField near_field = build_near_field(fft, ctx, sp, grid2, rho2, options);
         std::cerr << "a " << a_h << " h, kernel width " << kw << ": " << near_field.dims[0] << " x "
-                  << near_field.dims[1] << " x " << near_field.dims[2] << " fine nodes, "
-                  << near_field.samples.size() << " samples of part 2, " << near_field.bytes() / 1e6 << " MB, built in "
-                  << near_field.seconds << " s\n";
+                  << near_field.dims[1] << " x " << near_field.dims[2] << " fine nodes, " << near_field.samples.size()
+                  << " samples of part 2, " << near_field.bytes() / 1e6 << " MB, built in " << near_field.seconds
+                  << " s\n";
         {
           std::vector<Wrench> near(poses.size());
           std::vector<double> ms, counts;
@@ -176,25 +178,24 @@ int main(int argc, char** argv) {
             for (int q = 0; q < 3; ++q) trunc.r[q] = split.r[q];
             std::cout << "| " << a_h << " | " << levels[lv] << " | " << bench::fixed(100 * trunc.rel(0), 2) << " / "
                       << bench::fixed(100 * trunc.rel(1), 2) << " / " << bench::fixed(100 * trunc.rel(2), 2) << " % | "
-                      << kw << " | " << bench::median(counts) << " | "
-                      << bench::fixed(bench::median(ms), 2) << " | " << bench::fixed(100 * near_err.rel(0), 3)
-                      << " / " << bench::fixed(100 * near_err.rel(1), 3) << " / "
-                      << bench::fixed(100 * near_err.rel(2), 3) << " % | " << bench::fixed(100 * split.rel(0), 2)
-                      << " / " << bench::fixed(100 * split.rel(1), 2) << " / " << bench::fixed(100 * split.rel(2), 2)
-                      << " % | " << bench::fixed(100 * split_tricubic.rel(0), 2) << " / "
-                      << bench::fixed(100 * split_tricubic.rel(1), 2) << " / "
+                      << kw << " | " << bench::median(counts) << " | " << bench::fixed(bench::median(ms), 2) << " | "
+                      << bench::fixed(100 * near_err.rel(0), 3) << " / " << bench::fixed(100 * near_err.rel(1), 3)
+                      << " / " << bench::fixed(100 * near_err.rel(2), 3) << " % | "
+                      << bench::fixed(100 * split.rel(0), 2) << " / " << bench::fixed(100 * split.rel(1), 2) << " / "
+                      << bench::fixed(100 * split.rel(2), 2) << " % | " << bench::fixed(100 * split_tricubic.rel(0), 2)
+                      << " / " << bench::fixed(100 * split_tricubic.rel(1), 2) << " / "
                       << bench::fixed(100 * split_tricubic.rel(2), 2) << " % |\n";
-            rows.push_back({{"a_spacings", a_h},
-                            {"modes", levels[lv]},
-                            {"kernel_width", kw},
-                            {"build_seconds", near_field.seconds},
-                            {"samples_evaluated_median", bench::median(counts)},
-                            {"near_ms_median", bench::median(ms)},
-                            {"near_error", {near_err.rel(0), near_err.rel(1), near_err.rel(2)}},
-                            {"far_truncation", {trunc.rel(0), trunc.rel(1), trunc.rel(2)}},
-                            {"split_error", {split.rel(0), split.rel(1), split.rel(2)}},
-                            {"split_tricubic_error",
-                             {split_tricubic.rel(0), split_tricubic.rel(1), split_tricubic.rel(2)}}});
+            rows.push_back(
+                {{"a_spacings", a_h},
+                 {"modes", levels[lv]},
+                 {"kernel_width", kw},
+                 {"build_seconds", near_field.seconds},
+                 {"samples_evaluated_median", bench::median(counts)},
+                 {"near_ms_median", bench::median(ms)},
+                 {"near_error", {near_err.rel(0), near_err.rel(1), near_err.rel(2)}},
+                 {"far_truncation", {trunc.rel(0), trunc.rel(1), trunc.rel(2)}},
+                 {"split_error", {split.rel(0), split.rel(1), split.rel(2)}},
+                 {"split_tricubic_error", {split_tricubic.rel(0), split_tricubic.rel(1), split_tricubic.rel(2)}}});
           }
         }
       }

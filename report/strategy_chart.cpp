@@ -7,9 +7,9 @@ namespace snapfit {
 
 std::string strategy_short_name(const QueryVariant& v) {
   if (v.translation_only) return "translation lines";
-  std::string name = v.rotation == RotationMethod::exact_product
-                         ? "exact product"
-                         : v.interpolation == Interpolation::tricubic ? "tricubic" : "trilinear";
+  std::string name = v.rotation == RotationMethod::exact_product  ? "exact product"
+                     : v.interpolation == Interpolation::tricubic ? "tricubic"
+                                                                  : "trilinear";
   if (v.near_far) name += ", near-far";
   return name;
 }

@@ -31,14 +31,6 @@ using Cd = std::complex<double>;
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-GridSpec small_grid(std::array<int, 3> dims, double spacing, const Vector3d& origin) {
-  GridSpec g;
-  g.dims = Eigen::Vector3i(dims[0], dims[1], dims[2]);
-  g.spacing = spacing;
-  g.origin = origin;
-  return g;
-}
-
 std::vector<Complex> random_samples(const GridSpec& g, unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<float> n(0, 1);
@@ -111,7 +103,8 @@ QueryVariant exact_variant(std::size_t product_modes = 0) {
 }  // namespace
 
 TEST_CASE("exact rotation: every mode at off-lattice rotations equals the double sum over the DTFT of part 2") {
-  const GridSpec g1 = small_grid({9, 8, 7}, 0.5, {-2.0, -1.7, -1.4}), g2 = small_grid({5, 6, 4}, 0.5, {0.3, -1.1, 0.2});
+  const GridSpec g1 = test::grid_spec({9, 8, 7}, 0.5, {-2.0, -1.7, -1.4}),
+                 g2 = test::grid_spec({5, 6, 4}, 0.5, {0.3, -1.1, 0.2});
   const auto c1 = random_samples(g1, 11), c2 = random_samples(g2, 12);
   const FftLibrary fft;
   const PairSpectra s = compute_pair_spectra(fft, test::test_context(), g1, c1, g2, c2);

@@ -25,14 +25,6 @@ namespace {
 
 using Eigen::Vector3d;
 
-GridSpec grid_of(std::array<int, 3> dims, double spacing, const Vector3d& origin) {
-  GridSpec g;
-  g.dims = Eigen::Vector3i(dims[0], dims[1], dims[2]);
-  g.spacing = spacing;
-  g.origin = origin;
-  return g;
-}
-
 // Imaginary samples (the affinity i * rho is): a smooth bump plus noise, so the residual
 // of its smoothing is neither zero nor everything.
 std::vector<Complex> samples(const GridSpec& g, unsigned seed) {
@@ -60,7 +52,8 @@ Pose pose_of(double angle, const Vector3d& axis, const Vector3d& t) {
 }
 
 struct SmallPair {
-  GridSpec g1 = grid_of({10, 9, 8}, 0.5, {-2.2, -2.0, -1.7}), g2 = grid_of({6, 7, 5}, 0.5, {-1.3, -1.4, -1.1});
+  GridSpec g1 = test::grid_spec({10, 9, 8}, 0.5, {-2.2, -2.0, -1.7}),
+           g2 = test::grid_spec({6, 7, 5}, 0.5, {-1.3, -1.4, -1.1});
   std::vector<Complex> rho1 = samples(g1, 21), rho2 = samples(g2, 22);
   PairSpectra spectra;
   SmallPair() {
@@ -138,7 +131,8 @@ TEST_CASE("near field: the far part is part 1's spectrum times G, and far plus n
   whole->set_modes(whole->max_modes());
   parts->set_modes(parts->max_modes());
   CHECK(parts->max_modes() == whole->max_modes());
-  for (const Pose& pose : {test::pose_at({0.5, 0.2, 3}, 7, {1, 1, 0}), test::pose_at({0.1, -0.3, 1.2}, 23, {0, 1, 2})}) {
+  for (const Pose& pose :
+       {test::pose_at({0.5, 0.2, 3}, 7, {1, 1, 0}), test::pose_at({0.1, -0.3, 1.2}, 23, {0, 1, 2})}) {
     const QueryResult a = whole->query(pose), b = parts->query(pose);
     REQUIRE(a.flags == query_ok);
     CHECK(b.energy == doctest::Approx(a.energy).epsilon(1e-3));

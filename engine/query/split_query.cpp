@@ -1,10 +1,9 @@
 #include "engine/query/split_query.h"
 
-#include <sched.h>
-
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <sched.h>
 #include <thread>
 
 #include "engine/query/near_field.h"
