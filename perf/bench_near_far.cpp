@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
         "The energy split as Ewald summation splits a sum: a smooth far part at m' modes, an exact near part "
         "in space",
         "bench_near_far"};
-    bench::add_common_options(app, quick, device_spec, out_dir, "2 poses, two widths");
+    bench::add_common_options(app, quick, device_spec, out_dir, "2 poses, a = 2 spacings, kernel width 5");
     app.add_option("--scene", scene_path, "scene");
     app.add_option("--poses", pose_count, "poses along the trajectory")->check(CLI::Range(1, 10000));
     app.add_option("--widths", widths, "Gaussian widths a, in grid spacings");
@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     app.add_option("--margin", margin, "fine nodes kept beyond part 1's samples, in widths a (100: the whole box)")
         ->check(CLI::PositiveNumber);
     bench::parse(app, argc, argv);
-    if (quick) pose_count = 2, widths = {1.5, 3.0};
+    if (quick) pose_count = 2, widths = {2.0}, kernel_widths = {5};
     const std::string load_start = bench::read_loadavg();
     const Scene scene = load_scene(scene_path);
     if (scene.motion == Motion::translation) throw Error("bench_near_far: the scene must be 6-DOF");
