@@ -33,6 +33,10 @@ QueryVariant named_strategy(const Scene& scene, const std::string& name) {
       throw Error("--strategy " + name + ": a translation-only scene has one strategy, the translation lines");
     return v;
   }
+  for (int part : {1, 2})
+    if (name == "near-far" && (part == 1 ? scene.part1 : scene.part2).descriptor.source == SpectrumSource::spheres)
+      throw Error("strategy 'near-far': its near part sums the parts' grid samples, and part " + std::to_string(part) +
+                  "'s descriptor.source is \"spheres\" (use \"grid\" or another strategy)");
   if (name == "trilinear") v.interpolation = Interpolation::trilinear;
   if (name == "exact-product" || name == "near-far") {
     v.rotation = RotationMethod::exact_product;
@@ -71,7 +75,9 @@ void compute_fields_and_spectra(AssemblyPair& pair, const ComputeContext& ctx, c
   PairOptions options;
   if (request.progress) options.descriptors.progress = pass_progress_bars();
   options.note = out.note;
-  options.near_field = true;  // a candidate strategy of the loop (scheduler/accuracy.h)
+  // The near-far strategy's near field, only where it may run: named, or a candidate of
+  // the measured choice (scheduler/accuracy.h); a fixed m' with "auto" runs tricubic.
+  options.near_field = request.strategy == "near-far" || (request.strategy == "auto" && !request.modes);
   for (int part = 1; part <= 2; ++part) {
     const GridSpec& grid = pair.grid(part);
     std::ostringstream line;

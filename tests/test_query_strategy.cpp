@@ -200,4 +200,15 @@ TEST_CASE("query strategy: --strategy names one, a translation-only scene has on
                                                   "--modes 2048 --simulated-time --out " + (out.path / "t").string());
   CHECK(refused.status != 0);
   CHECK(refused.output.find("translation-only scene has one strategy") != std::string::npos);
+
+  // The near-far split sums grid samples: a part whose spectrum comes from balls is named.
+  Scene balls = load_scene(std::string(SNAPFIT_SOURCE_DIR) + "/scenes/default.json");
+  balls.descriptor.kind = DescriptorKind::indicator;
+  balls.part2.descriptor.source = SpectrumSource::spheres;
+  const std::string balls_file = (out.path / "balls.json").string();
+  std::ofstream(balls_file) << scene_to_json(balls);
+  const test::Command no_near = test::run_command(cli + " run " + balls_file + " --strategy near-far --modes 2048 " +
+                                                  "--simulated-time --out " + (out.path / "b").string());
+  CHECK(no_near.status != 0);
+  CHECK(no_near.output.find("part 2's descriptor.source is \"spheres\"") != std::string::npos);
 }
