@@ -10,6 +10,7 @@
 
 #include "core/grid.h"
 #include "io/face_codec.h"
+#include "io/file_error.h"
 #include "io/import_child.h"
 #include "io/occt_shapes.h"
 #include "io/step_units.h"
@@ -20,8 +21,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kMetresPerMillimetre = 1e-3;  // OpenCASCADE gives shapes in millimetres
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem) { throw Error(path + ": " + problem); }
 
 std::string number_text(double v) {
   std::ostringstream s;
@@ -40,11 +39,11 @@ const occt::NamedSolid& pick_solid(const std::string& path, const occt::CadFile&
   if (name) {
     for (const occt::NamedSolid& s : file.solids)
       if (s.name == *name) return s;
-    fail(path, "no solid named '" + *name + "' (the file's solids: " + solid_list(file.solids) + ")");
+    file_error(path, "no solid named '" + *name + "' (the file's solids: " + solid_list(file.solids) + ")");
   }
   if (file.solids.size() > 1)
-    fail(path, "holds " + std::to_string(file.solids.size()) + " solids (" + solid_list(file.solids) +
-                   "); name the one to use (a scene part's cad.solid, mesh-info's --solid)");
+    file_error(path, "holds " + std::to_string(file.solids.size()) + " solids (" + solid_list(file.solids) +
+                         "); name the one to use (a scene part's cad.solid, mesh-info's --solid)");
   return file.solids.front();
 }
 
@@ -72,13 +71,14 @@ void check_complete(const std::string& path, CadFormat format, std::uintmax_t si
     head.erase(0, head.find_first_not_of(blank));
     const std::string end = "END-ISO-10303-21;";
     if (head.rfind("ISO-10303-21;", 0) != 0)
-      fail(path, "cannot read CAD file: not a STEP file (it does not start with ISO-10303-21;)");
+      file_error(path, "cannot read CAD file: not a STEP file (it does not start with ISO-10303-21;)");
     if (tail.size() < end.size() || tail.compare(tail.size() - end.size(), end.size(), end) != 0)
-      fail(path, "cannot read CAD file: truncated STEP file (it does not end with " + end + ")");
+      file_error(path, "cannot read CAD file: truncated STEP file (it does not end with " + end + ")");
   } else {
     // The terminate record's columns 73-80: 'T' and its sequence number, right-aligned.
     if (tail.size() < 8 || tail[tail.size() - 8] != 'T')
-      fail(path, "cannot read CAD file: truncated or not an IGES file (its last record is not a terminate record)");
+      file_error(path,
+                 "cannot read CAD file: truncated or not an IGES file (its last record is not a terminate record)");
   }
 }
 
@@ -87,7 +87,7 @@ std::string import_cad(const std::string& path, const CadImportOptions& options)
   return occt::guard_occt(path, [&] {
     if (cad_format(path) == CadFormat::step)
       if (const std::string unit = step_length_unit_problem(path); !unit.empty())
-        fail(path, "cannot read CAD file: " + unit);
+        file_error(path, "cannot read CAD file: " + unit);
     const occt::CadFile file = occt::read_cad_file(path);
     const occt::NamedSolid& chosen = pick_solid(path, file, options.solid);
     const double scale = kMetresPerMillimetre / options.metres_per_unit * options.scale;  // mm -> output units
@@ -125,7 +125,7 @@ std::string import_cad(const std::string& path, const CadImportOptions& options)
            << "; if the part should be smaller, its file's unit or the scene's \"scale\" is wrong)";
       throw Error(size.str());
     }
-    if (t.mesh.triangles.empty()) fail(path, "cannot read CAD file: the tessellation holds no triangles");
+    if (t.mesh.triangles.empty()) file_error(path, "cannot read CAD file: the tessellation holds no triangles");
     facts.faces = t.faces;
     facts.triangles = t.mesh.triangles.size();
     const occt::SolidFaces faces = occt::analytic_faces_of(chosen.solid, scale);
@@ -144,26 +144,28 @@ std::string import_cad(const std::string& path, const CadImportOptions& options)
 void check_options(const std::string& path, const CadImportOptions& o) {
   const auto positive = [&](double v, const char* what) {
     if (!(std::isfinite(v) && v > 0))
-      fail(path, std::string(what) + " must be finite and > 0 (got " + number_text(v) + ")");
+      file_error(path, std::string(what) + " must be finite and > 0 (got " + number_text(v) + ")");
   };
   positive(o.metres_per_unit, "the unit's size in metres");
   positive(o.scale, "scale");
   if (o.linear_deflection) positive(*o.linear_deflection, "the linear deflection");
   if (!(o.angular_deflection_deg > 0 && o.angular_deflection_deg <= 90))
-    fail(path, "the angular deflection must be in (0, 90] degrees (got " + number_text(o.angular_deflection_deg) + ")");
-  if (o.solid && o.solid->empty()) fail(path, "the solid's name must not be empty");
+    file_error(path,
+               "the angular deflection must be in (0, 90] degrees (got " + number_text(o.angular_deflection_deg) + ")");
+  if (o.solid && o.solid->empty()) file_error(path, "the solid's name must not be empty");
   if (!o.linear_deflection) {
     if (o.grid.spacing)
       positive(*o.grid.spacing, "the grid spacing");
     else if (!o.grid.resolution || *o.grid.resolution < 2)
-      fail(path, "a CAD part needs a linear deflection, or a grid spacing or a resolution of at least 2 to tie it to");
+      file_error(path,
+                 "a CAD part needs a linear deflection, or a grid spacing or a resolution of at least 2 to tie it to");
   }
 }
 
 }  // namespace
 
 CadMesh load_cad_mesh(const std::string& path, const CadImportOptions& options) {
-  if (!is_cad_file(path)) fail(path, "not a STEP or IGES file name (expected .step, .stp, .iges or .igs)");
+  if (!is_cad_file(path)) file_error(path, "not a STEP or IGES file name (expected .step, .stp, .iges or .igs)");
   check_options(path, options);
   const std::uintmax_t file_size = check_import_file(path);
   check_complete(path, cad_format(path), file_size);
@@ -183,7 +185,7 @@ CadMesh load_cad_mesh(const std::string& path, const CadImportOptions& options) 
   try {
     out.facts = cad_facts_from_json(bytes.substr(used));
   } catch (const Error& e) {
-    fail(path, std::string("cannot read CAD file: malformed reply from the importer: ") + e.what());
+    file_error(path, std::string("cannot read CAD file: malformed reply from the importer: ") + e.what());
   }
   return out;
 }

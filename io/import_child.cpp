@@ -12,6 +12,7 @@
 #include <system_error>
 #include <unistd.h>
 
+#include "io/file_error.h"
 #include "io/isolated_import.h"
 #include "snapfit/error.h"
 
@@ -19,8 +20,6 @@ namespace snapfit {
 namespace {
 
 namespace fs = std::filesystem;
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem) { throw Error(path + ": " + problem); }
 
 // Limits of the import child. Malformed files can make an importer allocate gigabytes
 // from a few kilobytes (fuzzed .x and .dae files in Assimp); on valid files Assimp's
@@ -41,7 +40,7 @@ std::optional<ChildLimits> import_limits(const std::string& path, std::uintmax_t
     const std::string v = env;
     const bool whole = !v.empty() && v.size() <= 9 && v.find_first_not_of("0123456789") == std::string::npos;
     if (!(v == "inprocess" || whole))
-      fail(path, "SNAPFIT_IMPORT_MEMORY_MIB must be a whole number of MiB, 0 or 'inprocess' (got '" + v + "')");
+      file_error(path, "SNAPFIT_IMPORT_MEMORY_MIB must be a whole number of MiB, 0 or 'inprocess' (got '" + v + "')");
     if (v == "inprocess" || std::stoull(v) == 0) return std::nullopt;
     limits.memory_mib = std::stoull(v);
   }
@@ -54,15 +53,15 @@ std::uintmax_t check_import_file(const std::string& path) {
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
   if (ec || !fs::exists(st)) {
-    if (ec && ec != std::errc::no_such_file_or_directory) fail(path, "cannot access file: " + ec.message());
-    fail(path, "file not found");
+    if (ec && ec != std::errc::no_such_file_or_directory) file_error(path, "cannot access file: " + ec.message());
+    file_error(path, "file not found");
   }
-  if (!fs::is_regular_file(st)) fail(path, "not a regular file");
+  if (!fs::is_regular_file(st)) file_error(path, "not a regular file");
   const auto size = fs::file_size(path, ec);
-  if (ec) fail(path, "cannot read file size: " + ec.message());
-  if (size == 0) fail(path, "file is empty");
+  if (ec) file_error(path, "cannot read file size: " + ec.message());
+  if (size == 0) file_error(path, "file is empty");
   std::ifstream probe(path, std::ios::binary);
-  if (!probe) fail(path, "file is not readable");
+  if (!probe) file_error(path, "file is not readable");
   return size;
 }
 
@@ -74,7 +73,7 @@ std::string run_import(const std::string& path, std::uintmax_t file_size, const 
     try {
       return work();
     } catch (const std::bad_alloc&) {
-      fail(path, cannot + "out of memory (std::bad_alloc)");
+      file_error(path, cannot + "out of memory (std::bad_alloc)");
     }
   }
 
@@ -85,19 +84,19 @@ std::string run_import(const std::string& path, std::uintmax_t file_size, const 
     case ChildResult::Status::error:
       throw Error(r.bytes);  // the child's snapfit::Error, unchanged
     case ChildResult::Status::exception:
-      fail(path, cannot + r.bytes);
+      file_error(path, cannot + r.bytes);
     case ChildResult::Status::out_of_memory:
-      fail(path, cannot + "the importer exceeded its memory limit of " + std::to_string(limits->memory_mib) +
-                     " MiB (SNAPFIT_IMPORT_MEMORY_MIB sets it)");
+      file_error(path, cannot + "the importer exceeded its memory limit of " + std::to_string(limits->memory_mib) +
+                           " MiB (SNAPFIT_IMPORT_MEMORY_MIB sets it)");
     case ChildResult::Status::crashed:
-      fail(path,
-           cannot + "the importer crashed (signal " + std::to_string(r.signal) + ", " + strsignal(r.signal) + ")");
+      file_error(
+          path, cannot + "the importer crashed (signal " + std::to_string(r.signal) + ", " + strsignal(r.signal) + ")");
     case ChildResult::Status::timed_out:
-      fail(path, cannot + "the importer took longer than " + std::to_string(limits->seconds) + " s");
+      file_error(path, cannot + "the importer took longer than " + std::to_string(limits->seconds) + " s");
     case ChildResult::Status::bad_reply:
       break;
   }
-  fail(path, cannot + "the importer " + r.bytes);
+  file_error(path, cannot + "the importer " + r.bytes);
 }
 
 // Vertex and triangle counts (uint64), then the vertices' doubles and the triangles'
@@ -123,7 +122,8 @@ Mesh decode_mesh(const std::string& path, std::string_view bytes, std::size_t* u
   };
   if (bytes.size() < sizeof counts || counts[0] > max || counts[1] > max ||
       (used ? bytes.size() < size() : bytes.size() != size()))
-    fail(path, "cannot read mesh: malformed reply from the importer (" + std::to_string(bytes.size()) + " bytes)");
+    file_error(path,
+               "cannot read mesh: malformed reply from the importer (" + std::to_string(bytes.size()) + " bytes)");
   Mesh m;
   m.vertices.resize(counts[0]);
   m.triangles.resize(counts[1]);

@@ -12,12 +12,11 @@
 #include <unistd.h>
 
 #include "io/atomic_write.h"
+#include "io/file_error.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem) { throw Error(path + ": " + problem); }
 
 // Indices in range and coordinates finite; otherwise the file would be garbage.
 void check_mesh(const Mesh& mesh, const std::string& path) {
@@ -25,11 +24,11 @@ void check_mesh(const Mesh& mesh, const std::string& path) {
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
     for (int k = 0; k < 3; ++k)
       if (mesh.triangles[t][k] < 0 || mesh.triangles[t][k] >= n)
-        fail(path, "cannot write: triangle " + std::to_string(t) + " refers to vertex " +
-                       std::to_string(mesh.triangles[t][k]) + " of " + std::to_string(n));
+        file_error(path, "cannot write: triangle " + std::to_string(t) + " refers to vertex " +
+                             std::to_string(mesh.triangles[t][k]) + " of " + std::to_string(n));
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
     if (!mesh.vertices[i].allFinite())
-      fail(path, "cannot write: vertex " + std::to_string(i) + " has a non-finite coordinate");
+      file_error(path, "cannot write: vertex " + std::to_string(i) + " has a non-finite coordinate");
 }
 
 // Little-endian encoders, independent of the host byte order.
@@ -48,7 +47,7 @@ void put_f32(unsigned char* p, float x) {
 void write_stl(const Mesh& mesh, const std::string& path) {
   check_mesh(mesh, path);
   if (mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max())
-    fail(path, "cannot write: too many triangles for STL");
+    file_error(path, "cannot write: too many triangles for STL");
   write_file_atomically(path, errno_status([&mesh](std::FILE* f) {
                           // The header must not start with "solid", or readers take the file for ASCII STL.
                           unsigned char head[84] = {};

@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/file_error.h"
 #include "io/import_child.h"
 #include "snapfit/error.h"
 
@@ -26,8 +27,6 @@ namespace snapfit {
 namespace {
 
 namespace fs = std::filesystem;
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem) { throw Error(path + ": " + problem); }
 
 // Whitespace-separated tokens in the first 4 KiB of a file, '#' comments skipped.
 std::vector<std::string> leading_tokens(const std::string& path, std::size_t count) {
@@ -79,7 +78,7 @@ void check_off_counts(const std::string& path, std::uintmax_t file_size) {
     std::ostringstream msg;
     msg << "cannot read mesh: OFF header declares " << vertices << " vertices and " << faces << " faces, more than the "
         << file_size << "-byte file can hold";
-    fail(path, msg.str());
+    file_error(path, msg.str());
   }
 }
 
@@ -129,11 +128,11 @@ void check_ply_complete(const std::string& path, std::uintmax_t file_size) {
       Element e;
       std::string count;
       words >> e.name >> count;
-      if (!is_count(count)) fail(path, "cannot read mesh: PLY element '" + e.name + "' has no valid count");
+      if (!is_count(count)) file_error(path, "cannot read mesh: PLY element '" + e.name + "' has no valid count");
       e.count = std::stoull(count);
       if (e.count > file_size)
-        fail(path, "cannot read mesh: PLY element '" + e.name + "' declares " + count + " entries, more than the " +
-                       std::to_string(file_size) + "-byte file can hold");
+        file_error(path, "cannot read mesh: PLY element '" + e.name + "' declares " + count +
+                             " entries, more than the " + std::to_string(file_size) + "-byte file can hold");
       elements.push_back(e);
     } else if (key == "property" && !elements.empty()) {
       std::string type;
@@ -152,7 +151,7 @@ void check_ply_complete(const std::string& path, std::uintmax_t file_size) {
       elements.back().properties.push_back(prop);
     }
   }
-  if (!ended) fail(path, "cannot read mesh: truncated PLY header (no end_header line)");
+  if (!ended) file_error(path, "cannot read mesh: truncated PLY header (no end_header line)");
   if (unknown_type) return;  // a property type not known here: leave the body to Assimp
   const bool ascii = format == "ascii";
   const bool big_endian = format == "binary_big_endian";
@@ -161,15 +160,15 @@ void check_ply_complete(const std::string& path, std::uintmax_t file_size) {
   // numOut != mNumFaces; found by fuzz/fuzz_mesh).
   const auto check_face = [&](const Element& e, unsigned long long i, unsigned long long items) {
     if (e.name == "face" && items < 3)
-      fail(path, "cannot read mesh: PLY face " + std::to_string(i) + " has " + std::to_string(items) +
-                     " vertex indices (at least 3 needed)");
+      file_error(path, "cannot read mesh: PLY face " + std::to_string(i) + " has " + std::to_string(items) +
+                           " vertex indices (at least 3 needed)");
   };
   const auto truncated = [&](const Element& e, unsigned long long i) {
-    fail(path, "cannot read mesh: truncated PLY body (element '" + e.name + "' entry " + std::to_string(i) + " of " +
-                   std::to_string(e.count) + " is missing)");
+    file_error(path, "cannot read mesh: truncated PLY body (element '" + e.name + "' entry " + std::to_string(i) +
+                         " of " + std::to_string(e.count) + " is missing)");
   };
   const std::streamoff body = in.tellg();
-  if (body < 0) fail(path, "cannot read mesh: truncated PLY header");
+  if (body < 0) file_error(path, "cannot read mesh: truncated PLY header");
   std::uintmax_t offset = static_cast<std::uintmax_t>(body);  // binary: bytes walked so far
   for (const Element& e : elements)
     for (unsigned long long i = 0; i < e.count; ++i)
@@ -213,8 +212,8 @@ void check_x_uncompressed(const std::string& path) {
   if (in.gcount() < 12 || std::string(head, 4) != "xof ") return;
   const std::string format(head + 8, 4);
   if (format == "bzip" || format == "tzip")
-    fail(path, "cannot read mesh: compressed DirectX .x files (format '" + format +
-                   "') are not supported; save it as text or binary .x");
+    file_error(path, "cannot read mesh: compressed DirectX .x files (format '" + format +
+                         "') are not supported; save it as text or binary .x");
 }
 
 // Missing, empty or unreadable files (check_import_file), and files Debian's Assimp 5.2
@@ -258,11 +257,11 @@ void append_mesh(const Walk& w, unsigned mesh_index, const Eigen::Matrix4d& tran
         std::ostringstream msg;
         msg << "face " << f << " of mesh " << mesh_index << " refers to vertex " << idx << " but the mesh has "
             << am.mNumVertices << " vertices";
-        fail(w.path, msg.str());
+        file_error(w.path, msg.str());
       }
       if (remap[idx] < 0) {
         if (w.out.vertices.size() >= static_cast<std::size_t>(std::numeric_limits<int>::max()))
-          fail(w.path, "too many vertices");
+          file_error(w.path, "too many vertices");
         const aiVector3D& v = am.mVertices[idx];
         const Eigen::Vector4d p = transform * Eigen::Vector4d(v.x, v.y, v.z, 1.0);
         Eigen::Vector3d q = p.head<3>() / p.w() * w.scale;
@@ -270,7 +269,7 @@ void append_mesh(const Walk& w, unsigned mesh_index, const Eigen::Matrix4d& tran
           std::ostringstream msg;
           msg << "vertex " << idx << " of mesh " << mesh_index << " ('" << am.mName.C_Str()
               << "') has a non-finite coordinate (" << v.x << ", " << v.y << ", " << v.z << " in file units)";
-          fail(w.path, msg.str());
+          file_error(w.path, msg.str());
         }
         remap[idx] = static_cast<int>(w.out.vertices.size());
         w.out.vertices.push_back(q);
@@ -288,7 +287,7 @@ void walk_node(const Walk& w, const aiNode& node, const Eigen::Matrix4d& parent)
   for (unsigned i = 0; i < node.mNumMeshes; ++i) {
     const unsigned mi = node.mMeshes[i];
     if (mi >= w.scene.mNumMeshes || w.scene.mMeshes[mi] == nullptr)
-      fail(w.path, "node '" + std::string(node.mName.C_Str()) + "' refers to a missing mesh");
+      file_error(w.path, "node '" + std::string(node.mName.C_Str()) + "' refers to a missing mesh");
     append_mesh(w, mi, global);
   }
   for (unsigned c = 0; c < node.mNumChildren; ++c)
@@ -308,14 +307,14 @@ Mesh import_mesh(const std::string& path, double scale) {
   } catch (const std::bad_alloc&) {
     throw;  // the import child reports it as its memory limit
   } catch (const std::exception& e) {
-    fail(path, std::string("cannot read mesh: ") + e.what());
+    file_error(path, std::string("cannot read mesh: ") + e.what());
   } catch (...) {
-    fail(path, "cannot read mesh: unknown error in the importer");
+    file_error(path, "cannot read mesh: unknown error in the importer");
   }
   if (scene == nullptr) {
     // Assimp catches exceptions itself and keeps only the message (assimp/BaseImporter.h).
     if (std::string(importer.GetErrorString()) == std::bad_alloc().what()) throw std::bad_alloc();
-    fail(path, std::string("cannot read mesh: ") + importer.GetErrorString());
+    file_error(path, std::string("cannot read mesh: ") + importer.GetErrorString());
   }
 
   Mesh mesh;
@@ -323,7 +322,7 @@ Mesh import_mesh(const std::string& path, double scale) {
     const Walk w{path, *scene, scale, mesh};
     walk_node(w, *scene->mRootNode, Eigen::Matrix4d::Identity());
   }
-  if (mesh.triangles.empty()) fail(path, "contains no triangles");
+  if (mesh.triangles.empty()) file_error(path, "contains no triangles");
   return mesh;
 }
 
@@ -333,7 +332,7 @@ Mesh load_mesh(const std::string& path, double scale) {
   if (!std::isfinite(scale) || scale <= 0.0) {
     std::ostringstream msg;
     msg << "scale must be finite and > 0 (got " << scale << ")";
-    fail(path, msg.str());
+    file_error(path, msg.str());
   }
   const std::uintmax_t file_size = check_input_file(path);
   return decode_mesh(path, run_import(path, file_size, "mesh", [&] { return encode_mesh(import_mesh(path, scale)); }));

@@ -40,7 +40,7 @@
 namespace snapfit::occt {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem) {
+[[noreturn]] void cad_read_error(const std::string& path, const std::string& problem) {
   throw Error(path + ": cannot read CAD file: " + problem);
 }
 
@@ -168,7 +168,7 @@ CadFile read_cad_file(const std::string& path) {
   UnitsMethods::SetCasCadeLengthUnit(1.0);
   const IFSelect_ReturnStatus status = reader.ReadFile(path.c_str());
   if (status != IFSelect_RetDone)
-    fail(path, "not a readable " + file.format + " file (OpenCASCADE's reader: " + status_text(status) + ")");
+    cad_read_error(path, "not a readable " + file.format + " file (OpenCASCADE's reader: " + status_text(status) + ")");
   if (step) {
     TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
     step_reader.FileUnits(lengths, angles, solid_angles);
@@ -181,19 +181,20 @@ CadFile read_cad_file(const std::string& path) {
   }
   if (file.file_unit.empty()) file.file_unit = "none declared, millimetre assumed";
   if (reader.NbRootsForTransfer() == 0)
-    fail(path, "holds no shape to transfer (a truncated or empty " + file.format + " file?)");
+    cad_read_error(path, "holds no shape to transfer (a truncated or empty " + file.format + " file?)");
   reader.TransferRoots();
-  if (reader.NbShapes() == 0) fail(path, "none of its shapes could be transferred (a truncated or malformed file?)");
+  if (reader.NbShapes() == 0)
+    cad_read_error(path, "none of its shapes could be transferred (a truncated or malformed file?)");
   const TopoDS_Shape shape = reader.OneShape();
   file.solids = name_solids(shape, reader);
   if (file.solids.empty()) {
     try {
       file.solids = sew_loose_faces(shape, file.sewn_open_shells);
     } catch (const Error& e) {
-      fail(path, e.what());
+      cad_read_error(path, e.what());
     }
   }
-  if (file.solids.empty()) fail(path, "holds no solid and no faces");
+  if (file.solids.empty()) cad_read_error(path, "holds no solid and no faces");
   return file;
 }
 

@@ -14,12 +14,11 @@
 
 #include "core/markup_escape.h"
 #include "io/atomic_write.h"
+#include "io/file_error.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem) { throw Error(path + ": " + problem); }
 
 std::string number(double x) {
   char buf[40];
@@ -30,22 +29,23 @@ std::string number(double x) {
 void check_inputs(const std::string& path, const GridSpec& grid, const std::vector<GridField>& fields) {
   const Eigen::Vector3i& d = grid.dims;
   if (d.x() < 1 || d.y() < 1 || d.z() < 1)
-    fail(path, "cannot write VTI: empty grid (dims " + std::to_string(d.x()) + " x " + std::to_string(d.y()) + " x " +
-                   std::to_string(d.z()) + ")");
+    file_error(path, "cannot write VTI: empty grid (dims " + std::to_string(d.x()) + " x " + std::to_string(d.y()) +
+                         " x " + std::to_string(d.z()) + ")");
   if (!(grid.spacing > 0.0) || !std::isfinite(grid.spacing))
-    fail(path, "cannot write VTI: grid spacing " + number(grid.spacing) + " is not a positive number");
-  if (!grid.origin.allFinite()) fail(path, "cannot write VTI: grid origin is not finite");
-  if (fields.empty()) fail(path, "cannot write VTI: no fields given");
+    file_error(path, "cannot write VTI: grid spacing " + number(grid.spacing) + " is not a positive number");
+  if (!grid.origin.allFinite()) file_error(path, "cannot write VTI: grid origin is not finite");
+  if (fields.empty()) file_error(path, "cannot write VTI: no fields given");
   std::set<std::string> names;
   for (std::size_t f = 0; f < fields.size(); ++f) {
     const GridField& field = fields[f];
     const std::string which = "field " + std::to_string(f) + " '" + field.name + "'";
-    if (field.name.empty()) fail(path, "cannot write VTI: field " + std::to_string(f) + " has an empty name");
-    if (!names.insert(field.name).second) fail(path, "cannot write VTI: two fields are named '" + field.name + "'");
-    if (field.values == nullptr) fail(path, "cannot write VTI: " + which + " has no values (null pointer)");
+    if (field.name.empty()) file_error(path, "cannot write VTI: field " + std::to_string(f) + " has an empty name");
+    if (!names.insert(field.name).second)
+      file_error(path, "cannot write VTI: two fields are named '" + field.name + "'");
+    if (field.values == nullptr) file_error(path, "cannot write VTI: " + which + " has no values (null pointer)");
     if (field.components < 1 || field.components > 9)
-      fail(path, "cannot write VTI: " + which + " has " + std::to_string(field.components) +
-                     " components; 1 to 9 are allowed");
+      file_error(path, "cannot write VTI: " + which + " has " + std::to_string(field.components) +
+                           " components; 1 to 9 are allowed");
   }
 }
 

@@ -11,7 +11,7 @@
 namespace snapfit {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem) {
+[[noreturn]] void vtp_error(const std::string& path, const std::string& problem) {
   throw Error(path + ": cannot write VTP: " + problem);
 }
 
@@ -22,24 +22,24 @@ void put(std::string& out, double v) {
 }
 
 void check(const std::string& path, const std::vector<PointPiece>& pieces) {
-  if (pieces.empty()) fail(path, "no point sets given");
+  if (pieces.empty()) vtp_error(path, "no point sets given");
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     const PointPiece& piece = pieces[p];
     for (const Eigen::Vector3d& q : piece.points)
-      if (!q.allFinite()) fail(path, "point set " + std::to_string(p) + " has a non-finite point");
+      if (!q.allFinite()) vtp_error(path, "point set " + std::to_string(p) + " has a non-finite point");
     if (piece.scalars.size() != pieces[0].scalars.size())
-      fail(path, "point set " + std::to_string(p) + " has other scalars than point set 0");
+      vtp_error(path, "point set " + std::to_string(p) + " has other scalars than point set 0");
     for (std::size_t s = 0; s < piece.scalars.size(); ++s) {
       const PointScalars& a = piece.scalars[s];
       if (a.name.empty() || a.name != pieces[0].scalars[s].name)
-        fail(path, "point set " + std::to_string(p) + " scalar " + std::to_string(s) + " '" + a.name +
-                       "' is empty or named differently than in point set 0");
+        vtp_error(path, "point set " + std::to_string(p) + " scalar " + std::to_string(s) + " '" + a.name +
+                            "' is empty or named differently than in point set 0");
       if (a.values.size() != piece.points.size())
-        fail(path, "scalar '" + a.name + "' of point set " + std::to_string(p) + " has " +
-                       std::to_string(a.values.size()) + " values for " + std::to_string(piece.points.size()) +
-                       " points");
+        vtp_error(path, "scalar '" + a.name + "' of point set " + std::to_string(p) + " has " +
+                            std::to_string(a.values.size()) + " values for " + std::to_string(piece.points.size()) +
+                            " points");
       for (double v : a.values)
-        if (!std::isfinite(v)) fail(path, "scalar '" + a.name + "' has a non-finite value");
+        if (!std::isfinite(v)) vtp_error(path, "scalar '" + a.name + "' has a non-finite value");
     }
   }
 }

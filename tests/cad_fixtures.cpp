@@ -1,5 +1,6 @@
 // STEP and IGES parts written by OpenCASCADE (tests/cad_fixtures.h).
 #include "tests/cad_fixtures.h"
+#include "tests/merged_faces.h"
 
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
@@ -14,7 +15,6 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <STEPControl_Writer.hxx>
-#include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <StepBasic_Product.hxx>
 #include <StepData_StepModel.hxx>
 #include <StepRepr_RepresentationItem.hxx>
@@ -42,12 +42,6 @@ double number(const ProceduralPartSpec& spec, const std::string& key, double fal
   return it == spec.numbers.end() ? fallback : it->second;
 }
 
-TopoDS_Shape clean(const TopoDS_Shape& shape) {
-  ShapeUpgrade_UnifySameDomain unify(shape);
-  unify.Build();
-  return unify.Shape();
-}
-
 // The defaults of mesh/procedural (docs/scenes.md "Procedural parts").
 TopoDS_Shape make_peg(const ProceduralPartSpec& spec) {
   const double r = number(spec, "radius", 5), length = number(spec, "length", 30), c = number(spec, "chamfer", 0);
@@ -55,7 +49,7 @@ TopoDS_Shape make_peg(const ProceduralPartSpec& spec) {
   if (c <= 0) return BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), z), r, length).Shape();
   const TopoDS_Shape bevel = BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 0), z), r - c, r, c).Shape();
   const TopoDS_Shape body = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, c), z), r, length - c).Shape();
-  return clean(BRepAlgoAPI_Fuse(bevel, body).Shape());
+  return merged_faces(BRepAlgoAPI_Fuse(bevel, body).Shape());
 }
 
 TopoDS_Shape make_hole_block(const ProceduralPartSpec& spec) {
@@ -71,7 +65,7 @@ TopoDS_Shape make_hole_block(const ProceduralPartSpec& spec) {
                .Shape();
   const TopoDS_Shape box =
       BRepPrimAPI_MakeBox(gp_Pnt(-width / 2, -width / 2, -height), gp_Pnt(width / 2, width / 2, 0)).Shape();
-  return clean(BRepAlgoAPI_Cut(box, hole).Shape());
+  return merged_faces(BRepAlgoAPI_Cut(box, hole).Shape());
 }
 
 TopoDS_Solid first_solid(const TopoDS_Shape& shape) {

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "io/cad_load.h"
 #include "snapfit/scene.h"
 
 namespace snapfit::test {
@@ -27,5 +28,12 @@ void write_cad_boxes(const std::string& file, const std::vector<NamedBox>& boxes
 // One box placed twice (the second shifted by `shift` mm along x), as an assembly holds
 // two instances of one part: the product is named `box.name`, the solids are not.
 void write_cad_instances(const std::string& file, const NamedBox& box, double shift);
+
+// Import options that tessellate within `deflection` (the file's length unit).
+inline CadImportOptions with_deflection(double deflection) {
+  CadImportOptions o;
+  o.linear_deflection = deflection;
+  return o;
+}
 
 }  // namespace snapfit::test

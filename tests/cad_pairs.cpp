@@ -9,7 +9,6 @@
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRep_Tool.hxx>
-#include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
@@ -21,6 +20,7 @@
 #include <stdexcept>
 
 #include "tests/cad_shape_writer.h"
+#include "tests/merged_faces.h"
 
 namespace snapfit::test {
 namespace {
@@ -37,13 +37,6 @@ TopoDS_Shape box(double x0, double y0, double z0, double x1, double y1, double z
 
 TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) { return BRepAlgoAPI_Fuse(a, b).Shape(); }
 TopoDS_Shape cut(const TopoDS_Shape& a, const TopoDS_Shape& b) { return BRepAlgoAPI_Cut(a, b).Shape(); }
-
-// Merges the faces a boolean operation split on one surface (a cylinder cut in two arcs).
-TopoDS_Shape clean(const TopoDS_Shape& shape) {
-  ShapeUpgrade_UnifySameDomain unify(shape);
-  unify.Build();
-  return unify.Shape();
-}
 
 // The edges of `shape` that `keep` accepts, each once.
 std::vector<TopoDS_Edge> edges_where(const TopoDS_Shape& shape, const std::function<bool(const BRepAdaptor_Curve&)>& keep) {
@@ -107,7 +100,7 @@ Parts screw_rod() {
   TopoDS_Shape rod = box(-L, -d.rod_width / 2, -t, L, d.rod_width / 2, 0);
   for (double x : {-L, L}) rod = fuse(rod, cylinder(d.rod_width / 2, -t, 0, x));
   for (double x : {-L, L}) rod = cut(rod, cylinder(d.hole_radius, -t - 1, 1, x));
-  return {clean(rod), clean(fuse(head, shank))};
+  return {merged_faces(rod), merged_faces(fuse(head, shank))};
 }
 
 Parts ring_shaft() {
@@ -118,7 +111,7 @@ Parts ring_shaft() {
   TopoDS_Shape ring = cut(cylinder(d.ring_outer, 0, d.ring_height), cylinder(d.ring_inner, -1, d.ring_height + 1));
   std::vector<TopoDS_Edge> bore = circles(ring, d.ring_inner, 0);
   for (const TopoDS_Edge& e : circles(ring, d.ring_inner, d.ring_height)) bore.push_back(e);
-  return {clean(shaft), clean(chamfer(ring, bore, d.bore_chamfer))};
+  return {merged_faces(shaft), merged_faces(chamfer(ring, bore, d.bore_chamfer))};
 }
 
 Parts square_peg() {
@@ -128,7 +121,7 @@ Parts square_peg() {
   peg = chamfer(peg, lines(peg, 0, d.peg_side), d.peg_chamfer);
   TopoDS_Shape block = cut(box(-b, -b, -d.block_height, b, b, 0), box(-h, -h, -d.hole_depth, h, h, 1));
   block = chamfer(block, lines(block, 0, h + kEps), d.entry_chamfer);
-  return {clean(block), clean(peg)};
+  return {merged_faces(block), merged_faces(peg)};
 }
 
 // A D: the cylinder of radius r from z0 to z1 less everything beyond x = flat.
@@ -141,7 +134,7 @@ Parts d_shaft() {
   const double b = d.block_side / 2;
   const TopoDS_Shape hole = d_profile(d.radius + d.clearance, d.flat + d.clearance, -d.hole_depth, 1);
   const TopoDS_Shape block = cut(box(-b, -b, -d.block_height, b, b, 0), hole);
-  return {clean(block), clean(d_profile(d.radius, d.flat, 0, d.length))};
+  return {merged_faces(block), merged_faces(d_profile(d.radius, d.flat, 0, d.length))};
 }
 
 Parts two_pins() {
@@ -155,7 +148,7 @@ Parts two_pins() {
     plate = fuse(plate, pin);
     block = cut(block, cylinder(d.pin_radius + d.clearance, -d.hole_depth, 1, x));
   }
-  return {clean(block), clean(plate)};
+  return {merged_faces(block), merged_faces(plate)};
 }
 
 Parts grooved_shaft() {
@@ -172,7 +165,7 @@ Parts grooved_shaft() {
   TopoDS_Shape collar =
       cut(cylinder(d.collar_outer, -d.collar_height, 0), cylinder(bore, -d.collar_height - 1, 1));
   collar = chamfer(collar, circles(collar, bore, 0), d.entry_chamfer);
-  return {clean(collar), clean(fuse(shank, head))};
+  return {merged_faces(collar), merged_faces(fuse(shank, head))};
 }
 
 Parts make_pair(const std::string& name) {

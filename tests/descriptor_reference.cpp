@@ -1,6 +1,7 @@
 // Brute-force double-precision references for the descriptor tests
 // (descriptor_reference.h). Written from the definitions, independently of kernels/*.cl.
 #include "tests/descriptor_reference.h"
+#include "tests/test_support.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,8 +13,6 @@ namespace snapfit::test {
 namespace {
 
 using Eigen::Vector3d;
-
-constexpr double kPi = 3.14159265358979323846;
 
 double segment_distance(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
   const Vector3d e = b - a;

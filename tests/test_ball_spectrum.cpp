@@ -9,12 +9,13 @@
 #include "engine/spectra/ball_spectrum.h"
 #include "engine/query/reference_query.h"
 #include "tests/test_engine_support.h"
+#include "tests/test_support.h"
 
 using namespace snapfit;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 std::vector<Ball> random_balls(int n, unsigned seed, double half_extent, double r_lo, double r_hi) {
   std::mt19937 rng(seed);

@@ -36,11 +36,7 @@ double number(int part, const char* name) {
   return (part == 1 ? scene.part1 : scene.part2).procedural->numbers.at(name);
 }
 
-CadImportOptions with_deflection(double deflection) {
-  CadImportOptions o;
-  o.linear_deflection = deflection;
-  return o;
-}
+using test::with_deflection;
 
 std::vector<const AnalyticFace*> of_kind(const std::vector<AnalyticFace>& faces, FaceKind kind) {
   std::vector<const AnalyticFace*> out;

@@ -24,7 +24,7 @@ namespace snapfit {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 using test::error_of;
 
 // The default scene's parts (scenes/default.json: a peg of radius 5 and length 30, a
@@ -38,11 +38,7 @@ ProceduralPartSpec default_part(int part, int segments) {
 ProceduralPartSpec peg_spec(int segments = 64) { return default_part(2, segments); }
 ProceduralPartSpec block_spec(int segments = 64) { return default_part(1, segments); }
 
-CadImportOptions with_deflection(double deflection) {
-  CadImportOptions o;
-  o.linear_deflection = deflection;
-  return o;
-}
+using test::with_deflection;
 
 // Largest distance from the mesh's vertices and edge midpoints to `surface`, and from
 // `surface`'s vertices to the mesh (brute force, tests/descriptor_reference.h).

@@ -22,7 +22,7 @@
 namespace snapfit {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 // Fine tessellation, so that the mesh's volume is within deflection x area of the B-rep's.
 constexpr double kDeflection = 0.002;
 // Interpenetration and seat distance allowed at the assembled pose: the meshes of the

@@ -38,7 +38,7 @@ using snapfit::test::reference_winding;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 // ---------------------------------------------------------------- device and options
 

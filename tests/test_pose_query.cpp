@@ -46,7 +46,7 @@ using cd = std::complex<double>;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 // ---------------------------------------------------------------- the analytic scene
 

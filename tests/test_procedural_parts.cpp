@@ -11,6 +11,7 @@
 
 #include "mesh/procedural/procedural_parts.h"
 #include "snapfit/error.h"
+#include "tests/test_support.h"
 
 using Eigen::Vector3d;
 using snapfit::Mesh;
@@ -18,7 +19,7 @@ using snapfit::ProceduralPartSpec;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using snapfit::test::kPi;
 
 // Signed volume by the divergence theorem: sum over triangles of v0 . (v1 x v2) / 6.
 double signed_volume(const Mesh& m) {

@@ -13,26 +13,14 @@
 #include <vector>
 
 #include "core/progress.h"
+#include "tests/progress_lines.h"
 
 using namespace snapfit;
 
 namespace {
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-// The percentage in a plain line "label: 40% (...)"; -1 when the line is malformed.
-int percent_of(const std::string& line, const std::string& label) {
-  const std::string head = label + ": ";
-  if (line.rfind(head, 0) != 0) return -1;
-  const std::size_t pct = line.find('%');
-  if (pct == std::string::npos) return -1;
-  return std::atoi(line.substr(head.size(), pct - head.size()).c_str());
-}
+using test::lines_of;
+using test::percent_of;
 
 }  // namespace
 

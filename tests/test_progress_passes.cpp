@@ -10,28 +10,14 @@
 #include <vector>
 
 #include "core/progress.h"
+#include "tests/progress_lines.h"
 
 using namespace snapfit;
 
 namespace {
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-bool starts_with(const std::string& s, const std::string& head) { return s.rfind(head, 0) == 0; }
-
-// The percentage of a plain line "label: 40% (...)"; -1 when it is not one of `label`.
-int percent_of(const std::string& line, const std::string& label) {
-  const std::string head = label + ": ";
-  if (!starts_with(line, head)) return -1;
-  const std::size_t pct = line.find('%');
-  if (pct == std::string::npos) return -1;
-  return std::atoi(line.substr(head.size(), pct - head.size()).c_str());
-}
+using test::lines_of;
+using test::percent_of;
 
 // Reports a pass the way compute_descriptors does: after every chunk, (name, done, total).
 void run_pass(const std::function<void(const std::string&, std::uint64_t, std::uint64_t)>& report,
@@ -62,7 +48,7 @@ TEST_CASE("progress passes: three passes give three finished bars at 100%, in or
     CAPTURE(name);
     std::size_t count = 0;
     int last_percent = -1;
-    while (at < lines.size() && starts_with(lines[at], name + ": ")) {
+    while (at < lines.size() && test::starts_with(lines[at], name + ": ")) {
       const int pct = percent_of(lines[at], name);
       CHECK(pct >= last_percent);  // never goes back
       last_percent = pct;
@@ -101,10 +87,10 @@ TEST_CASE("progress passes: different totals, single-chunk passes, and a pass cu
     if (line.find("done in") != std::string::npos || line.find("stopped after") != std::string::npos)
       finals.push_back(line);
   REQUIRE(finals.size() == 4);
-  CHECK(starts_with(finals[0], "a: 100% (7/7), done in"));
-  CHECK(starts_with(finals[1], "b: 100% (1000/1000), done in"));
-  CHECK(starts_with(finals[2], "c: 40% (40/100), stopped after"));
-  CHECK(starts_with(finals[3], "d: 100% (50/50), done in"));
+  CHECK(test::starts_with(finals[0], "a: 100% (7/7), done in"));
+  CHECK(test::starts_with(finals[1], "b: 100% (1000/1000), done in"));
+  CHECK(test::starts_with(finals[2], "c: 40% (40/100), stopped after"));
+  CHECK(test::starts_with(finals[3], "d: 100% (50/50), done in"));
   // Lines of each pass come before the next pass's.
   std::string order;
   for (const auto& line : lines)
@@ -143,5 +129,5 @@ TEST_CASE("progress passes: a pass whose total grows as it goes never runs past 
     CHECK(close > slash);
     CHECK(shown_done <= shown_total);
   }
-  CHECK(starts_with(lines.back(), "tuning: 100% (700/700), done in"));
+  CHECK(test::starts_with(lines.back(), "tuning: 100% (700/700), done in"));
 }

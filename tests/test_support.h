@@ -18,6 +18,8 @@
 
 namespace snapfit::test {
 
+inline constexpr double kPi = 3.14159265358979323846;
+
 // A fresh folder under the system temp dir, removed when the object goes away.
 struct TempDir {
   std::filesystem::path path;

@@ -22,9 +22,7 @@ using Eigen::Vector3d;
 
 namespace {
 
-Mesh peg_mesh() { return test::peg_mesh(1, 3); }
-
-Mesh random_soup(int n, unsigned seed) { return test::random_soup(n, seed, 1.0, 0.3); }
+Mesh bvh_soup(int n, unsigned seed) { return test::random_soup(n, seed, 1.0, 0.3); }
 
 Mesh single_triangle() {
   Mesh m;
@@ -208,7 +206,7 @@ double solid_angle(const Vector3d& p, const Vector3d& va, const Vector3d& vb, co
 }  // namespace
 
 TEST_CASE("bvh: procedural peg, every leaf size") {
-  const Mesh mesh = peg_mesh();
+  const Mesh mesh = test::peg_mesh(1, 3);
   REQUIRE(mesh.triangles.size() > 8);
   for (int leaf_size : {1, 2, 4, 7}) {
     CAPTURE(leaf_size);
@@ -231,7 +229,7 @@ TEST_CASE("bvh: procedural peg, every leaf size") {
 TEST_CASE("bvh: random triangle soup") {
   for (int n : {2, 5, 100, 1001}) {
     CAPTURE(n);
-    const Mesh mesh = random_soup(n, 17u + static_cast<unsigned>(n));
+    const Mesh mesh = bvh_soup(n, 17u + static_cast<unsigned>(n));
     check_bvh(mesh, build_triangle_bvh(mesh), 4);
     check_bvh(mesh, build_triangle_bvh(mesh, 1), 1);
   }
@@ -239,7 +237,7 @@ TEST_CASE("bvh: random triangle soup") {
 
 TEST_CASE("bvh: large soup takes the parallel build path and is deterministic") {
   // More than 20000 triangles per node spawns TBB tasks for the top levels.
-  const Mesh mesh = random_soup(50000, 5u);
+  const Mesh mesh = bvh_soup(50000, 5u);
   const TriangleBvh a = build_triangle_bvh(mesh);
   check_bvh(mesh, a, 4);
   const TriangleBvh b = build_triangle_bvh(mesh);
@@ -313,7 +311,7 @@ TEST_CASE("bvh: errors") {
 TEST_CASE("bvh: first-order far field is within the documented remainder bound") {
   // For a node (centre c, radius r, area A) and a point p at distance D >= 10 r from c,
   // |sum of exact solid angles - (N.F(c) + sum_ij J_ij M_ij)| <= 3 r^2 A / (D - r)^4.
-  std::vector<Mesh> meshes = {peg_mesh(), random_soup(300, 99u), single_triangle()};
+  std::vector<Mesh> meshes = {test::peg_mesh(1, 3), bvh_soup(300, 99u), single_triangle()};
   std::mt19937 rng(1234);
   std::normal_distribution<double> gauss;
   int checked = 0;
@@ -368,7 +366,7 @@ TEST_CASE("bvh: first-order expansion is exact to second order (sign conventions
   // With the first-order term the error falls like D^-4; without it, like D^-3. A wrong
   // sign or a transposed moment would leave a D^-3 error: this checks that the moment and
   // its Jacobian contraction follow the kernel's conventions.
-  const Mesh mesh = random_soup(40, 7u);
+  const Mesh mesh = bvh_soup(40, 7u);
   const TriangleBvh bvh = build_triangle_bvh(mesh, 64);
   REQUIRE(bvh.nodes.size() == 1);
   const BvhNode& node = bvh.nodes[0];

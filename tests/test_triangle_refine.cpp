@@ -18,9 +18,7 @@ using Eigen::Vector3d;
 
 namespace {
 
-Mesh peg_mesh() { return test::peg_mesh(1, 3); }
-
-Mesh random_soup(int n, unsigned seed) { return test::random_soup(n, seed, 2.0, 0.8); }
+Mesh refine_soup(int n, unsigned seed) { return test::random_soup(n, seed, 2.0, 0.8); }
 
 // A long thin (needle) triangle and a zero-area one with a long edge.
 Mesh awkward_triangles() {
@@ -121,7 +119,7 @@ void check_orientation(const Mesh& mesh, double max_radius) {
 }  // namespace
 
 TEST_CASE("refine: peg pieces fit the radius, integrals and orientation are kept") {
-  const Mesh mesh = peg_mesh();
+  const Mesh mesh = test::peg_mesh(1, 3);
   const Integrals before = integrals(mesh);
   REQUIRE(before.volume > 0);
   for (double radius : {0.5, 0.2, 0.05}) {
@@ -141,7 +139,7 @@ TEST_CASE("refine: peg pieces fit the radius, integrals and orientation are kept
 }
 
 TEST_CASE("refine: random soup and awkward triangles") {
-  const Mesh soup = random_soup(200, 3u);
+  const Mesh soup = refine_soup(200, 3u);
   for (double radius : {1.0, 0.3, 0.07}) {
     CAPTURE(radius);
     check_refined(soup, refine_triangles(soup, radius), radius);
@@ -157,7 +155,7 @@ TEST_CASE("refine: random soup and awkward triangles") {
 }
 
 TEST_CASE("refine: a radius larger than every triangle changes nothing") {
-  for (const Mesh& mesh : {peg_mesh(), random_soup(50, 11u), awkward_triangles()}) {
+  for (const Mesh& mesh : {test::peg_mesh(1, 3), refine_soup(50, 11u), awkward_triangles()}) {
     const double largest = integrals(mesh).max_radius;
     const Mesh same = refine_triangles(mesh, largest * 1.001);
     REQUIRE(same.triangles.size() == mesh.triangles.size());
@@ -172,7 +170,7 @@ TEST_CASE("refine: a radius larger than every triangle changes nothing") {
 }
 
 TEST_CASE("refine: the piece limit throws a clear error") {
-  const Mesh mesh = peg_mesh();
+  const Mesh mesh = test::peg_mesh(1, 3);
   const std::size_t pieces = refine_triangles(mesh, 0.1).triangles.size();
   REQUIRE(pieces > mesh.triangles.size());
   CHECK(refine_triangles(mesh, 0.1, pieces).triangles.size() == pieces);  // exactly at the limit is fine
@@ -189,7 +187,7 @@ TEST_CASE("refine: the piece limit throws a clear error") {
 }
 
 TEST_CASE("refine: non-positive or non-finite radius throws") {
-  const Mesh mesh = peg_mesh();
+  const Mesh mesh = test::peg_mesh(1, 3);
   CHECK_THROWS_AS(refine_triangles(mesh, 0.0), Error);
   CHECK_THROWS_AS(refine_triangles(mesh, -1.0), Error);
   CHECK_THROWS_AS(refine_triangles(mesh, std::nan("")), Error);

@@ -10,13 +10,14 @@
 #include "snapfit/error.h"
 #include "snapfit/haptic_device.h"
 #include "tests/test_meshes.h"
+#include "tests/test_support.h"
 
 using namespace snapfit;
 using Eigen::Vector3d;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 BodyState at(const Vector3d& p, const Eigen::Quaterniond& q = Eigen::Quaterniond::Identity()) {
   BodyState s;

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <limits>
 
+#include "engine/runtime/compute_context.h"
 #include "engine/runtime/kernel_sources.h"
 #include "snapfit/error.h"
 
@@ -20,11 +21,6 @@ const cl_uint kHeaderReset[kHeader] = {0, kNoPositive, 0, 0};
 std::size_t env_size(const char* name, std::size_t fallback) {
   const char* v = std::getenv(name);
   return v && *v ? static_cast<std::size_t>(std::strtoull(v, nullptr, 10)) : fallback;
-}
-
-[[noreturn]] void rethrow(const ComputeContext& ctx, const cl::Error& e) {
-  throw Error("map minima failed on " + ctx.device.info.name + ": " + e.what() + " (error " + std::to_string(e.err()) +
-              ")");
 }
 
 float as_float(cl_uint u) {
@@ -56,7 +52,7 @@ DeviceMinima::DeviceMinima(const ComputeContext& ctx, const std::array<std::size
     kernel_.setArg(1, cl_int4{{int(dims[0]), int(dims[1]), int(dims[2]), 0}});
     kernel_.setArg(4, cl_uint(std::min<std::size_t>(capacity_, std::numeric_limits<cl_uint>::max())));
   } catch (const cl::Error& e) {
-    rethrow(ctx, e);
+    throw_device_error("map minima failed", ctx.device.info.name, e);
   }
   host_.assign(std::size_t(slots), std::vector<cl_uint>(kHeader + 2 * capacity_));
   read_.assign(std::size_t(slots), 0);
@@ -76,7 +72,7 @@ void DeviceMinima::enqueue_reduce(const cl::CommandQueue& queue, int slot, const
                                cl::NDRange((dims_[0] + wg_ - 1) / wg_ * wg_, dims_[1], dims_[2]),
                                cl::NDRange(wg_, 1, 1));
   } catch (const cl::Error& e) {
-    rethrow(ctx_, e);
+    throw_device_error("map minima failed", ctx_.device.info.name, e);
   }
 }
 
@@ -87,7 +83,7 @@ void DeviceMinima::enqueue_read(const cl::CommandQueue& queue, int slot, cl::Eve
     queue.enqueueReadBuffer(lists_[std::size_t(slot)], CL_FALSE, 0, sizeof(cl_uint) * (kHeader + 2 * read_entries_),
                             host.data(), nullptr, done);
   } catch (const cl::Error& e) {
-    rethrow(ctx_, e);
+    throw_device_error("map minima failed", ctx_.device.info.name, e);
   }
 }
 
@@ -114,7 +110,7 @@ bool DeviceMinima::finish(const cl::CommandQueue& side, int slot, const GridSpec
       side.enqueueReadBuffer(lists_[std::size_t(slot)], CL_TRUE, sizeof(cl_uint) * (kHeader + 2 * have),
                              sizeof(cl_uint) * 2 * (length - have), host.data() + kHeader + 2 * have);
     } catch (const cl::Error& e) {
-      rethrow(ctx_, e);
+      throw_device_error("map minima failed", ctx_.device.info.name, e);
     }
     while (read_entries_ < length) read_entries_ *= 2;
     read_entries_ = std::min(read_entries_, capacity_);

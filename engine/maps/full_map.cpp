@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/runtime/cl_values.h"
+#include "engine/runtime/compute_context.h"
 #include "engine/runtime/kernel_sources.h"
 #ifdef SNAPFIT_HAVE_FFTW
 #include "engine/spectra/fftw_real_inverse.h"
@@ -31,11 +33,6 @@ float low_pass_w2(const PairSpectra& spectra, std::size_t modes) {
                   std::pow(spectra.frequency(2, z), 2));
   std::nth_element(w2.begin(), w2.begin() + (modes - 1), w2.end());
   return w2[modes - 1];
-}
-
-[[noreturn]] void rethrow(const ComputeContext& ctx, const cl::Error& e) {
-  throw Error("full map failed on " + ctx.device.info.name + ": " + e.what() + " (error " + std::to_string(e.err()) +
-              ")");
 }
 
 }  // namespace
@@ -138,13 +135,12 @@ TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeCon
     kernel_.setArg(0, s1_);
     kernel_.setArg(1, s2_);
     kernel_.setArg(2, cl_int4{{int(dims[0]), int(dims[1]), int(dims[2]), 0}});
-    kernel_.setArg(3,
-                   cl_float4{{float(spectra.length.x()), float(spectra.length.y()), float(spectra.length.z()), 0.0f}});
+    kernel_.setArg(3, float4_of(spectra.length));
     kernel_.setArg(5, static_cast<float>(1.0 / (spectra.length.x() * spectra.length.y() * spectra.length.z())));
     kernel_.setArg(6, max_w2_);
     kernel_.setArg(7, product_);
   } catch (const cl::Error& e) {
-    rethrow(ctx, e);
+    throw_device_error("full map failed", ctx.device.info.name, e);
   }
   if (fft == MapFft::clfft) fft_ = std::make_unique<Fft3d>(library, ctx, dims, batch);
 #ifdef SNAPFIT_HAVE_VKFFT
@@ -155,7 +151,7 @@ TranslationMapper::TranslationMapper(const FftLibrary& library, const ComputeCon
     try {
       side_ = cl::CommandQueue(ctx.context, ctx.device.device, 0);
     } catch (const cl::Error& e) {
-      rethrow(ctx, e);
+      throw_device_error("full map failed", ctx.device.info.name, e);
     }
   }
 #ifdef SNAPFIT_HAVE_FFTW
@@ -240,7 +236,7 @@ void TranslationMapper::submit(int slot, const Eigen::Matrix3d* R, std::size_t c
     enqueue_read(slot, &s.read);
     ctx_.queue.flush();
   } catch (const cl::Error& e) {
-    rethrow(ctx_, e);
+    throw_device_error("full map failed", ctx_.device.info.name, e);
   }
   s.pending = true;
 }
@@ -317,7 +313,7 @@ void TranslationMapper::wait_for(int slot, std::size_t member) {
     try {
       s.read.wait();
     } catch (const cl::Error& e) {
-      rethrow(ctx_, e);
+      throw_device_error("full map failed", ctx_.device.info.name, e);
     }
     s.pending = false;
   }
@@ -361,7 +357,7 @@ void TranslationMapper::collect_minima(int slot, std::size_t count, double separ
     side_.enqueueReadBuffer(s.result, CL_TRUE, sizeof(Complex) * n * member, sizeof(Complex) * n,
                             s.f.data() + n * member);
   } catch (const cl::Error& e) {
-    rethrow(ctx_, e);
+    throw_device_error("full map failed", ctx_.device.info.name, e);
   }
   host_minima(slot, member, count, separation, out, nullptr);
 }
@@ -420,7 +416,7 @@ MapStageSeconds TranslationMapper::time_stages(const Eigen::Matrix3d& R, std::ve
     read.wait();
     t.read = lap();
   } catch (const cl::Error& e) {
-    rethrow(ctx_, e);
+    throw_device_error("full map failed", ctx_.device.info.name, e);
   }
   slot_[0].collected[0] = 1;
   finish_map(0, 0, energy, &t);
@@ -449,7 +445,7 @@ MapStageSeconds TranslationMapper::time_minima_stages(const Eigen::Matrix3d& R, 
     s.read.wait();
     t.read = lap();
   } catch (const cl::Error& e) {
-    rethrow(ctx_, e);
+    throw_device_error("full map failed", ctx_.device.info.name, e);
   }
   s.pending = true;
   collect_minima(0, count, separation, out);

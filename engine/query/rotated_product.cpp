@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "engine/runtime/cl_values.h"
+#include "engine/runtime/compute_context.h"
 #include "engine/runtime/kernel_sources.h"
 #include "engine/spectra/mode_order.h"
 #include "snapfit/error.h"
@@ -11,19 +13,17 @@ namespace {
 
 // Arguments of the rotated_product kernel (kernels/rotated_product.cl), in order.
 enum RotatedProductArg : cl_uint {
-  kModes = 0,  // global int4*: (box node, kx, ky, kz)
-  kS1w,        // global float2*: S1(w_k) dw
-  kPartners,   // global int*: the box node of -k (or -1)
-  kCount,      // int
-  kS2d,        // global float2*: part 2's deconvolved spectrum (FFT order)
-  kDims,       // int4
-  kRotation,   // float16: R0 row-major
-  kLength,     // float4
-  kInvLength,  // float4
-  kProduct,    // global float8*: the box
+  kModes = 0,     // global int4*: (box node, kx, ky, kz)
+  kS1w,           // global float2*: S1(w_k) dw
+  kPartners,      // global int*: the box node of -k (or -1)
+  kCount,         // int
+  kS2d,           // global float2*: part 2's deconvolved spectrum (FFT order)
+  kDims,          // int4
+  kRotation,      // float16: R0 row-major
+  kBoxLength,     // float4: L
+  kBoxInvLength,  // float4: 1 / L
+  kProduct,       // global float8*: the box
 };
-
-cl_float4 xyz(const Eigen::Vector3d& v) { return cl_float4{{float(v.x()), float(v.y()), float(v.z()), 0.0f}}; }
 
 }  // namespace
 
@@ -80,11 +80,10 @@ RotatedProduct::RotatedProduct(const ComputeContext& ctx, const PairSpectra& spe
     kernel_.setArg(kPartners, partners_);
     kernel_.setArg(kS2d, s2d_);
     kernel_.setArg(kDims, cl_int4{{int(d[0]), int(d[1]), int(d[2]), 0}});
-    kernel_.setArg(kLength, xyz(spectra.length));
-    kernel_.setArg(kInvLength, xyz(spectra.length.cwiseInverse()));
+    kernel_.setArg(kBoxLength, float4_of(spectra.length));
+    kernel_.setArg(kBoxInvLength, float4_of(spectra.length.cwiseInverse()));
   } catch (const cl::Error& e) {
-    throw Error("cannot set up the exact rotation on " + device_name_ + ": " + e.what() + " (error " +
-                std::to_string(e.err()) + ")");
+    throw_device_error("cannot set up the exact rotation", device_name_, e);
   }
 }
 
@@ -112,8 +111,7 @@ void RotatedProduct::compute(cl::CommandQueue& queue, const Eigen::Matrix3d& R0,
                                cl::NDRange(group));
     queue.finish();
   } catch (const cl::Error& e) {
-    throw Error("exact rotation failed on " + device_name_ + ": " + e.what() + " (error " + std::to_string(e.err()) +
-                ")");
+    throw_device_error("exact rotation failed", device_name_, e);
   }
 }
 

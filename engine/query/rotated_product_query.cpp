@@ -12,11 +12,12 @@
 #include <thread>
 
 #include "engine/query/line_kernel.h"
-#include "engine/spectra/mode_order.h"
 #include "engine/query/query_launch.h"
 #include "engine/query/rotated_product.h"
 #include "engine/query/so3_maps.h"
 #include "engine/query/translation_lines.h"
+#include "engine/runtime/cl_values.h"
+#include "engine/spectra/mode_order.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -36,8 +37,8 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
     const std::vector<std::size_t> order = mode_order(spectra);
     // Every mode by default: the product costs time in proportion to the m' in use only,
     // so the tuner may go as far as the device's frame allows.
-    const std::size_t product_modes = variant.product_modes > 0 ? std::min(order.size(), variant.product_modes)
-                                                                : order.size();
+    const std::size_t product_modes =
+        variant.product_modes > 0 ? std::min(order.size(), variant.product_modes) : order.size();
     reach_ = mode_reach(spectra.dims, order);
     reach_.resize(product_modes);
     lines_ = build_translation_lines(spectra.dims, order,
@@ -55,7 +56,7 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
       extras_ = cl::Buffer(ctx.context, CL_MEM_READ_ONLY, sizeof(cl_int4) * (kMaxUnpairedExtras + 1));
       k.setArg(kLineExtras, extras_);
       const Eigen::Vector3d inv = spectra.length.cwiseInverse();
-      k.setArg(kLineInvLength, cl_float4{{float(inv.x()), float(inv.y()), float(inv.z()), 0.0f}});
+      k.setArg(kLineInvLength, float4_of(inv));
       if (variant.product_update == ProductUpdate::background)
         worker_queue_ = cl::CommandQueue(ctx.context, ctx.device.device, 0);
     } catch (const cl::Error& e) {

@@ -5,8 +5,10 @@
 #include <cstring>
 
 #include "core/half_float.h"
-#include "engine/spectra/mode_order.h"
 #include "engine/query/query_launch.h"
+#include "engine/runtime/cl_values.h"
+#include "engine/runtime/compute_context.h"
+#include "engine/spectra/mode_order.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -31,8 +33,6 @@ enum PoseQueryArg : cl_uint {
   kExtraMode,      // float4: the first mode of a pair that m' cuts (weight 0 otherwise)
   kBandStarts,     // int2: the first records beyond m'/4 and m'/2 (the error estimate's bands)
 };
-
-cl_float4 xyz(const Eigen::Vector3d& v) { return cl_float4{{float(v.x()), float(v.y()), float(v.z()), 0.0f}}; }
 
 // The 6-DOF sum over interpolated, rotated spectra (seed 000 eq. 10-12). Each record is
 // a mode or, with a real correlation folded, a conjugate pair w, -w: one float4
@@ -87,12 +87,11 @@ class SixDofQuery final : public QueryEngine, private QueryHooks {
       records_ = cl::Buffer(launch_->context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                             sizeof(cl_float4) * records.size(), records.data());
       k.setArg(kRecords, records_);
-      k.setArg(kLength, xyz(length_));
+      k.setArg(kLength, float4_of(length_));
       k.setArg(kCubeScale, cl_float4{{1.0f, 1.0f, 0.0f, 0.0f}});
-      k.setArg(kInvLength, xyz(length_.cwiseInverse()));
+      k.setArg(kInvLength, float4_of(length_.cwiseInverse()));
     } catch (const cl::Error& e) {
-      throw Error("cannot set up pose queries on " + launch_->device_name() + ": " + e.what() + " (error " +
-                  std::to_string(e.err()) + ")");
+      throw_device_error("cannot set up pose queries", launch_->device_name(), e);
     }
     select_modes(total);  // the cube follows on the first query or set_modes
   }
@@ -140,8 +139,7 @@ class SixDofQuery final : public QueryEngine, private QueryHooks {
       k.setArg(kExtraMode, cut_pair_ ? first_of_record_[record_count_] : cl_float4{});
       k.setArg(kTableHalf, static_cast<cl_int>(reach_[mode_count_ - 1]));
     } catch (const cl::Error& e) {
-      throw Error("cannot change m' on " + launch_->device_name() + ": " + e.what() + " (error " +
-                  std::to_string(e.err()) + ")");
+      throw_device_error("cannot change m'", launch_->device_name(), e);
     }
     launch_->set_work(record_count_, mode_count_);
   }
@@ -152,8 +150,7 @@ class SixDofQuery final : public QueryEngine, private QueryHooks {
     try {
       ensure_cube(mode_radius_[mode_count_ - 1]);
     } catch (const cl::Error& e) {
-      throw Error("cannot upload part 2's spectrum to " + launch_->device_name() + ": " + e.what() + " (error " +
-                  std::to_string(e.err()) + ")");
+      throw_device_error("cannot upload part 2's spectrum", launch_->device_name(), e);
     }
   }
 

@@ -3,9 +3,10 @@
 #include <algorithm>
 
 #include "engine/query/line_kernel.h"
-#include "engine/spectra/mode_order.h"
 #include "engine/query/query_launch.h"
 #include "engine/query/translation_lines.h"
+#include "engine/runtime/cl_values.h"
+#include "engine/spectra/mode_order.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -34,7 +35,7 @@ class TranslationQuery final : public QueryEngine {
       k.setArg(kLineWeights, weights_);
       k.setArg(kLineExtras, extras_);
       const Eigen::Vector3d inv = spectra.length.cwiseInverse();
-      k.setArg(kLineInvLength, cl_float4{{float(inv.x()), float(inv.y()), float(inv.z()), 0.0f}});
+      k.setArg(kLineInvLength, float4_of(inv));
     } catch (const cl::Error& e) {
       throw Error("cannot set up translation queries on " + launch_->device_name() + ": " + e.what() + " (error " +
                   std::to_string(e.err()) + ")");

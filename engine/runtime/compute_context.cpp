@@ -15,4 +15,8 @@ ComputeContext make_compute_context(const Device& device) {
   }
 }
 
+void throw_device_error(const std::string& what, const std::string& device_name, const cl::Error& e) {
+  throw Error(what + " on " + device_name + ": " + e.what() + " (error " + std::to_string(e.err()) + ")");
+}
+
 }  // namespace snapfit

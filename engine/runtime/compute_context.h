@@ -13,4 +13,7 @@ struct ComputeContext {
 // Throws snapfit::Error naming the device when the context or queue cannot be made.
 ComputeContext make_compute_context(const Device& device);
 
+// An OpenCL error as snapfit::Error: "<what> on <device>: <OpenCL call> (error <code>)".
+[[noreturn]] void throw_device_error(const std::string& what, const std::string& device_name, const cl::Error& e);
+
 }  // namespace snapfit

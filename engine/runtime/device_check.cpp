@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "engine/runtime/compute_context.h"
 #include "engine/runtime/kernel_sources.h"
 #include "snapfit/error.h"
 
@@ -61,8 +62,7 @@ DeviceCheckResult check(const ComputeContext& ctx, const ProgramCacheConfig& cac
     result.relative_error = std::abs(total - ref) / std::abs(ref);
     result.passed = std::isfinite(total) && result.relative_error <= result.tolerance;
   } catch (const cl::Error& e) {
-    throw Error("device check failed on " + ctx.device.info.name + ": " + e.what() + " (error " +
-                std::to_string(e.err()) + ")");
+    throw_device_error("device check failed", ctx.device.info.name, e);
   }
   return result;
 }

@@ -1,5 +1,6 @@
 #include "tests/oclgrind/oclgrind_support.h"
 
+#include <doctest/doctest.h>
 #include <fstream>
 #include <iterator>
 
@@ -129,6 +130,14 @@ std::string OclgrindSession::take_reports(std::size_t* left_out) {
   reports += api_errors_->text;
   api_errors_->text.clear();
   return reports;
+}
+
+void expect_clean(OclgrindSession& session, const std::string& what) {
+  std::size_t left_out = 0;
+  const std::string reports = session.take_reports(&left_out);
+  CHECK_MESSAGE(reports.empty(), what << ": Oclgrind reported:\n" << reports);
+  if (left_out > 0)
+    MESSAGE(what << ": " << left_out << " reports on clFFT's kernels left out (known_third_party_reports)");
 }
 
 }  // namespace snapfit::test

@@ -75,4 +75,8 @@ class OclgrindSession {
   ComputeContext ctx_;
 };
 
+// A doctest check that Oclgrind reported nothing on snapfit's kernels since the last take
+// (`what` names the step); reports left out as third-party are counted in a message.
+void expect_clean(OclgrindSession& session, const std::string& what);
+
 }  // namespace snapfit::test

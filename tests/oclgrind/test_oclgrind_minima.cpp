@@ -23,14 +23,6 @@ namespace {
 
 bool same_float(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b)); }
 
-void expect_clean(OclgrindSession& session, const std::string& what) {
-  std::size_t left_out = 0;
-  const std::string reports = session.take_reports(&left_out);
-  CHECK_MESSAGE(reports.empty(), what << ": Oclgrind reported:\n" << reports);
-  if (left_out > 0)
-    MESSAGE(what << ": " << left_out << " reports on clFFT's kernels left out (known_third_party_reports)");
-}
-
 void check_same(const MapMinimaResult& got, const MapMinimaResult& want, const std::string& what) {
   INFO(what);
   CHECK(same_float(got.best, want.best));

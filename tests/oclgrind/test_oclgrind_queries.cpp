@@ -20,14 +20,6 @@ namespace {
 
 const double kEps = std::numeric_limits<float>::epsilon();
 
-void expect_clean(OclgrindSession& session, const std::string& what) {
-  std::size_t left_out = 0;
-  const std::string reports = session.take_reports(&left_out);
-  CHECK_MESSAGE(reports.empty(), what << ": Oclgrind reported:\n" << reports);
-  if (left_out > 0)
-    MESSAGE(what << ": " << left_out << " reports on clFFT's kernels left out (known_third_party_reports)");
-}
-
 // E, F and T of every pose from both devices. A result is a float sum of m' <= 600 terms
 // whose work-groups split it differently on the two devices (and whose exp, cospi and
 // sinpi may differ by ulps): within 32 float roundings of the largest magnitude of that
