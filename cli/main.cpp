@@ -1,5 +1,7 @@
 // snapfit: haptic guidance for rigid-part assembly. One executable, one subcommand
 // per task; `snapfit SUBCOMMAND --help` describes each.
+#include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <string>
 
@@ -28,6 +30,11 @@ int main(int argc, char** argv) {
   snapfit::cli::add_spheres_command(app);
   snapfit::cli::add_run_command(app);
   snapfit::cli::add_serve_command(app);
+  // SNAPFIT_PARSE_ONLY=1 checks the command line (the subcommand, its options and their
+  // values) and exits 0 without running it: scripts and the README's test check commands so.
+  const char* parse_only = std::getenv("SNAPFIT_PARSE_ONLY");
+  if (parse_only && std::strcmp(parse_only, "1") == 0)
+    for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) command->callback(nullptr);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -29,14 +29,15 @@ struct VpsFacts {
 
 struct JobRecord {
   std::shared_ptr<const AssemblyPair> pair;  // parts, fields, spectra
-  DeviceInfo device;                   // where fields and spectra were computed
-  DeviceInfo loop_device;              // where the loop ran (or would run)
+  DeviceInfo device;                         // where fields and spectra were computed
+  DeviceInfo loop_device;                    // where the loop ran (or would run)
   DeviceCheckResult check;
   TuningResult tuning;
   std::string tuning_key;  // "" when m' was fixed by the user
   // The query strategy the loop renders and why (scheduler/query_strategy.h): the
   // measured candidates when it was chosen by error, else none.
-  std::string strategy;  // variant_name() of the loop's engine
+  std::string strategy;        // variant_name() of the loop's engine
+  std::string strategy_label;  // the same, short (strategy_short_name)
   std::string
       strategy_chosen_by;  // "lowest error that fits (measured)", "... (strategy file)", "--strategy", "--modes"
   std::optional<AccuracyReport> strategies;  // the candidates, when chosen by error
@@ -48,9 +49,9 @@ struct JobRecord {
   std::shared_ptr<const RigidContactModel> contact;
   std::string contact_off;  // why the scene's contact is off (a part not watertight); empty otherwise
   double contact_reserved_ms = 0;
-  double seconds = 0;                        // the whole job so far
-  double seconds_to_first_frame = 0;         // from the job's start to the loop's first frame (0: no loop)
-  std::optional<VpsFacts> vps;               // set for a scene whose method is "vps" (no fields, spectra or tuning)
+  double seconds = 0;                 // the whole job so far
+  double seconds_to_first_frame = 0;  // from the job's start to the loop's first frame (0: no loop)
+  std::optional<VpsFacts> vps;        // set for a scene whose method is "vps" (no fields, spectra or tuning)
 };
 
 }  // namespace snapfit

@@ -1,5 +1,6 @@
 #include "jobs/job_text.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -9,18 +10,23 @@
 namespace snapfit {
 
 std::string strategies_text(const StrategyChoice& choice) {
+  const std::vector<StrategyAccuracy>& all = choice.report.strategies;
+  int width = 8;
+  for (const StrategyAccuracy& s : all) width = std::max(width, static_cast<int>(s.name.size()));
   std::ostringstream out;
-  out << "    " << (choice.from_file ? "from the strategy file " : "measured and saved to ") << choice.path
-      << "\n    strategy                                                m'   p99 ms   energy    force   torque\n";
-  for (std::size_t i = 0; i < choice.report.strategies.size(); ++i) {
-    const StrategyAccuracy& s = choice.report.strategies[i];
-    char line[512];
-    std::snprintf(line, sizeof line, "    %-50s %9zu %8.3f %7.2f%% %7.2f%% %7.2f%%%s%s\n", s.name.c_str(), s.modes,
-                  s.frame_ms_p99, 100 * s.energy_error, 100 * s.force_error, 100 * s.torque_error,
+  out << "    " << (choice.from_file ? "from the strategy file " : "measured and saved to ") << choice.path << "\n";
+  char line[512];
+  std::snprintf(line, sizeof line, "    %-*s %9s %8s %8s %8s %8s\n", width, "strategy", "m'", "p99 ms", "energy",
+                "force", "torque");
+  out << line;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const StrategyAccuracy& s = all[i];
+    std::snprintf(line, sizeof line, "    %-*s %9zu %8.3f %7.2f%% %7.2f%% %7.2f%%%s%s\n", width, s.name.c_str(),
+                  s.modes, s.frame_ms_p99, 100 * s.energy_error, 100 * s.force_error, 100 * s.torque_error,
                   s.fits ? "" : "  does not fit", i == choice.report.best ? "  <- chosen" : "");
     out << line;
   }
-  out << "    " << choice.report.why << "\n";
+  if (!all.empty()) out << "    chosen: " << all[choice.report.best].name << ": " << choice.report.why << "\n";
   return out.str();
 }
 
@@ -34,8 +40,8 @@ std::string session_text(const Scene& scene, const SessionResult& session) {
   out << "    " << loop.frames << " frames, measured " << loop.measured_rate_hz << " Hz; frame time p50 "
       << quantile(loop.frame_ms, 0.5) << " ms, p99 " << quantile(loop.frame_ms, 0.99) << " ms, max "
       << quantile(loop.frame_ms, 1.0) << " ms; " << loop.misses << " misses (" << 100 * loop.miss_rate() << " %; "
-      << loop.late_wakeup_misses << " late wake-ups, " << loop.stall_misses << " stalls), "
-      << loop.mode_changes.size() << " m' changes; threads: " << session.priority.describe() << "\n";
+      << loop.late_wakeup_misses << " late wake-ups, " << loop.stall_misses << " stalls), " << loop.mode_changes.size()
+      << " m' changes; threads: " << session.priority.describe() << "\n";
   if (loop.out_of_region_frames > 0)
     out << "    " << loop.out_of_region_frames
         << " frames with part 2 outside the region part 1's fields cover (grid.region): the engine's wrench was "

@@ -12,9 +12,10 @@
 #include "jobs/job_text.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/scene_summary.h"
+#include "scheduler/accuracy.h"
+#include "scheduler/contact_reserve.h"
 #include "scheduler/haptic_setup.h"
 #include "scheduler/loop_devices.h"
-#include "scheduler/contact_reserve.h"
 #include "scheduler/session_text.h"
 #include "snapfit/error.h"
 #include "snapfit/job.h"
@@ -81,8 +82,8 @@ void compute_fields_and_spectra(AssemblyPair& pair, const ComputeContext& ctx, c
   for (int part = 1; part <= 2; ++part) {
     const GridSpec& grid = pair.grid(part);
     std::ostringstream line;
-    line << "  part " << part << ": grid " << grid.dims.x() << " x " << grid.dims.y() << " x " << grid.dims.z()
-         << " = " << grid.count() << " points, " << pair.part(part).mesh.triangles.size() << " triangles\n";
+    line << "  part " << part << ": grid " << grid.dims.x() << " x " << grid.dims.y() << " x " << grid.dims.z() << " = "
+         << grid.count() << " points, " << pair.part(part).mesh.triangles.size() << " triangles\n";
     out.say(line.str());
     compute_assembly_fields(pair, ctx, options, part);
     std::ostringstream summary;
@@ -103,8 +104,10 @@ std::unique_ptr<QueryEngine> fixed_modes_engine(const ComputeContext& ctx, const
                              pair.scene.frame_budget_ms, request.margin);
   record.loop_device = ctx.device.info;
   record.strategy = variant_name(variant);
+  record.strategy_label = strategy_short_name(variant);
   record.strategy_chosen_by = request.strategy == "auto" ? "--modes (not measured)" : "--strategy";
-  out.say("    " + record.strategy + ", m' = " + std::to_string(record.tuning.chosen_modes) + " (--modes; not tuned)\n");
+  out.say("    " + record.strategy + ", m' = " + std::to_string(record.tuning.chosen_modes) +
+          " (--modes; not tuned)\n");
   return engine;
 }
 
@@ -114,8 +117,8 @@ std::unique_ptr<QueryEngine> fixed_modes_engine(const ComputeContext& ctx, const
 void reserve_contact_time(const AssemblyPair& pair, const JobRequest& request, const JobOutput& out,
                           JobRecord& record) {
   const Scene& scene = pair.scene;
-  record.contact = rigid_contact_for(scene, pair.part(1).mesh, pair.part(2).mesh, pair.spectra.spacing,
-                                     &record.contact_off);
+  record.contact =
+      rigid_contact_for(scene, pair.part(1).mesh, pair.part(2).mesh, pair.spectra.spacing, &record.contact_off);
   if (!record.contact || request.modes) return;
   const ContactReserve reserve = contact_reserve(scene, pair.part(1).mesh, pair.part(2).mesh, record.contact,
                                                  record.device, request.retune, out.note);
@@ -186,6 +189,7 @@ LoopDevices tuned_loop_devices(const ComputeContext& ctx, const AssemblyPair& pa
   }
   const TunedDevice& chosen = devices.loop();
   record.strategy = variant_name(chosen.engine->variant());
+  record.strategy_label = strategy_short_name(chosen.engine->variant());
   if (devices.devices.size() > 1)
     out.say("    the loop runs on " + chosen.ctx.device.info.name + " (of " + std::to_string(devices.devices.size()) +
             " tuned devices: " +
@@ -206,10 +210,8 @@ void measure_strategies_after_loop(const AssemblyPair& pair, const LoopDevices& 
   const StrategyChoice choice = choose_query_strategy(devices.loop().ctx, pair.scene, pair.spectra, accuracy);
   out.say(strategies_text(choice));
   record.strategies = choice.report;
-  record.strategies->why = "this run rendered " + record.strategy +
-                           " (a safe start: the strategies were not measured yet); measured after the loop, the next "
-                           "run renders " +
-                           variant_name(choice.chosen().variant) + ": " + choice.report.why;
+  record.strategies->why =
+      "a safe start; the next run renders " + variant_name(choice.chosen().variant) + ": " + choice.report.why;
   record.strategy_file = choice.path;
 }
 
@@ -239,7 +241,8 @@ PreparedJob prepare_job(const Scene& scene, const JobRequest& request, const Job
     job.fixed_engine = fixed_modes_engine(*job.ctx, *job.pair, variant, request, out, *job.record);
     job.loop_engine = job.fixed_engine.get();
   } else {
-    job.devices = std::make_unique<LoopDevices>(tuned_loop_devices(*job.ctx, *job.pair, variant, request, out, *job.record));
+    job.devices =
+        std::make_unique<LoopDevices>(tuned_loop_devices(*job.ctx, *job.pair, variant, request, out, *job.record));
     job.loop_engine = job.devices->loop().engine.get();
   }
   return job;
@@ -268,9 +271,9 @@ JobResult run_job(const Scene& scene, const JobRequest& request) {
                      if (job.record->contact_reserved_ms > 0) with_contact.contact_ms = job.record->contact_reserved_ms;
                      const double before =
                          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-                     SessionResult result = run_scripted_assembly(scene, pair->part(1).mesh, pair->part(2).mesh,
-                                                                  pair->spectra.spacing, *job.loop_engine,
-                                                                  job.record->tuning, with_contact);
+                     SessionResult result =
+                         run_scripted_assembly(scene, pair->part(1).mesh, pair->part(2).mesh, pair->spectra.spacing,
+                                               *job.loop_engine, job.record->tuning, with_contact);
                      job.record->seconds_to_first_frame = before + result.setup_s;
                      return result;
                    });

@@ -49,13 +49,16 @@ inline void add_common_options(CLI::App& app, bool& quick, std::string& device, 
 }
 
 // Parses the command line: --help prints the options and exits 0; a bad command line
-// prints why and exits with CLI11's status.
+// prints why and exits with CLI11's status. With SNAPFIT_PARSE_ONLY=1 a good command line
+// exits 0 here, before the benchmark runs (as `snapfit` does).
 inline void parse(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     std::exit(app.exit(e));
   }
+  const char* parse_only = std::getenv("SNAPFIT_PARSE_ONLY");
+  if (parse_only && std::string(parse_only) == "1") std::exit(0);
 }
 
 }  // namespace snapfit::bench

@@ -13,6 +13,7 @@
 #include "report/page_encoding.h"
 #include "report/part_contact.h"
 #include "report/strategy_chart.h"
+#include "scheduler/accuracy.h"
 #include "scheduler/haptic_setup.h"
 #include "snapfit/error.h"
 
@@ -34,12 +35,31 @@ nlohmann::json rendered_modes_json(const LoopReport& loop) {
   for (const FrameRecord& f : loop.log) ++frames_at[f.modes], sum += double(f.modes);
   const auto most = std::max_element(frames_at.begin(), frames_at.end(),
                                      [](const auto& a, const auto& b) { return a.second < b.second; });
-  return {{"most_frequent", most->first},
-          {"most_frequent_share", double(most->second) / double(loop.log.size())},
-          {"mean", sum / double(loop.log.size())},
-          {"start", loop.log.front().modes},
-          {"final", loop.log.back().modes},
-          {"changes", loop.mode_changes.size()}};
+  return {
+      {"most_frequent", most->first},          {"most_frequent_share", double(most->second) / double(loop.log.size())},
+      {"mean", sum / double(loop.log.size())}, {"start", loop.log.front().modes},
+      {"final", loop.log.back().modes},        {"changes", loop.mode_changes.size()}};
+}
+
+// The strategies measured for this scene, one row each, beside their chart: what the
+// strategy card's one line sums up.
+nlohmann::json strategy_table_json(const JobRecord& run) {
+  if (!run.strategies || run.strategies->strategies.size() < 2) return nullptr;
+  nlohmann::json rows = nlohmann::json::array();
+  const std::vector<StrategyAccuracy>& all = run.strategies->strategies;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const StrategyAccuracy& s = all[i];
+    rows.push_back({{"strategy", s.name},
+                    {"label", strategy_short_name(s.variant)},
+                    {"modes", s.modes},
+                    {"frame_ms_p99", s.frame_ms_p99},
+                    {"energy_error", s.energy_error},
+                    {"force_error", s.variant.force ? nlohmann::json(s.force_error) : nlohmann::json(nullptr)},
+                    {"torque_error", s.variant.torque ? nlohmann::json(s.torque_error) : nlohmann::json(nullptr)},
+                    {"fits_budget", s.fits},
+                    {"lowest_error_that_fits", i == run.strategies->best}});
+  }
+  return rows;
 }
 
 nlohmann::json summary_json(const JobRecord& run) {
@@ -66,6 +86,7 @@ nlohmann::json summary_json(const JobRecord& run) {
                       {"query_strategy", nullptr}};
   if (!run.strategy.empty())
     s["query_strategy"] = {{"name", run.strategy},
+                           {"label", run.strategy_label},
                            {"chosen_by", run.strategy_chosen_by},
                            {"why", run.strategies ? nlohmann::json(run.strategies->why) : nlohmann::json(nullptr)}};
   if (run.session) {
@@ -188,8 +209,8 @@ nlohmann::json timeline_json(const JobRecord& run, const RunPageLimits& limits) 
   const Envelope e = envelope(time, v, std::max<std::size_t>(2, limits.chart_points));
   std::vector<Chart> charts;
   // E = -Re of the overlap integral of two dimensionless affinities: a volume.
-  charts.push_back(time_chart("Geometric energy at the part's pose", "energy (" + scene.units + "^3)", e,
-                              {{energy, "energy"}}));
+  charts.push_back(
+      time_chart("Geometric energy at the part's pose", "energy (" + scene.units + "^3)", e, {{energy, "energy"}}));
   charts.push_back(time_chart("Force", "N", e, {{geo_force, "|geometric force|"}, {sent_force, "|force to device|"}}));
   if (scene.outputs.torque)
     charts.push_back(
@@ -243,7 +264,6 @@ nlohmann::json part_json(const std::string& name, const Mesh& mesh) {
   return {{"name", name}, {"triangles", mesh.triangles.size()}, {"positions", float32_base64(positions)}};
 }
 
-
 Mesh display_mesh(const Mesh& mesh, double spacing, std::size_t max_triangles) {
   if (mesh.triangles.size() >= max_triangles || !(spacing > 0)) return mesh;
   for (double radius = spacing; radius < 1e6 * spacing; radius *= 2) {
@@ -283,6 +303,7 @@ nlohmann::json run_page_data(const JobRecord& run, const std::vector<PageFigure>
       {"strategy_chart", run.strategies && run.strategies->strategies.size() > 1
                              ? chart_json(strategy_chart(run.strategies->strategies, scene.frame_budget_ms))
                              : nlohmann::json(nullptr)},
+      {"strategy_table", strategy_table_json(run)},
       {"slices", slices},
       {"notes", notes}};
   if (run.session && !run.session->loop.log.empty()) {

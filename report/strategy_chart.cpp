@@ -3,16 +3,9 @@
 #include <algorithm>
 #include <sstream>
 
-namespace snapfit {
+#include "scheduler/accuracy.h"
 
-std::string strategy_short_name(const QueryVariant& v) {
-  if (v.translation_only) return "translation lines";
-  std::string name = v.rotation == RotationMethod::exact_product  ? "exact product"
-                     : v.interpolation == Interpolation::tricubic ? "tricubic"
-                                                                  : "trilinear";
-  if (v.near_far) name += ", near-far";
-  return name;
-}
+namespace snapfit {
 
 Chart strategy_chart(const std::vector<StrategyAccuracy>& strategies, double budget_ms) {
   Chart c;

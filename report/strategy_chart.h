@@ -12,9 +12,6 @@
 
 namespace snapfit {
 
-// A strategy's name for people, short: "tricubic", "trilinear", "exact product",
-// "exact product, near-far", "translation lines".
-std::string strategy_short_name(const QueryVariant& variant);
 
 Chart strategy_chart(const std::vector<StrategyAccuracy>& strategies, double budget_ms);
 

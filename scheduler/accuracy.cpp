@@ -136,27 +136,30 @@ std::size_t lowest_error_that_fits(const std::vector<StrategyAccuracy>& strategi
   return best;
 }
 
+std::string strategy_short_name(const QueryVariant& v) {
+  if (v.translation_only) return "translation lines";
+  std::string name = v.rotation == RotationMethod::exact_product  ? "exact product"
+                     : v.interpolation == Interpolation::tricubic ? "tricubic"
+                                                                  : "trilinear";
+  if (v.near_far) name += ", near-far";
+  return name;
+}
+
 std::string strategy_reason(const std::vector<StrategyAccuracy>& strategies, std::size_t chosen) {
   if (strategies.empty()) return "";
   const StrategyAccuracy& c = strategies[chosen];
-  std::ostringstream why;
-  if (strategies.size() == 1) {
-    why << "the only strategy for this scene; " << errors_text(c) << " at m' " << c.modes;
-    return why.str();
-  }
-  why << (c.fits ? "the lowest error of the rendered wrench among the strategies that fit the frame: "
-                 : "no strategy fits the frame; the lowest error of the rendered wrench: ")
-      << c.name << " at m' " << c.modes << " (" << errors_text(c) << ", p99 " << std::fixed << std::setprecision(3)
-      << c.frame_ms_p99 << " ms); against";
-  bool first = true;
-  for (std::size_t i = 0; i < strategies.size(); ++i) {
-    if (i == chosen) continue;
-    const StrategyAccuracy& o = strategies[i];
-    why << (first ? " " : "; ") << o.name << " at m' " << o.modes << " (" << errors_text(o)
-        << (o.fits ? "" : ", does not fit") << ")";
-    first = false;
-  }
-  return why.str();
+  if (strategies.size() == 1) return "the only strategy for this scene (" + errors_text(c) + ")";
+  // The next best by the same rule, for scale.
+  std::vector<StrategyAccuracy> others;
+  for (std::size_t i = 0; i < strategies.size(); ++i)
+    if (i != chosen) others.push_back(strategies[i]);
+  const StrategyAccuracy& next = others[lowest_error_that_fits(others)];
+  std::size_t fitting = 0;
+  for (const StrategyAccuracy& s : strategies) fitting += s.fits ? 1 : 0;
+  const std::string errors = "wrench " + percent(rendered_error(c)) + "; next: " + strategy_short_name(next.variant) +
+                             " " + percent(rendered_error(next));
+  if (!c.fits) return "none fits the frame; the lowest error (" + errors + ")";
+  return "the lowest error of the " + std::to_string(fitting) + " that fit the frame (" + errors + ")";
 }
 
 void RelativeErrors::add(const QueryResult& x, const QueryResult& ref) {

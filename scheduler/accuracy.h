@@ -31,7 +31,7 @@ struct RelativeErrors {
 
 struct AccuracyOptions {
   double budget_ms = 1.0;
-  double margin = 0.25;    // TuneOptions::margin
+  double margin = 0.25;  // TuneOptions::margin
   // The frame's time other work takes beside the query (the loop's rigid contact, ms):
   // each strategy's m' is the one that fits beside it (tuning_beside_contact), so the
   // errors measured are those of the m' the loop renders.
@@ -64,7 +64,12 @@ double rendered_error(const StrategyAccuracy& s);
 // frame (among all when none fits); the first on a tie. strategies must not be empty.
 std::size_t lowest_error_that_fits(const std::vector<StrategyAccuracy>& strategies);
 
-// One sentence saying which strategy was chosen and why, with the others' errors.
+// A strategy's name for people, short: "tricubic", "trilinear", "exact product",
+// "exact product, near-far", "translation lines".
+std::string strategy_short_name(const QueryVariant& variant);
+
+// Why the chosen strategy, in a few words: the rule it won by and its rendered error against
+// the next best's (the comparison itself is the strategies' table).
 std::string strategy_reason(const std::vector<StrategyAccuracy>& strategies, std::size_t chosen);
 
 // The poses the reference is computed at: the scene's trajectory at `count` evenly spaced
@@ -72,8 +77,8 @@ std::string strategy_reason(const std::vector<StrategyAccuracy>& strategies, std
 std::vector<Pose> accuracy_poses(const Scene& scene, std::size_t count);
 
 // Tunes and measures each strategy the scene allows on ctx's device
-// (accuracy_candidates of the scene's tricubic variant) and picks the best. Throws snapfit::Error when the spectra cannot carry
-// a strategy's reference (no deconvolved spectrum for a 6-DOF scene) or the device fails.
+// (accuracy_candidates of the scene's tricubic variant) and picks the best. Throws snapfit::Error when the spectra
+// cannot carry a strategy's reference (no deconvolved spectrum for a 6-DOF scene) or the device fails.
 AccuracyReport measure_accuracy(const ComputeContext& ctx, const Scene& scene, const PairSpectra& spectra,
                                 const AccuracyOptions& options);
 

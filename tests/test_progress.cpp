@@ -152,3 +152,9 @@ TEST_CASE("progress: a terminal line shorter than the last one blanks the leftov
   REQUIRE(second != std::string::npos);
   CHECK(s.size() - second - 2 == s.find('\r', 1) - 1);  // the final line is padded to the first one's width
 }
+
+TEST_CASE("progress: reading overrun bars back (tests/progress_lines.h)") {
+  CHECK(test::overrun_bars("tuning: 100% (11760/10920), done in 3.1s\n").size() == 1);
+  CHECK(test::overrun_bars("a: 104% (52/50), 1.0s elapsed\n").size() == 1);
+  CHECK(test::overrun_bars("a: 50% (5/10), 0.1s elapsed\nb: 100% (10/10), done in 0.2s\nnot a bar (3/2)\n").empty());
+}

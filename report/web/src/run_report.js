@@ -45,8 +45,9 @@ function renderSummary(root, s) {
   list.append(summaryItem('loop_device', 'loop device', s.loop_device, s.loop_device));
   if (s.query_strategy) {
     const q = s.query_strategy;
-    list.append(summaryItem('query_strategy', 'query strategy', q, `${q.name} (${q.chosen_by})`));
-    if (q.why) list.append(summaryItem('strategy_why', 'why this strategy', q.why, q.why));
+    // One line: the strategy and why; the comparison is the table and chart under "Query strategies".
+    const text = q.why ? `${q.label}: ${q.why} (${q.chosen_by})` : `${q.label} (${q.chosen_by})`;
+    list.append(summaryItem('query_strategy', 'query strategy', q, text));
   }
   list.append(summaryItem('modes', "m' (Fourier modes)", s.modes, modesText(s)));
   if (s.frames !== null) {
@@ -67,6 +68,22 @@ function renderSummary(root, s) {
   }
   list.append(summaryItem('seconds', 'job time', s.seconds, `${formatNumber(s.seconds, 3)} s`));
   root.append(list);
+}
+
+// The measured strategies, one row each; the one the rule picks (lowest error that fits) marked.
+function strategyTable(rows) {
+  const percent = (x) => (x === null ? '-' : `${formatNumber(100 * x, 3)} %`);
+  const head = element('tr', {}, ...['strategy', "m'", 'p99 ms', 'E', 'F', 'T', 'fits'].map((t) => element('th', { text: t })));
+  const body = rows.map((r) => {
+    const tr = element('tr', { 'data-strategy': r.strategy },
+                       element('td', { text: r.label, title: r.strategy }), element('td', { text: String(r.modes) }),
+                       element('td', { text: formatNumber(r.frame_ms_p99, 3) }), element('td', { text: percent(r.energy_error) }),
+                       element('td', { text: percent(r.force_error) }), element('td', { text: percent(r.torque_error) }),
+                       element('td', { text: r.fits_budget ? 'yes' : 'no' }));
+    if (r.lowest_error_that_fits) tr.className = 'chosen';
+    return tr;
+  });
+  return element('table', { id: 'strategy-table', class: 'strategy-table' }, head, ...body);
 }
 
 function legendRow(color, label, valueId) {
@@ -251,7 +268,9 @@ function main() {
   if (data.strategy_chart) {
     root.append(element('h2', { text: 'Query strategies: error against frame time' }));
     const strategies = element('div', { class: 'chart', id: 'strategy-chart' });
-    root.append(strategies);
+    const row = element('div', { class: 'strategies' }, strategies);
+    if (data.strategy_table) row.append(strategyTable(data.strategy_table));
+    root.append(row);
     entries.push({ chart: createChart(strategies, data.strategy_chart, { height: 320 }), container: strategies });
   }
   root.append(element('h2', { text: "Tuning of m'" }));

@@ -36,10 +36,20 @@ try {
   const strategy = summary.query_strategy;
   if (strategy) {
     t.check(dom.query_strategy && dom.query_strategy.value.name === strategy.name &&
-            dom.query_strategy.text.includes(strategy.name) && dom.query_strategy.text.includes(strategy.chosen_by),
+            dom.query_strategy.text.startsWith(dom.query_strategy.value.label) &&
+            dom.query_strategy.text.includes(strategy.chosen_by),
             `query strategy "${strategy.name}" (${strategy.chosen_by})`);
-    t.check(strategy.why ? dom.strategy_why && dom.strategy_why.text === strategy.why : !dom.strategy_why,
-            strategy.why ? 'why this strategy, as in summary.json' : 'not chosen by error: no reason shown');
+    t.check(!strategy.why || dom.query_strategy.text.includes(strategy.why), 'the strategy card gives the reason in its one line');
+    const rows = await page.evaluate(() => [...document.querySelectorAll('#strategy-table tr[data-strategy]')].map(
+      (tr) => ({ name: tr.dataset.strategy, modes: Number(tr.children[1].textContent), chosen: tr.className === 'chosen' })));
+    const candidates = strategy.candidates || [];
+    if (candidates.length > 1) {
+      t.check(rows.length === candidates.length && rows.every((r, i) => r.name === candidates[i].strategy && r.modes === candidates[i].modes),
+              `the strategies' table beside the chart: ${rows.length} rows as in summary.json`);
+      t.check(rows.filter((r) => r.chosen).length === 1, 'one row marked: the lowest error that fits');
+    } else {
+      t.check(rows.length === 0, 'one strategy or none measured: no table');
+    }
   } else {
     t.check(!dom.query_strategy, 'no query strategy in summary.json: none on the page');
   }
