@@ -133,6 +133,24 @@ TEST_CASE("program build: a compile error names the kernel, the device and carri
   CHECK(!std::filesystem::exists(f.dir.file("programs")));
 }
 
+TEST_CASE("program build: compiler warnings are said once, naming the kernel; a cached build says nothing") {
+  CacheFixture f;
+  const std::string warns = "#warning snapfit_test_warning\n__kernel void warns(__global float* x) { x[0] = 1.0f; }";
+  const BuiltProgram first = build_program(f.ctx, "warns", warns, "", f.config());
+  CHECK(first.origin == ProgramOrigin::compiled);
+  CHECK(first.build_log.find("snapfit_test_warning") != std::string::npos);
+  REQUIRE(f.notes.size() == 1);
+  CHECK(f.notes[0].find("kernel 'warns' built on " + f.ctx.device.info.name + " with compiler messages") == 0);
+  CHECK(f.notes[0].find("snapfit_test_warning") != std::string::npos);
+  const BuiltProgram second = build_program(f.ctx, "warns", warns, "", f.config());
+  CHECK(second.origin == ProgramOrigin::cache_hit);
+  CHECK(second.build_log.empty());
+  CHECK(f.notes.size() == 1);
+  // A kernel of ours says nothing.
+  const BuiltProgram check = f.build(kOptions);
+  CHECK(check.build_log.empty());
+}
+
 TEST_CASE("embedded kernels: sources are carried in the binary and looked up by name") {
   CHECK(kernel_source("device_check").find("__kernel") != std::string::npos);
   CHECK_THROWS_WITH_AS(kernel_source("no_such_kernel"), doctest::Contains("device_check"), Error);

@@ -135,6 +135,9 @@ TEST_CASE(
   INFO(first.output);
   REQUIRE(first.status == 0);
   CHECK(test::overrun_bars(first.output).empty());  // tuning, descriptors, strategies: none past its total
+  // Every kernel the main job built (both PoCL drivers, all four strategies) compiled silently.
+  CHECK(first.output.find("with compiler messages") == std::string::npos);
+  CHECK(first.output.find("warning") == std::string::npos);
   CHECK(first.output.find("measured and saved to") != std::string::npos);
   // Nothing measured yet: the loop starts on the tricubic sum and does not wait for the
   // strategies, which are measured after it.

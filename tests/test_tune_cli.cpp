@@ -24,4 +24,7 @@ TEST_CASE("tune cli: the sweep's table, the saved file, and progress within its 
   CHECK(c.output.find("tuning") != std::string::npos);
   CHECK(c.output.find("% (") != std::string::npos);
   CHECK(test::overrun_bars(c.output).empty());
+  // Every kernel it built (fields, spectra, the query) compiled without a compiler message.
+  CHECK(c.output.find("with compiler messages") == std::string::npos);
+  CHECK(c.output.find("warning") == std::string::npos);
 }

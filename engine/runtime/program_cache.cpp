@@ -17,14 +17,23 @@ double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::string build_failure(const std::string& name, const DeviceInfo& device, const std::string& options,
-                          const cl::Program& program, const cl::Error& e) {
+// The compiler's log of the last build on ctx's device, trimmed; "" when it said nothing.
+std::string build_log(const cl::Program& program) {
   std::string log;
   try {
     for (const auto& entry : program.getBuildInfo<CL_PROGRAM_BUILD_LOG>()) log += entry.second;
   } catch (const cl::Error&) {
-    log = "(no build log available)";
+    return "";
   }
+  const std::size_t first = log.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return "";
+  return log.substr(first, log.find_last_not_of(" \t\r\n") - first + 1);
+}
+
+std::string build_failure(const std::string& name, const DeviceInfo& device, const std::string& options,
+                          const cl::Program& program, const cl::Error& e) {
+  std::string log = build_log(program);
+  if (log.empty()) log = "(no build log available)";
   return "kernel '" + name + "' failed to build on device " + device.name + " (driver " + device.driver_version +
          ", options '" + options + "'): " + e.what() + " error " + std::to_string(e.err()) + "\n" + log;
 }
@@ -80,8 +89,15 @@ BuiltProgram build_program(const ComputeContext& ctx, const std::string& name, c
     if (cache.note) cache.note(m);
   };
   BuiltProgram built;
+  // A build that succeeded with something to say (warnings): said once, naming the kernel.
+  auto keep_log = [&] {
+    built.build_log = build_log(built.program);
+    if (!built.build_log.empty())
+      note("kernel '" + name + "' built on " + ctx.device.info.name + " with compiler messages:\n" + built.build_log);
+  };
   if (cache.directory.empty()) {
     built.program = compile_from_source(ctx, name, source, options);
+    keep_log();
     built.build_ms = ms_since(start);
     return built;
   }
@@ -107,6 +123,7 @@ BuiltProgram build_program(const ComputeContext& ctx, const std::string& name, c
   }
 
   built.program = compile_from_source(ctx, name, source, options);
+  keep_log();
   try {
     const auto binaries = built.program.getInfo<CL_PROGRAM_BINARIES>();
     if (!binaries.empty() && !binaries[0].empty()) {

@@ -25,6 +25,7 @@ struct BuiltProgram {
   ProgramOrigin origin = ProgramOrigin::compiled;
   std::string cache_path;  // the entry used or written ("" when caching is off)
   double build_ms = 0.0;   // wall time of this call
+  std::string build_log;   // what the compiler said on a build from source ("" if nothing or from the cache)
 };
 
 // The exact text the cache key is made of (device, driver, source hash, options).
@@ -32,7 +33,9 @@ std::string program_cache_key(const DeviceInfo& device, const std::string& sourc
 
 // Builds `source` (named `name` in messages) for ctx's device with `options`.
 // A compile error throws snapfit::Error with the kernel name, device name, options and
-// the compiler log. A failure to write the cache is a note, not an error.
+// the compiler log. A build from source whose compiler log is not empty (warnings) is a
+// note naming the kernel and the device, once. A failure to write the cache is a note, not
+// an error.
 BuiltProgram build_program(const ComputeContext& ctx, const std::string& name, const std::string& source,
                            const std::string& options, const ProgramCacheConfig& cache = default_program_cache());
 
