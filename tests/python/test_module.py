@@ -1,0 +1,118 @@
+"""`import snapfit` as a Python user would: scenes, an assembly, queries with numpy arrays,
+errors as exceptions, and the same E, F and T as the C++ tool (`snapfit query`) gives."""
+import json
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import snapfit
+
+SCENE = "scenes/default.json"
+TRANSLATION_SCENE = "scenes/peg_hole_translation.json"
+
+
+@pytest.fixture(scope="module")
+def assembly():
+    return snapfit.Assembly(snapfit.load_scene(SCENE))
+
+
+@pytest.fixture(scope="module")
+def engine(assembly):
+    e = assembly.query_engine()
+    e.modes = 4096
+    return e
+
+
+def poses():
+    # Part 2 at the hole's mouth and in it (the scene starts at z = 10), turned a little about x and z (x, y, z, qw, qx, qy, qz).
+    turn = np.array([np.cos(0.02), np.sin(0.02) * 0.6, 0.0, np.sin(0.02) * 0.8])
+    return np.array([[0.0, 0.0, 10.0, 1, 0, 0, 0],
+                     [0.3, -0.2, 8.0, *turn],
+                     [0.0, 0.1, 5.0, *turn]])
+
+
+def test_scene_and_assembly(assembly):
+    scene = assembly.scene
+    assert scene.name == snapfit.load_scene(SCENE).name
+    assert scene.units == "mm"
+    assert assembly.spacing > 0
+    assert len(assembly.fft_dims) == 3 and all(n > 0 for n in assembly.fft_dims)
+    assert json.loads(scene.to_json())["part1"]
+
+
+def test_query_shapes_and_dtypes(engine):
+    r = engine.query(poses())
+    assert engine.modes == 4096 and engine.modes <= engine.max_modes
+    assert r["energy"].shape == (3,) and r["energy"].dtype == np.float64
+    assert r["force"].shape == (3, 3) and r["torque"].shape == (3, 3)
+    assert r["error_estimate"].shape == (3, 3)
+    assert r["flags"].dtype == np.uint32 and not r["flags"].any()  # all inside the grid, all valid
+    assert (r["energy"] != 0).all()
+    assert (r["modes"] == 4096).all()
+    assert np.isfinite(r["energy"]).all() and np.isfinite(r["force"]).all()
+    # Beyond the padded box: zeros, flagged (query_outside_grid), as in C++.
+    far = engine.query(np.array([[0.0, 0.0, 500.0, 1, 0, 0, 0]]))
+    assert far["flags"][0] == 1 and far["energy"][0] == 0
+    # One pose as a 1-D row gives one row.
+    one = engine.query(poses()[1])
+    assert one["energy"].shape == (1,)
+    assert one["energy"][0] == r["energy"][1]
+
+
+def test_same_results_as_the_tool(engine):
+    """Bit for bit the C++ tool's E, F and T at the same poses and m' (its JSON holds every
+    double exactly). The tool takes axis-angle in degrees: the axes here are unit vectors
+    and the quaternion is made as Eigen makes it, with the same libm."""
+    turns = [((1.0, 0.0, 0.0), 0.0), ((0.0, 1.0, 0.0), 1.5), ((0.0, 0.0, 1.0), -2.0), ((1.0, 0.0, 0.0), 3.0)]
+    positions = [(0.0, 0.0, 10.0), (0.3, -0.2, 8.0), (0.0, 0.1, 5.0), (-0.2, 0.0, 2.0)]
+    args = [os.environ["SNAPFIT_CLI"], "query", SCENE, "--modes", "4096"]
+    rows = []
+    for (x, y, z), (axis, degrees) in zip(positions, turns):
+        args += ["--pose", ",".join(repr(v) for v in (x, y, z, *axis, degrees))]
+        half = 0.5 * (degrees * math.pi / 180.0)
+        rows.append([x, y, z, math.cos(half), *(math.sin(half) * a for a in axis)])
+    lines = subprocess.run(args, check=True, capture_output=True, text=True).stdout.splitlines()
+    tool = [json.loads(line) for line in lines]
+    assert len(tool) == len(rows)
+    mine = engine.query(np.array(rows))
+    assert not mine["flags"].any()
+    for i, t in enumerate(tool):
+        assert mine["energy"][i] == t["energy"]
+        assert mine["force"][i].tolist() == t["force"]
+        assert mine["torque"][i].tolist() == t["torque"]
+
+
+def test_bad_input_raises_clear_errors(engine):
+    with pytest.raises(ValueError, match="7 columns"):
+        engine.query(np.zeros((2, 5)))
+    with pytest.raises(ValueError, match="pose 1 is not finite"):
+        engine.query(np.array([[0, 0, 25, 1, 0, 0, 0], [0, np.nan, 25, 1, 0, 0, 0]]))
+    with pytest.raises(ValueError, match="quaternion has length"):
+        engine.query(np.array([[0, 0, 25, 2, 0, 0, 0]]))
+    with pytest.raises(ValueError, match="turns part 2"):
+        engine.query(np.zeros((2, 3)))
+    with pytest.raises(snapfit.Error, match="no_such_scene.json"):
+        snapfit.load_scene("no_such_scene.json")
+    with pytest.raises(ValueError, match="interpolation"):
+        snapfit.Assembly(snapfit.load_scene(SCENE)).query_engine("cubic")
+
+
+def test_scene_from_dict_names_the_bad_field():
+    with open(SCENE) as f:
+        d = json.load(f)
+    assert snapfit.scene_from_dict(d).name == d["name"]
+    d["part2"]["procedural"]["radius"] = -1
+    with pytest.raises(snapfit.Error, match=r"part2\.procedural\.radius"):
+        snapfit.scene_from_dict(d)
+
+
+def test_translation_only_takes_positions():
+    engine = snapfit.Assembly(snapfit.load_scene(TRANSLATION_SCENE)).query_engine()
+    assert engine.translation_only
+    r = engine.query(np.array([[0.0, 0.0, 25.0], [0.0, 0.0, 10.0]]))
+    assert r["force"].shape == (2, 3)
+    full = engine.query(np.array([[0.0, 0.0, 10.0, 1, 0, 0, 0]]))
+    assert full["energy"][0] == r["energy"][1]
