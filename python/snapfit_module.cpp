@@ -2,6 +2,7 @@
 // (include/snapfit) with numpy arrays in and out. Poses are (N, 7) arrays, position then
 // unit quaternion (w, x, y, z), or (N, 3) positions for translation-only scenes; results
 // are arrays of N rows. snapfit::Error becomes snapfit.Error.
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <pybind11/numpy.h>
@@ -12,8 +13,11 @@
 
 #include "snapfit/assembly.h"
 #include "snapfit/error.h"
+#include "snapfit/haptic_loop.h"
+#include "snapfit/job.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
+#include "snapfit/tuning.h"
 
 namespace py = pybind11;
 using namespace snapfit;
@@ -86,6 +90,70 @@ py::dict results_dict(const std::vector<QueryResult>& results) {
   return d;
 }
 
+// An (N, 3) array of one Vector3d member per row.
+template <typename Row, typename Get>
+py::array_t<double> rows3(const std::vector<Row>& rows, Get get) {
+  py::array_t<double> a({static_cast<py::ssize_t>(rows.size()), py::ssize_t(3)});
+  auto v = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Eigen::Vector3d x = get(rows[i]);
+    for (int k = 0; k < 3; ++k) v(static_cast<py::ssize_t>(i), k) = x[k];
+  }
+  return a;
+}
+
+template <typename Row, typename Get>
+py::array_t<double> column(const std::vector<Row>& rows, Get get) {
+  py::array_t<double> a(static_cast<py::ssize_t>(rows.size()));
+  auto v = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < rows.size(); ++i) v(static_cast<py::ssize_t>(i)) = static_cast<double>(get(rows[i]));
+  return a;
+}
+
+// The tuning sweep: m' and its p50/p99/max as arrays, the chosen m' and the file.
+py::dict tuning_dict(const TuningResult& t) {
+  py::dict d;
+  d["modes"] = column(t.points, [](const TimingPoint& p) { return p.modes; });
+  d["p50_ms"] = column(t.points, [](const TimingPoint& p) { return p.p50_ms; });
+  d["p99_ms"] = column(t.points, [](const TimingPoint& p) { return p.p99_ms; });
+  d["max_ms"] = column(t.points, [](const TimingPoint& p) { return p.max_ms; });
+  d["chosen_modes"] = t.chosen_modes;
+  d["fits"] = t.fits;
+  d["budget_ms"] = t.budget_ms;
+  d["margin"] = t.margin;
+  d["file"] = t.file;
+  return d;
+}
+
+// The loop's log, one row a frame: times, part 2's pose (N, 7), energy, the wrench sent
+// (N, 3 each), m', flags and misses.
+py::dict loop_dict(const LoopReport& loop) {
+  const std::vector<FrameRecord>& log = loop.log;
+  py::array_t<double> pose({static_cast<py::ssize_t>(log.size()), py::ssize_t(7)});
+  auto p = pose.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < log.size(); ++i) {
+    const Pose& x = log[i].part;
+    const double row[7] = {x.translation.x(), x.translation.y(), x.translation.z(), x.rotation.w(),
+                           x.rotation.x(),    x.rotation.y(),    x.rotation.z()};
+    for (int k = 0; k < 7; ++k) p(static_cast<py::ssize_t>(i), k) = row[k];
+  }
+  py::dict d;
+  d["time_s"] = column(log, [](const FrameRecord& f) { return f.time_s; });
+  d["frame_ms"] = column(log, [](const FrameRecord& f) { return f.frame_ms; });
+  d["part_pose"] = pose;
+  d["energy"] = column(log, [](const FrameRecord& f) { return f.energy; });
+  d["force_sent"] = rows3(log, [](const FrameRecord& f) { return f.sent.force; });
+  d["torque_sent"] = rows3(log, [](const FrameRecord& f) { return f.sent.torque; });
+  d["contact_depth"] = column(log, [](const FrameRecord& f) { return f.contact_depth; });
+  d["modes"] = column(log, [](const FrameRecord& f) { return f.modes; });
+  d["flags"] = column(log, [](const FrameRecord& f) { return f.flags; });
+  d["missed"] = column(log, [](const FrameRecord& f) { return f.missed ? 1.0 : 0.0; });
+  d["frames"] = loop.frames;
+  d["misses"] = loop.misses;
+  d["measured_rate_hz"] = loop.measured_rate_hz;
+  return d;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_snapfit, m) {
@@ -131,7 +199,24 @@ PYBIND11_MODULE(_snapfit, m) {
           py::arg("poses"),
           "E, F and T at each pose of an (N, 7) array [x, y, z, qw, qx, qy, qz] (part 2 in part 1's frame)\n"
           "or (N, 3) for a translation-only scene. Returns a dict of arrays: energy (N,), force (N, 3),\n"
-          "torque (N, 3), error_estimate (N, 3), flags (N,), modes (N,).");
+          "torque (N, 3), error_estimate (N, 3), flags (N,), modes (N,).")
+      .def(
+          "_time_batch",
+          [](QueryEngine& q, const Array& poses, int repeats) {
+            const std::vector<Pose> p = poses_from(poses, q.variant().translation_only);
+            std::vector<QueryResult> results(p.size());
+            std::vector<double> seconds;
+            py::gil_scoped_release released;
+            for (int r = 0; r < repeats; ++r) {
+              const auto start = std::chrono::steady_clock::now();
+              q.query_batch(p.data(), p.size(), results.data());
+              seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            }
+            return seconds;
+          },
+          py::arg("poses"), py::arg("repeats"),
+          "Seconds of each of `repeats` batches of the same poses timed in C++ around query_batch alone\n"
+          "(perf/bench_python.py sets them beside query() called from Python).");
 
   py::class_<Assembly>(m, "Assembly", "A scene's parts, fields and spectra on one OpenCL device.")
       .def(py::init([](const Scene& scene, const std::string& device, bool use_cache) {
@@ -153,4 +238,53 @@ PYBIND11_MODULE(_snapfit, m) {
           },
           py::arg("interpolation") = "tricubic",
           "A query engine for the scene's variant ('tricubic' or 'trilinear' rotation interpolation).");
+
+  m.def(
+      "auto_tune",
+      [](const Assembly& assembly, QueryEngine& engine, double margin, bool retune, std::size_t repetitions) {
+        AutoTuneOptions o;
+        o.margin = margin, o.retune = retune, o.repetitions = repetitions;
+        TuningResult t;
+        {
+          py::gil_scoped_release released;
+          t = auto_tune(assembly, engine, o);
+        }
+        return tuning_dict(t);
+      },
+      py::arg("assembly"), py::arg("engine"), py::arg("margin") = 0.25, py::arg("retune") = false,
+      py::arg("repetitions") = 400,
+      "m' for the scene's frame budget on this device (read from the tuning file when it matches),\n"
+      "for the engine's variant; the engine keeps its m' (set engine.modes = result['chosen_modes']).\n"
+      "Returns the sweep as arrays (modes, p50_ms, p99_ms, max_ms) and the choice.");
+
+  m.def(
+      "run_job",
+      [](const Scene& scene, const std::string& device, std::size_t modes, const std::string& strategy,
+         bool simulated_time, bool retune) {
+        JobRequest r;
+        r.device = device, r.modes = modes, r.strategy = strategy;
+        r.simulated_time = simulated_time, r.retune = retune;
+        JobResult j;
+        {
+          py::gil_scoped_release released;
+          j = run_job(scene, r);
+        }
+        py::dict d;
+        d["device"] = j.device;
+        d["loop_device"] = j.loop_device;
+        d["strategy"] = j.strategy;
+        d["strategy_chosen_by"] = j.strategy_chosen_by;
+        d["tuning"] = tuning_dict(j.tuning);
+        d["loop"] = j.loop ? py::object(loop_dict(*j.loop)) : py::object(py::none());
+        d["evaluated"] = j.evaluated;
+        d["assembled"] = j.assembled;
+        d["final_position_error"] = j.final_position_error;
+        d["final_angle_deg"] = j.final_angle_deg;
+        d["final_surface_deviation"] = j.final_surface_deviation;
+        return d;
+      },
+      py::arg("scene"), py::arg("device") = "", py::arg("modes") = 0, py::arg("strategy") = "auto",
+      py::arg("simulated_time") = false, py::arg("retune") = false,
+      "`snapfit run`'s job without its files: the strategy and m' chosen for this device, the scripted\n"
+      "assembly in the loop (its log as arrays under 'loop'), and the verdict.");
 }

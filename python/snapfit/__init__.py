@@ -9,10 +9,10 @@
 """
 import json as _json
 
-from ._snapfit import Assembly, Error, QueryEngine, Scene, load_scene
+from ._snapfit import Assembly, Error, QueryEngine, Scene, auto_tune, load_scene, run_job
 from ._snapfit import _parse_scene
 
-__all__ = ["Assembly", "Error", "QueryEngine", "Scene", "load_scene", "scene_from_dict"]
+__all__ = ["Assembly", "Error", "QueryEngine", "Scene", "auto_tune", "load_scene", "run_job", "scene_from_dict"]
 
 
 def scene_from_dict(scene: dict, origin: str = "<dict>") -> Scene:

@@ -1,5 +1,5 @@
 # Type stubs of the compiled part of `snapfit` (python/snapfit_module.cpp).
-from typing import Dict, Tuple
+from typing import Any, Dict, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -37,3 +37,8 @@ class Assembly:
     @property
     def fft_dims(self) -> Tuple[int, int, int]: ...
     def query_engine(self, interpolation: str = "tricubic") -> QueryEngine: ...
+
+def auto_tune(assembly: Assembly, engine: QueryEngine, margin: float = 0.25, retune: bool = False,
+              repetitions: int = 400) -> Dict[str, Any]: ...
+def run_job(scene: Scene, device: str = "", modes: int = 0, strategy: str = "auto", simulated_time: bool = False,
+            retune: bool = False) -> Dict[str, Any]: ...

@@ -116,3 +116,33 @@ def test_translation_only_takes_positions():
     assert r["force"].shape == (2, 3)
     full = engine.query(np.array([[0.0, 0.0, 10.0, 1, 0, 0, 0]]))
     assert full["energy"][0] == r["energy"][1]
+
+
+def test_auto_tune_sets_and_saves_m(assembly):
+    engine = assembly.query_engine()
+    t = snapfit.auto_tune(assembly, engine, repetitions=50)
+    assert t["modes"].shape == t["p99_ms"].shape and len(t["modes"]) > 2
+    assert (np.diff(t["modes"]) > 0).all()
+    assert 1 <= t["chosen_modes"] <= engine.max_modes and t["budget_ms"] == 1.0
+    assert engine.modes == engine.max_modes  # the engine keeps its m', as in C++
+    assert os.path.exists(t["file"])
+    # Again: read from the tuning file, the same choice.
+    assert snapfit.auto_tune(assembly, engine, repetitions=50)["chosen_modes"] == t["chosen_modes"]
+
+
+def test_run_job_returns_the_loop_as_arrays():
+    job = snapfit.run_job(snapfit.load_scene(SCENE), modes=2048, strategy="tricubic", simulated_time=True)
+    loop = job["loop"]
+    n = loop["frames"]
+    assert n > 1000 and loop["time_s"].shape == (n,) and loop["part_pose"].shape == (n, 7)
+    assert loop["force_sent"].shape == (n, 3) and (loop["modes"] == 2048).all()
+    assert (np.diff(loop["time_s"]) > 0).all()
+    assert np.allclose(np.linalg.norm(loop["part_pose"][:, 3:], axis=1), 1.0)
+    assert job["evaluated"] and job["assembled"]
+    assert job["final_position_error"] < 0.5
+    assert job["strategy"] == "6dof energy force torque tricubic"
+
+
+def test_time_batch_gives_one_time_per_repeat(engine):
+    seconds = engine._time_batch(poses(), 3)
+    assert len(seconds) == 3 and all(s > 0 for s in seconds)
