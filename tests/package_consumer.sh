@@ -65,4 +65,21 @@ if grep -h -E 'INTERFACE_LINK_LIBRARIES|find_dependency\(' "$work"/prefix/lib*/c
   echo "package_consumer: the installed CMake package names a private dependency" >&2
   exit 1
 fi
+# The Python module, where it was built: importable from the prefix as docs/python.md says,
+# and the same energy as `snapfit query` at that pose (the installed module finds the
+# installed library).
+if [ -f "$build/python/snapfit/__init__.py" ]; then
+  python_dir=$(find "$work/prefix" -type d -path '*/python3/dist-packages' | head -n 1)
+  scene_file="$PWD/$scene"
+  py_energy=$(cd "$work" && PYTHONPATH="$python_dir" /usr/bin/python3 -c '
+import sys, numpy as np, snapfit
+e = snapfit.Assembly(snapfit.load_scene(sys.argv[1])).query_engine(); e.modes = 4096
+print(repr(float(e.query(np.array([[1, 0.5, -12, 1, 0, 0, 0]]))["energy"][0])))' "$scene_file")
+  q_energy=$(field "$query_out" energy)
+  echo "python (installed): energy $py_energy"
+  awk -v a="$py_energy" -v b="$q_energy" 'BEGIN {
+    d = a - b; if (d < 0) d = -d; s = (b < 0 ? -b : b); if (s < 1e-30) s = 1e-30;
+    if (a == "" || d / s > 1e-9) { printf "package_consumer: the installed Python module gives %s, snapfit query %s\n", a, b; exit 1 }
+  }'
+fi
 echo "package_consumer: ok"
