@@ -3,6 +3,8 @@
 #include "pipeline/scene_check.h"
 
 #include "pipeline/assembly_pair.h"
+#include "pipeline/part_mesh.h"
+#include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
@@ -29,6 +31,12 @@ SceneCheck scene_check_of(const PreparedParts& parts, const ComputePlan& plan) {
 SceneCheck check_scene(const Scene& scene) {
   const AssemblyPair pair = prepare_assembly_pair(scene);
   return scene_check_of(pair.parts, pair.plan);
+}
+
+PartGeometry part_geometry(const Scene& scene, int part) {
+  if (part != 1 && part != 2) throw Error("part must be 1 or 2, not " + std::to_string(part));
+  PartMesh built = build_part_mesh(part == 1 ? scene.part1 : scene.part2, scene);
+  return PartGeometry{std::move(built.mesh.vertices), std::move(built.mesh.triangles)};
 }
 
 }  // namespace snapfit

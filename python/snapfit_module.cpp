@@ -13,7 +13,9 @@
 
 #include "snapfit/assembly.h"
 #include "snapfit/error.h"
+#include "snapfit/fields.h"
 #include "snapfit/haptic_loop.h"
+#include "snapfit/inspect.h"
 #include "snapfit/job.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
@@ -154,6 +156,15 @@ py::dict loop_dict(const LoopReport& loop) {
   return d;
 }
 
+// A field on its grid as a (nz, ny, nx) array: the grid's i runs fastest (include/snapfit/grid.h).
+py::object grid_array(const GridSpec& grid, const std::vector<float>& values) {
+  if (values.empty()) return py::none();
+  py::array_t<float> a({static_cast<py::ssize_t>(grid.dims.z()), static_cast<py::ssize_t>(grid.dims.y()),
+                        static_cast<py::ssize_t>(grid.dims.x())});
+  std::copy(values.begin(), values.end(), a.mutable_data());
+  return std::move(a);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_snapfit, m) {
@@ -238,6 +249,56 @@ PYBIND11_MODULE(_snapfit, m) {
           },
           py::arg("interpolation") = "tricubic",
           "A query engine for the scene's variant ('tricubic' or 'trilinear' rotation interpolation).");
+
+  m.def(
+      "part_mesh",
+      [](const Scene& scene, int part) {
+        PartGeometry g;
+        {
+          py::gil_scoped_release released;
+          g = part_geometry(scene, part);
+        }
+        py::array_t<double> vertices({static_cast<py::ssize_t>(g.vertices.size()), py::ssize_t(3)});
+        py::array_t<std::int32_t> triangles({static_cast<py::ssize_t>(g.triangles.size()), py::ssize_t(3)});
+        auto v = vertices.mutable_unchecked<2>();
+        auto t = triangles.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < g.vertices.size(); ++i)
+          for (int k = 0; k < 3; ++k) v(static_cast<py::ssize_t>(i), k) = g.vertices[i][k];
+        for (std::size_t i = 0; i < g.triangles.size(); ++i)
+          for (int k = 0; k < 3; ++k) t(static_cast<py::ssize_t>(i), k) = g.triangles[i][k];
+        return py::make_tuple(vertices, triangles);
+      },
+      py::arg("scene"), py::arg("part"),
+      "Part 1 or 2's mesh as the engine builds it (loaded, tessellated from STEP/IGES, or generated),\n"
+      "in the part's own frame: (vertices (V, 3) float64, triangles (T, 3) int32).");
+
+  m.def(
+      "part_fields",
+      [](const Scene& scene, int part, const std::string& device, bool use_cache) {
+        PartFieldsRequest r;
+        r.part = part, r.device = device, r.use_cache = use_cache;
+        ScenePartFields f;
+        {
+          py::gil_scoped_release released;
+          f = scene_part_fields(scene, r);
+        }
+        const DescriptorFields& d = f.result.fields;
+        py::dict out;
+        out["origin"] = py::make_tuple(d.grid.origin.x(), d.grid.origin.y(), d.grid.origin.z());
+        out["spacing"] = d.grid.spacing;
+        out["winding"] = grid_array(d.grid, d.winding);
+        out["winding_bound"] = grid_array(d.grid, d.winding_bound);
+        out["signed_distance"] = grid_array(d.grid, d.signed_distance);
+        out["skeletal_density"] = grid_array(d.grid, d.skeletal_density);
+        out["density_bound"] = grid_array(d.grid, d.density_bound);
+        out["from_cache"] = f.result.from_cache;
+        out["device"] = f.device;
+        return out;
+      },
+      py::arg("scene"), py::arg("part"), py::arg("device") = "", py::arg("use_cache") = true,
+      "Part 1 or 2's descriptor fields on its grid (from the field cache when present): arrays of shape\n"
+      "(nz, ny, nx), point (i, j, k) at origin + spacing * (i, j, k) in the part's own frame; None where\n"
+      "the scene's descriptor does not make that field.");
 
   m.def(
       "auto_tune",

@@ -106,6 +106,17 @@ struct SceneCheck {
 // snapfit::Error naming the part when a mesh cannot be made.
 SceneCheck check_scene(const Scene& scene);
 
+// A scene part's triangle mesh as the engine builds it (loaded, tessellated from STEP or
+// IGES, or generated), in the part's own frame, scene units.
+struct PartGeometry {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<Eigen::Vector3i> triangles;  // indices into vertices, counter-clockwise seen from outside
+};
+
+// Part 1 or 2 of the scene. Throws snapfit::Error naming the part when its mesh cannot be
+// made, or when `part` is not 1 or 2.
+PartGeometry part_geometry(const Scene& scene, int part);
+
 // The scene, its parts (size, box, volume, watertightness, CAD facts, warnings) and the
 // compute plan, as `snapfit scene-check` prints them.
 std::string scene_summary_text(const Scene& scene, const SceneCheck& check);

@@ -9,10 +9,10 @@
 """
 import json as _json
 
-from ._snapfit import Assembly, Error, QueryEngine, Scene, auto_tune, load_scene, run_job
+from ._snapfit import Assembly, Error, QueryEngine, Scene, auto_tune, load_scene, part_fields, part_mesh, run_job
 from ._snapfit import _parse_scene
 
-__all__ = ["Assembly", "Error", "QueryEngine", "Scene", "auto_tune", "load_scene", "run_job", "scene_from_dict"]
+__all__ = ["Assembly", "Error", "QueryEngine", "Scene", "auto_tune", "load_scene", "part_fields", "part_mesh", "run_job", "scene_from_dict"]
 
 
 def scene_from_dict(scene: dict, origin: str = "<dict>") -> Scene:
