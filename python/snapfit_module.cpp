@@ -5,20 +5,24 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <string>
 #include <vector>
 
+#include "snapfit/accuracy.h"
 #include "snapfit/assembly.h"
 #include "snapfit/error.h"
 #include "snapfit/fields.h"
 #include "snapfit/haptic_loop.h"
 #include "snapfit/inspect.h"
 #include "snapfit/job.h"
+#include "snapfit/live.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
+#include "snapfit/search.h"
 #include "snapfit/tuning.h"
 
 namespace py = pybind11;
@@ -165,6 +169,70 @@ py::object grid_array(const GridSpec& grid, const std::vector<float>& values) {
   return std::move(a);
 }
 
+// A pose as a (7,) array [x, y, z, qw, qx, qy, qz].
+py::array_t<double> pose_array(const Pose& p) {
+  py::array_t<double> a(7);
+  double* v = a.mutable_data();
+  const double row[7] = {p.translation.x(), p.translation.y(), p.translation.z(), p.rotation.w(),
+                         p.rotation.x(),    p.rotation.y(),    p.rotation.z()};
+  std::copy(row, row + 7, v);
+  return a;
+}
+
+// One pose from a (7,) array (or a 1 x 7 one), checked as query() checks its rows.
+Pose one_pose(const Array& a) {
+  const std::vector<Pose> poses = poses_from(a, false);
+  if (poses.size() != 1) throw py::value_error("expected one pose, got " + std::to_string(poses.size()));
+  return poses[0];
+}
+
+py::array_t<double> vector3(const Eigen::Vector3d& v) {
+  py::array_t<double> a(3);
+  std::copy(v.data(), v.data() + 3, a.mutable_data());
+  return a;
+}
+
+Eigen::Vector3d vector3_from(const Array& a, const char* what) {
+  if (a.ndim() != 1 || a.shape(0) != 3) throw py::value_error(std::string(what) + " must be a (3,) array");
+  const Eigen::Vector3d v(a.data()[0], a.data()[1], a.data()[2]);
+  if (!v.allFinite()) throw py::value_error(std::string(what) + " is not finite");
+  return v;
+}
+
+py::dict strategy_dict(const StrategyAccuracy& s) {
+  py::dict d;
+  d["name"] = s.name;
+  d["modes"] = s.modes;
+  d["fits"] = s.fits;
+  d["frame_ms_p50"] = s.frame_ms_p50, d["frame_ms_p99"] = s.frame_ms_p99;
+  d["energy_error"] = s.energy_error, d["force_error"] = s.force_error, d["torque_error"] = s.torque_error;
+  d["estimate_coverage"] = py::make_tuple(s.estimate_coverage[0], s.estimate_coverage[1], s.estimate_coverage[2]);
+  d["estimate_ratio_median"] =
+      py::make_tuple(s.estimate_ratio_median[0], s.estimate_ratio_median[1], s.estimate_ratio_median[2]);
+  return d;
+}
+
+py::dict live_status_dict(const LiveStatus& s) {
+  py::dict d;
+  d["frames"] = s.frames, d["misses"] = s.misses, d["elapsed_s"] = s.elapsed_s;
+  d["part_pose"] = pose_array(s.part);
+  d["evaluated"] = s.evaluated, d["assembled"] = s.assembled;
+  d["position_error"] = s.position_error, d["angle_error_deg"] = s.angle_error_deg;
+  d["surface_deviation"] = s.surface_deviation;
+  return d;
+}
+
+py::dict live_frame_dict(const LiveFrame& f) {
+  py::dict d;
+  d["time_s"] = f.time_s;
+  d["device_pose"] = pose_array(f.device), d["part_pose"] = pose_array(f.part);
+  d["energy"] = f.energy;
+  d["force_sent"] = vector3(f.sent.force), d["torque_sent"] = vector3(f.sent.torque);
+  d["contact_depth"] = f.contact_depth;
+  d["modes"] = f.modes, d["frame_ms"] = f.frame_ms, d["missed"] = f.missed, d["flags"] = f.flags;
+  return d;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_snapfit, m) {
@@ -230,14 +298,17 @@ PYBIND11_MODULE(_snapfit, m) {
           "(perf/bench_python.py sets them beside query() called from Python).");
 
   py::class_<Assembly>(m, "Assembly", "A scene's parts, fields and spectra on one OpenCL device.")
-      .def(py::init([](const Scene& scene, const std::string& device, bool use_cache) {
+      .def(py::init([](const Scene& scene, const std::string& device, bool use_cache, bool near_field) {
              AssemblyOptions o;
              o.device = device;
              o.use_cache = use_cache;
+             o.near_field = near_field;
              py::gil_scoped_release released;
              return std::make_unique<Assembly>(scene, o);
            }),
-           py::arg("scene"), py::arg("device") = "", py::arg("use_cache") = true)
+           py::arg("scene"), py::arg("device") = "", py::arg("use_cache") = true, py::arg("near_field") = false,
+           "Builds the parts, fields and spectra (cached). near_field: also the near-far strategy's near\n"
+           "field (6-DOF scenes; seconds more), so that accuracy() measures it too.")
       .def_property_readonly("scene", &Assembly::scene, py::return_value_policy::reference_internal)
       .def_property_readonly("device_name", &Assembly::device_name)
       .def_property_readonly("spacing", &Assembly::spacing)
@@ -317,6 +388,123 @@ PYBIND11_MODULE(_snapfit, m) {
       "m' for the scene's frame budget on this device (read from the tuning file when it matches),\n"
       "for the engine's variant; the engine keeps its m' (set engine.modes = result['chosen_modes']).\n"
       "Returns the sweep as arrays (modes, p50_ms, p99_ms, max_ms) and the choice.");
+
+  m.def(
+      "accuracy",
+      [](const Assembly& assembly, std::size_t poses, std::size_t repetitions, bool other_devices) {
+        BudgetAccuracyRequest r;
+        r.poses = poses, r.repetitions = repetitions, r.other_devices = other_devices;
+        BudgetAccuracy a;
+        {
+          py::gil_scoped_release released;
+          a = measure_budget_accuracy(assembly, r);
+        }
+        py::list strategies;
+        for (const StrategyAccuracy& s : a.report.strategies) strategies.append(strategy_dict(s));
+        py::dict d;
+        d["strategies"] = strategies;
+        d["best"] = a.report.best;
+        d["why"] = a.report.why;
+        d["reference_modes"] = a.report.reference_modes;
+        d["device"] = a.device;
+        d["strategy_file"] = a.strategy_file;
+        return d;
+      },
+      py::arg("assembly"), py::arg("poses") = 24, py::arg("repetitions") = 400, py::arg("other_devices") = false,
+      "`snapfit accuracy`: each query strategy's m' for the frame budget, its frame time, and its error\n"
+      "against the exact reference at `poses` poses along the trajectory; 'best' indexes the lowest\n"
+      "error that fits.");
+
+  m.def(
+      "search",
+      [](const Scene& scene, std::optional<std::size_t> rotations, std::optional<double> step_deg, std::size_t top,
+         const std::string& map_fft) {
+        SearchRequest r;
+        r.rotations = rotations, r.step_deg = step_deg, r.top = top, r.map_fft = map_fft;
+        SearchResult found;
+        {
+          py::gil_scoped_release released;
+          found = search(scene, r);
+        }
+        const py::ssize_t n = static_cast<py::ssize_t>(found.rotations.size());
+        py::array_t<double> turns({n, py::ssize_t(4)});
+        auto q = turns.mutable_unchecked<2>();
+        for (py::ssize_t i = 0; i < n; ++i) {
+          const Eigen::Quaterniond& x = found.rotations[static_cast<std::size_t>(i)];
+          q(i, 0) = x.w(), q(i, 1) = x.x(), q(i, 2) = x.y(), q(i, 3) = x.z();
+        }
+        const py::ssize_t k = static_cast<py::ssize_t>(found.top.size());
+        py::array_t<double> poses({k, py::ssize_t(7)}), refined({k, py::ssize_t(7)});
+        py::array_t<double> energy(k), refined_energy(k);
+        for (py::ssize_t i = 0; i < k; ++i) {
+          const FoundPose& f = found.top[static_cast<std::size_t>(i)];
+          const auto a = pose_array(f.pose), b = pose_array(f.refined.pose);
+          std::copy(a.data(), a.data() + 7, poses.mutable_data() + 7 * i);
+          std::copy(b.data(), b.data() + 7, refined.mutable_data() + 7 * i);
+          energy.mutable_data()[i] = f.energy;
+          refined_energy.mutable_data()[i] = f.refined.error.empty() ? f.refined.energy : std::nan("");
+        }
+        py::dict d;
+        d["rotations"] = turns;
+        d["best_energy"] = py::array_t<double>(n, found.best_energy.data());
+        d["poses"] = poses, d["energy"] = energy;
+        d["refined_poses"] = refined, d["refined_energy"] = refined_energy;
+        d["map_fft"] = found.map_fft;
+        return d;
+      },
+      py::arg("scene"), py::arg("rotations") = py::none(), py::arg("step_deg") = py::none(), py::arg("top") = 10,
+      py::arg("map_fft") = "auto",
+      "`snapfit search` on one process: an FFT map of the energy over all translations at each rotation\n"
+      "of a grid (about `rotations` of them, or `step_deg` apart). Returns the grid (R, 4) quaternions\n"
+      "w, x, y, z, the lowest energy of each map (R,), and the top poses (K, 7) with their energies,\n"
+      "refined (NaN energy where a refinement failed).");
+
+  py::class_<LiveSession>(m, "LiveSession",
+                          "A live session: the haptic loop at the scene's rate on its own thread; a Python\n"
+                          "program is the device (set_device_state or hold_device_pose) and reads the wrench\n"
+                          "(latest).")
+      .def(py::init([](const Scene& scene, const std::string& device, std::size_t modes, const std::string& strategy) {
+             JobRequest r;
+             r.device = device, r.modes = modes, r.strategy = strategy;
+             py::gil_scoped_release released;
+             return std::make_unique<LiveSession>(scene, r);
+           }),
+           py::arg("scene"), py::arg("device") = "", py::arg("modes") = 0, py::arg("strategy") = "auto")
+      .def("start", &LiveSession::start, py::call_guard<py::gil_scoped_release>())
+      .def(
+          "stop",
+          [](LiveSession& s) {
+            LiveStatus status;
+            {
+              py::gil_scoped_release released;
+              status = s.stop();
+            }
+            return live_status_dict(status);
+          },
+          "Ends the loop; returns its status (frames, misses, part 2's pose, the verdict).")
+      .def(
+          "set_device_state",
+          [](LiveSession& s, const Array& pose, const Array& velocity, const Array& angular_velocity,
+             std::uint32_t sequence) {
+            BodyState state;
+            state.pose = one_pose(pose);
+            state.velocity = vector3_from(velocity, "velocity");
+            state.angular_velocity = vector3_from(angular_velocity, "angular_velocity");
+            s.set_device_state(state, sequence);
+          },
+          py::arg("pose"), py::arg("velocity"), py::arg("angular_velocity"), py::arg("sequence") = 0,
+          "The device's state now: pose (7,), velocity and angular velocity (3,) in part 1's frame.\n"
+          "Stream one a frame; when the next is late the pose is held and the wrench fades.")
+      .def(
+          "hold_device_pose", [](LiveSession& s, const Array& pose) { s.hold_device_pose(one_pose(pose)); },
+          py::arg("pose"), "A pose (7,) that holds until the next one, never late (as a mouse).")
+      .def("reset", &LiveSession::reset)
+      .def(
+          "latest", [](const LiveSession& s) { return live_frame_dict(s.latest()); },
+          "The last frame: time, the device's and part 2's poses, energy, the wrench sent, m'.")
+      .def(
+          "status", [](const LiveSession& s) { return live_status_dict(s.status()); },
+          "Frames, misses, part 2's pose and the verdict against the assembled pose, now.");
 
   m.def(
       "run_job",

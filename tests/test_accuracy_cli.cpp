@@ -33,7 +33,8 @@ TEST_CASE("accuracy cli: strategies, the choice, and the background product whil
     CHECK(s["modes"].get<std::size_t>() > 0);
   }
   CHECK(named);
-  CHECK(j["why"].get<std::string>().find("the lowest error of the ") == 0);
+  const std::string why = j["why"];  // the rule in words (none may fit on a loaded machine)
+  CHECK((why.find("the lowest error of the ") == 0 || why.find("none fits the frame") == 0));
   REQUIRE(j["strategies"][2]["strategy"] == "6dof energy force torque exact-product background");
   REQUIRE(j["strategies"][3]["strategy"] == "6dof energy force torque exact-product background near-far");
   for (int i : {2, 3}) {

@@ -171,7 +171,9 @@ TEST_CASE(
   const nlohmann::json s2 = read_json(out.path / "second" / "summary.json")["query_strategy"];
   CHECK(s2["chosen_by"] == "lowest error that fits (strategy file)");
   CHECK(s2["name"] == c[best]["strategy"]);
-  CHECK(s2["why"].get<std::string>().find("the lowest error of the ") == 0);
+  // The rule in words: on a loaded machine none may fit, and the reason says so.
+  const std::string why2 = s2["why"];
+  CHECK((why2.find("the lowest error of the ") == 0 || why2.find("none fits the frame") == 0));
   CHECK(s2["strategy_file"] == s1["strategy_file"]);
 
   // The library's way in chooses by the same rule on the assembly's device.

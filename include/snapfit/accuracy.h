@@ -56,7 +56,7 @@ struct AccuracyReport {
   std::vector<StrategyAccuracy> strategies;
   std::size_t best = 0;  // the lowest error of what the loop renders among the strategies that fit
   std::size_t loop = 0;  // the strategy the haptic loop uses: the best
-  std::string why;       // one sentence: which strategy was chosen and why, with the others' errors
+  std::string why;       // in a few words: the rule the best won by, its error against the next best's
 };
 
 struct BudgetAccuracyRequest {

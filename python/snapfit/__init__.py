@@ -9,10 +9,12 @@
 """
 import json as _json
 
-from ._snapfit import Assembly, Error, QueryEngine, Scene, auto_tune, load_scene, part_fields, part_mesh, run_job
+from ._snapfit import (Assembly, Error, LiveSession, QueryEngine, Scene, accuracy, auto_tune, load_scene, part_fields,
+                       part_mesh, run_job, search)
 from ._snapfit import _parse_scene
 
-__all__ = ["Assembly", "Error", "QueryEngine", "Scene", "auto_tune", "load_scene", "part_fields", "part_mesh", "run_job", "scene_from_dict"]
+__all__ = ["Assembly", "Error", "LiveSession", "QueryEngine", "Scene", "accuracy", "auto_tune", "load_scene", "part_fields",
+           "part_mesh", "run_job", "scene_from_dict", "search"]
 
 
 def scene_from_dict(scene: dict, origin: str = "<dict>") -> Scene:

@@ -121,8 +121,9 @@ def test_translation_only_takes_positions():
 def test_auto_tune_sets_and_saves_m(assembly):
     engine = assembly.query_engine()
     t = snapfit.auto_tune(assembly, engine, repetitions=50)
-    assert t["modes"].shape == t["p99_ms"].shape and len(t["modes"]) > 2
-    assert (np.diff(t["modes"]) > 0).all()
+    # The sweep stops at the first m' past the budget: on a loaded machine that may be the first.
+    assert t["modes"].shape == t["p99_ms"].shape == t["p50_ms"].shape and len(t["modes"]) >= 1
+    assert (np.diff(t["modes"]) > 0).all() and (t["p99_ms"] >= t["p50_ms"]).all() and (t["p50_ms"] > 0).all()
     assert 1 <= t["chosen_modes"] <= engine.max_modes and t["budget_ms"] == 1.0
     assert engine.modes == engine.max_modes  # the engine keeps its m', as in C++
     assert os.path.exists(t["file"])
@@ -180,3 +181,35 @@ def test_part_fields_as_arrays():
     assert w[k, j, i] == pytest.approx(1.0, abs=0.05)
     assert abs(w[0, 0, 0]) < 0.05
     assert f["winding_bound"].shape == w.shape
+
+
+def test_search_matches_the_tool():
+    scene = snapfit.load_scene(SCENE)
+    mine = snapfit.search(scene, rotations=8, top=1, map_fft="clfft")
+    out = subprocess.run([os.environ["SNAPFIT_CLI"], "search", SCENE, "--rotations", "8", "--top", "1", "--map-fft",
+                          "clfft"], check=True, capture_output=True, text=True).stdout
+    tool = json.loads(next(line for line in out.splitlines() if line.startswith("{")))
+    assert mine["rotations"].shape[1] == 4 and len(mine["best_energy"]) == len(mine["rotations"])
+    assert np.allclose(np.linalg.norm(mine["rotations"], axis=1), 1.0)
+    assert mine["poses"].shape == (1, 7) and mine["refined_poses"].shape == (1, 7)
+    assert mine["energy"][0] == tool["energy"]
+    assert mine["poses"][0, :3].tolist() == tool["position"]
+    assert mine["energy"][0] == mine["best_energy"].min()
+
+
+def test_accuracy_follows_its_rule():
+    report = snapfit.accuracy(snapfit.Assembly(snapfit.load_scene(SCENE)), poses=4, repetitions=40)
+    strategies = report["strategies"]
+    assert [s["name"] for s in strategies] == ["6dof energy force torque tricubic", "6dof energy force torque trilinear",
+                                               "6dof energy force torque exact-product background"]
+    assert report["reference_modes"] > max(s["modes"] for s in strategies)
+    for s in strategies:
+        assert s["modes"] > 0 and s["energy_error"] >= 0 and len(s["estimate_coverage"]) == 3
+
+    def rendered(s):
+        return max(s["force_error"], s["torque_error"])
+
+    best = report["best"]
+    fitting = [s for s in strategies if s["fits"]] or strategies
+    assert rendered(strategies[best]) == min(rendered(s) for s in fitting)
+    assert report["why"]
