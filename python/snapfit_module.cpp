@@ -32,10 +32,21 @@ namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-Interpolation interpolation_named(const std::string& name) {
-  if (name == "tricubic") return Interpolation::tricubic;
-  if (name == "trilinear") return Interpolation::trilinear;
-  throw py::value_error("interpolation must be 'tricubic' or 'trilinear', not '" + name + "'");
+// The query strategy by the name `snapfit run --strategy` takes: the rotated spectrum
+// interpolated ("tricubic", "trilinear"), the exact product ("exact-product"), or its
+// near-far split ("near-far"); the last two remake the product for each new rotation.
+QueryVariant variant_named(const Assembly& a, const std::string& name) {
+  if (name == "tricubic") return a.query_variant(Interpolation::tricubic);
+  if (name == "trilinear") return a.query_variant(Interpolation::trilinear);
+  if (name != "exact-product" && name != "near-far")
+    throw py::value_error("strategy must be 'tricubic', 'trilinear', 'exact-product' or 'near-far', not '" + name +
+                          "'");
+  QueryVariant v = a.query_variant(Interpolation::tricubic);
+  if (v.translation_only) throw py::value_error("a translation-only scene has only its lines: no '" + name + "'");
+  v.rotation = RotationMethod::exact_product;
+  v.product_update = ProductUpdate::each_query;
+  v.near_far = name == "near-far";
+  return v;
 }
 
 // Rows of (N, 7) [x, y, z, qw, qx, qy, qz] or (N, 3) [x, y, z]; a single row may be 1-D.
@@ -315,11 +326,15 @@ PYBIND11_MODULE(_snapfit, m) {
       .def_property_readonly("fft_dims", &Assembly::fft_dims)
       .def(
           "query_engine",
-          [](const Assembly& a, const std::string& interpolation) {
-            return a.make_query_engine(a.query_variant(interpolation_named(interpolation)));
+          [](const Assembly& a, const std::string& strategy) {
+            const QueryVariant v = variant_named(a, strategy);
+            py::gil_scoped_release released;
+            return a.make_query_engine(v);
           },
-          py::arg("interpolation") = "tricubic",
-          "A query engine for the scene's variant ('tricubic' or 'trilinear' rotation interpolation).");
+          py::arg("strategy") = "tricubic",
+          "A query engine for the scene's variant: 'tricubic' or 'trilinear' (the rotated spectrum\n"
+          "interpolated), 'exact-product' (the product made exactly for each new rotation) or 'near-far'\n"
+          "(its split into a smooth far sum and an exact near sum; needs Assembly(near_field=True)).");
 
   m.def(
       "part_mesh",

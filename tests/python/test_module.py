@@ -96,7 +96,7 @@ def test_bad_input_raises_clear_errors(engine):
         engine.query(np.zeros((2, 3)))
     with pytest.raises(snapfit.Error, match="no_such_scene.json"):
         snapfit.load_scene("no_such_scene.json")
-    with pytest.raises(ValueError, match="interpolation"):
+    with pytest.raises(ValueError, match="strategy must be"):
         snapfit.Assembly(snapfit.load_scene(SCENE)).query_engine("cubic")
 
 
@@ -213,3 +213,25 @@ def test_accuracy_follows_its_rule():
     fitting = [s for s in strategies if s["fits"]] or strategies
     assert rendered(strategies[best]) == min(rendered(s) for s in fitting)
     assert report["why"]
+
+
+def test_strategies_near_far_closest_to_the_exact_reference():
+    """At the same small m', the near-far split is closer to the exact, untruncated sum than the
+    tricubic sum (docs/design.md "Near and far"); without the near field it is refused."""
+    scene = snapfit.load_scene(SCENE)
+    assembly = snapfit.Assembly(scene, near_field=True)
+    p = poses()
+    reference = assembly.query_engine("exact-product")
+    reference.modes = reference.max_modes
+    ref = reference.query(p)
+    errors = {}
+    for strategy in ("tricubic", "near-far"):
+        engine = assembly.query_engine(strategy)
+        engine.modes = 8192
+        r = engine.query(p)
+        errors[strategy] = np.linalg.norm(r["force"] - ref["force"]) / np.linalg.norm(ref["force"])
+    assert errors["near-far"] < 0.5 * errors["tricubic"], errors
+    with pytest.raises(snapfit.Error):
+        snapfit.Assembly(scene).query_engine("near-far")
+    with pytest.raises(ValueError, match="only its lines"):
+        snapfit.Assembly(snapfit.load_scene(TRANSLATION_SCENE)).query_engine("exact-product")
