@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "report/run_report.h"
 #include "snapfit/accuracy.h"
 #include "snapfit/assembly.h"
 #include "snapfit/error.h"
@@ -524,16 +525,22 @@ PYBIND11_MODULE(_snapfit, m) {
   m.def(
       "run_job",
       [](const Scene& scene, const std::string& device, std::size_t modes, const std::string& strategy,
-         bool simulated_time, bool retune) {
+         bool simulated_time, bool retune, const std::string& out) {
         JobRequest r;
         r.device = device, r.modes = modes, r.strategy = strategy;
         r.simulated_time = simulated_time, r.retune = retune;
         JobResult j;
+        RunReportFiles files;
         {
           py::gil_scoped_release released;
+          const auto start = std::chrono::steady_clock::now();
           j = run_job(scene, r);
+          if (!out.empty())
+            files = write_job_report(out, *j.record,
+                                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         }
         py::dict d;
+        d["report"] = out.empty() ? py::object(py::none()) : py::object(py::cast(files.written));
         d["device"] = j.device;
         d["loop_device"] = j.loop_device;
         d["strategy"] = j.strategy;
@@ -548,7 +555,8 @@ PYBIND11_MODULE(_snapfit, m) {
         return d;
       },
       py::arg("scene"), py::arg("device") = "", py::arg("modes") = 0, py::arg("strategy") = "auto",
-      py::arg("simulated_time") = false, py::arg("retune") = false,
-      "`snapfit run`'s job without its files: the strategy and m' chosen for this device, the scripted\n"
-      "assembly in the loop (its log as arrays under 'loop'), and the verdict.");
+      py::arg("simulated_time") = false, py::arg("retune") = false, py::arg("out") = "",
+      "`snapfit run`'s job: the strategy and m' chosen for this device, the scripted assembly in the loop\n"
+      "(its log as arrays under 'loop'), and the verdict; with `out`, the report folder `snapfit run`\n"
+      "writes there (report.html, summary.json, ...), its files listed under 'report'.");
 }

@@ -131,8 +131,9 @@ def test_auto_tune_sets_and_saves_m(assembly):
     assert snapfit.auto_tune(assembly, engine, repetitions=50)["chosen_modes"] == t["chosen_modes"]
 
 
-def test_run_job_returns_the_loop_as_arrays():
-    job = snapfit.run_job(snapfit.load_scene(SCENE), modes=2048, strategy="tricubic", simulated_time=True)
+def test_run_job_returns_the_loop_as_arrays(tmp_path):
+    job = snapfit.run_job(snapfit.load_scene(SCENE), modes=2048, strategy="tricubic", simulated_time=True,
+                          out=str(tmp_path / "run"))
     loop = job["loop"]
     n = loop["frames"]
     assert n > 1000 and loop["time_s"].shape == (n,) and loop["part_pose"].shape == (n, 7)
@@ -142,6 +143,11 @@ def test_run_job_returns_the_loop_as_arrays():
     assert job["evaluated"] and job["assembled"]
     assert job["final_position_error"] < 0.5
     assert job["strategy"] == "6dof energy force torque tricubic"
+    # The report folder, as `snapfit run --out` writes it, with the same verdict.
+    assert "report.html" in job["report"] and "summary.json" in job["report"]
+    with open(tmp_path / "run" / "summary.json") as f:
+        summary = json.load(f)
+    assert summary["haptic_loop"]["assembled"] is True and summary["haptic_loop"]["frames"] == n
 
 
 def test_time_batch_gives_one_time_per_repeat(engine):
