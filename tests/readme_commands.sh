@@ -55,6 +55,14 @@ while IFS= read -r line; do
         fi
         checked=$((checked + 1))
         ;;
+      python3 | */python3)
+        # python3 SCRIPT: the script exists.
+        if [ ! -f "$src/${words[1]:-}" ]; then
+          fail "$tag runs the Python script '${words[1]:-}', which does not exist"
+          continue
+        fi
+        checked=$((checked + 1))
+        ;;
       *) ;;  # shell plumbing (mpirun, cd) around the commands checked above
     esac
   done < <(printf '%s\n' "$command" | sed -E "s/\\\$\([^)]*\)/X/g; s/bash -c '//; s/'\$//; s/ (&&|;|\|\|) /\n/g")
