@@ -89,7 +89,7 @@ void add_run_command(CLI::App& app) {
                   "Query strategy: auto (default: the lowest error that fits the frame, measured once per scene and "
                   "device against the exact reference, after the first run's loop, which starts on tricubic; "
                   "tricubic with --modes), tricubic, trilinear, exact-product or near-far")
-      ->check(CLI::IsMember({"auto", "tricubic", "trilinear", "exact-product", "near-far"}));
+      ->check(CLI::IsMember(strategy_choices()));
   cmd->add_flag("--simulated-time", opt->simulated_time,
                 "Run the loop on simulated time: deterministic, as fast as the queries go, no timing meaning");
   cmd->add_option("--loop-wait", opt->loop_wait,

@@ -2,8 +2,8 @@
 // on 127.0.0.1 where the mouse is the haptic device (cli/live_server.h), and the device
 // bridge (snapfit/bridge.h) where a device program in any language can be instead. Runs
 // until Ctrl-C or POST /quit, then says how the session ended.
-#include <csignal>
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -41,7 +41,7 @@ void print_end(const Scene& scene, const LiveStatus& s, const BridgeStats& b) {
             << " malformed, " << b.refused << " refused\n"
             << "final pose error " << s.position_error << " " << scene.units << ", " << s.angle_error_deg
             << " deg, surface " << s.surface_deviation << " " << scene.units << " off: "
-            << (!s.evaluated ? "not evaluated (the scene has no assembled pose)"
+            << (!s.evaluated  ? "not evaluated (the scene has no assembled pose)"
                 : s.assembled ? "ASSEMBLED"
                               : "NOT assembled")
             << "\n";
@@ -69,10 +69,9 @@ void run_serve(const ServeOptions& opt) {
   live.fade_s = opt.fade_ms / 1e3;
   live.on_frame = [&bridge](const LiveFrame& frame) { bridge->send_frame(frame); };
   LiveSession session(scene, request, live);
-  bridge = std::make_unique<BridgeServer>(opt.bridge_port.value_or(opt.port ? std::uint16_t(opt.port + 1) : 0),
-                                          [&session](const BodyState& state, std::uint32_t sequence) {
-                                            session.set_device_state(state, sequence);
-                                          });
+  bridge = std::make_unique<BridgeServer>(
+      opt.bridge_port.value_or(opt.port ? std::uint16_t(opt.port + 1) : 0),
+      [&session](const BodyState& state, std::uint32_t sequence) { session.set_device_state(state, sequence); });
   struct StopInOrder {  // on every way out of this function
     LiveSession& session;
     std::unique_ptr<BridgeServer>& bridge;
@@ -87,8 +86,9 @@ void run_serve(const ServeOptions& opt) {
   LiveHttpServer http(session, *bridge, live_page_html(session.prepared(), LivePageInfo{bridge->port()}), opt.port,
                       out);
   session.start();
-  std::cout << "[7/7] live: the page at http://127.0.0.1:" << http.port() << "/ , the device bridge at UDP 127.0.0.1:"
-            << bridge->port() << " (docs/haptics.md); Ctrl-C ends the session" << std::endl;
+  std::cout << "[7/7] live: the page at http://127.0.0.1:" << http.port()
+            << "/ , the device bridge at UDP 127.0.0.1:" << bridge->port()
+            << " (docs/haptics.md); Ctrl-C ends the session" << std::endl;
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   while (!interrupted && !http.quit_requested()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -109,8 +109,9 @@ void add_serve_command(CLI::App& app) {
   cmd->add_option("--device", opt->device, "OpenCL device (see `snapfit devices`)");
   cmd->add_option("--modes", opt->modes, "m': a fixed number of Fourier modes instead of the tuned one")
       ->check(positive_number());
-  cmd->add_option("--strategy", opt->strategy, "Query strategy: auto (default), tricubic, trilinear, exact-product or near-far")
-      ->check(CLI::IsMember({"auto", "tricubic", "trilinear", "exact-product", "near-far"}));
+  cmd->add_option("--strategy", opt->strategy,
+                  "Query strategy: auto (default), tricubic, trilinear, exact-product or near-far")
+      ->check(CLI::IsMember(strategy_choices()));
   cmd->add_option("--loop-wait", opt->loop_wait, "How the loop waits for its tick: spin (default) or sleep")
       ->check(CLI::IsMember({"spin", "sleep"}));
   cmd->add_option("--late-ms", opt->late_ms, "A device state older than this is late: held, the wrench fading (5)")

@@ -12,9 +12,14 @@
 namespace snapfit::cli {
 
 Interpolation parse_interpolation(const std::string& name, const std::string& option) {
-  if (name == "trilinear") return Interpolation::trilinear;
-  if (name == "tricubic") return Interpolation::tricubic;
+  if (const std::optional<Interpolation> interpolation = interpolation_named(name)) return *interpolation;
   throw Error(option + ": expected trilinear or tricubic (got '" + name + "')");
+}
+
+std::vector<std::string> strategy_choices() {
+  std::vector<std::string> names = {"auto"};
+  for (QueryStrategy s : query_strategies()) names.push_back(strategy_name(s));
+  return names;
 }
 
 std::pair<char, double> parse_slice(const std::string& text) {

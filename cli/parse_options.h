@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "snapfit/query.h"
 
@@ -10,6 +11,9 @@ namespace snapfit::cli {
 
 // "trilinear" or "tricubic"; throws snapfit::Error naming `option` otherwise.
 Interpolation parse_interpolation(const std::string& name, const std::string& option = "--interpolation");
+
+// What --strategy takes: "auto", then every strategy's name (include/snapfit/query.h).
+std::vector<std::string> strategy_choices();
 
 // "z=12.5" -> ('z', 12.5): a slice along an axis; throws snapfit::Error naming --slice otherwise.
 std::pair<char, double> parse_slice(const std::string& text);

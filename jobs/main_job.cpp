@@ -26,25 +26,24 @@ namespace {
 // The variant the request's strategy names for `scene` (auto: the scene's tricubic
 // variant, the starting point of the measured choice).
 QueryVariant named_strategy(const Scene& scene, const std::string& name) {
-  if (name != "auto" && name != "tricubic" && name != "trilinear" && name != "exact-product" && name != "near-far")
-    throw Error("strategy '" + name + "': expected auto, tricubic, trilinear, exact-product or near-far");
+  const std::optional<QueryStrategy> strategy = strategy_named(name);
+  if (name != "auto" && !strategy) {
+    std::string known = "auto";
+    for (QueryStrategy s : query_strategies()) known += std::string(", ") + strategy_name(s);
+    throw Error("strategy '" + name + "': expected one of " + known);
+  }
   QueryVariant v = query_variant_for(scene, Interpolation::tricubic);
   if (v.translation_only) {
-    if (name != "auto" && name != "tricubic")
-      throw Error("--strategy " + name + ": a translation-only scene has one strategy, the translation lines");
+    if (strategy && strategy != QueryStrategy::tricubic)
+      throw Error("strategy '" + name + "': a translation-only scene has one strategy, the translation lines");
     return v;
   }
   for (int part : {1, 2})
-    if (name == "near-far" && (part == 1 ? scene.part1 : scene.part2).descriptor.source == SpectrumSource::spheres)
+    if (strategy == QueryStrategy::near_far &&
+        (part == 1 ? scene.part1 : scene.part2).descriptor.source == SpectrumSource::spheres)
       throw Error("strategy 'near-far': its near part sums the parts' grid samples, and part " + std::to_string(part) +
                   "'s descriptor.source is \"spheres\" (use \"grid\" or another strategy)");
-  if (name == "trilinear") v.interpolation = Interpolation::trilinear;
-  if (name == "exact-product" || name == "near-far") {
-    v.rotation = RotationMethod::exact_product;
-    v.product_update = ProductUpdate::background;
-    v.near_far = name == "near-far";
-  }
-  return v;
+  return strategy ? with_strategy(v, *strategy, ProductUpdate::background) : v;
 }
 
 // "[3/7]": the device, opened and self-checked.

@@ -33,21 +33,19 @@ namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-// The query strategy by the name `snapfit run --strategy` takes: the rotated spectrum
-// interpolated ("tricubic", "trilinear"), the exact product ("exact-product"), or its
-// near-far split ("near-far"); the last two remake the product for each new rotation.
+// The query strategy by its name (include/snapfit/query.h strategy_named); the exact
+// product is remade for each new rotation (a batch of poses has no loop to follow).
 QueryVariant variant_named(const Assembly& a, const std::string& name) {
-  if (name == "tricubic") return a.query_variant(Interpolation::tricubic);
-  if (name == "trilinear") return a.query_variant(Interpolation::trilinear);
-  if (name != "exact-product" && name != "near-far")
-    throw py::value_error("strategy must be 'tricubic', 'trilinear', 'exact-product' or 'near-far', not '" + name +
-                          "'");
-  QueryVariant v = a.query_variant(Interpolation::tricubic);
-  if (v.translation_only) throw py::value_error("a translation-only scene has only its lines: no '" + name + "'");
-  v.rotation = RotationMethod::exact_product;
-  v.product_update = ProductUpdate::each_query;
-  v.near_far = name == "near-far";
-  return v;
+  const std::optional<QueryStrategy> strategy = strategy_named(name);
+  if (!strategy) {
+    std::string known;
+    for (QueryStrategy s : query_strategies()) known += std::string(known.empty() ? "" : ", ") + strategy_name(s);
+    throw py::value_error("strategy must be one of " + known + ", not '" + name + "'");
+  }
+  const QueryVariant v = a.query_variant(Interpolation::tricubic);
+  if (v.translation_only && strategy != QueryStrategy::tricubic)
+    throw py::value_error("a translation-only scene has only its lines: no '" + name + "'");
+  return with_strategy(v, *strategy, ProductUpdate::each_query);
 }
 
 // Rows of (N, 7) [x, y, z, qw, qx, qy, qz] or (N, 3) [x, y, z]; a single row may be 1-D.

@@ -29,7 +29,7 @@ std::string accuracy_report_to_json(const AccuracyReport& r) {
   nlohmann::json strategies = nlohmann::json::array();
   for (const StrategyAccuracy& s : r.strategies)
     strategies.push_back({{"name", s.name},
-                          {"interpolation", s.variant.interpolation == Interpolation::trilinear ? "trilinear" : "tricubic"},
+                          {"interpolation", interpolation_name(s.variant.interpolation)},
                           {"exact_product", s.variant.rotation == RotationMethod::exact_product},
                           {"background", s.variant.product_update == ProductUpdate::background},
                           {"near_far", s.variant.near_far},
@@ -60,10 +60,11 @@ AccuracyReport accuracy_report_from_json(const std::string& text, const QueryVar
       StrategyAccuracy s;
       s.variant = base;
       s.variant.interpolation =
-          e.at("interpolation").get<std::string>() == "trilinear" ? Interpolation::trilinear : Interpolation::tricubic;
+          interpolation_named(e.at("interpolation").get<std::string>()).value_or(Interpolation::tricubic);
       if (e.at("exact_product").get<bool>()) {
         s.variant.rotation = RotationMethod::exact_product;
-        s.variant.product_update = e.at("background").get<bool>() ? ProductUpdate::background : ProductUpdate::each_query;
+        s.variant.product_update =
+            e.at("background").get<bool>() ? ProductUpdate::background : ProductUpdate::each_query;
       }
       s.variant.near_far = e.value("near_far", false);
       s.name = variant_name(s.variant);

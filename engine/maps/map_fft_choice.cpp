@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "core/hash.h"
-#include "engine/runtime/kernel_sources.h"
 #include "engine/maps/rotation_search.h"
+#include "engine/runtime/kernel_sources.h"
 #include "io/cache_file.h"
 #include "snapfit/error.h"
 
@@ -23,8 +23,7 @@ std::string choice_key(const ComputeContext& ctx, const PairSpectra& spectra, In
   std::ostringstream key;
   key << "platform=" << ctx.device.info.platform_name << "\ndevice=" << ctx.device.info.name
       << "\ndriver=" << ctx.device.info.driver_version << "\ndims=" << spectra.dims[0] << "x" << spectra.dims[1] << "x"
-      << spectra.dims[2] << "\ninterpolation=" << (interpolation == Interpolation::tricubic ? "tricubic" : "trilinear")
-      << "\nkernels="
+      << spectra.dims[2] << "\ninterpolation=" << interpolation_name(interpolation) << "\nkernels="
       << hex64(fnv1a64(kernel_source("spectrum_sample") + kernel_source("full_map") + kernel_source("map_minima")))
       << "\nbackends=";
   for (MapFft fft : map_ffts_built()) key << map_fft_name(fft) << ",";

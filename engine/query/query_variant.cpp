@@ -1,10 +1,64 @@
-// variant_name (include/snapfit/query.h): a variant in words, as tuning files and
-// reports name it.
+// The names of interpolations, strategies and variants (include/snapfit/query.h): one
+// table each, as scenes, the tool, tuning and strategy files and reports spell them.
 #include <string>
 
 #include "snapfit/query.h"
 
 namespace snapfit {
+
+namespace {
+
+const std::pair<Interpolation, const char*> kInterpolations[] = {{Interpolation::trilinear, "trilinear"},
+                                                                 {Interpolation::tricubic, "tricubic"}};
+const std::pair<QueryStrategy, const char*> kStrategies[] = {{QueryStrategy::tricubic, "tricubic"},
+                                                             {QueryStrategy::trilinear, "trilinear"},
+                                                             {QueryStrategy::exact_product, "exact-product"},
+                                                             {QueryStrategy::near_far, "near-far"}};
+
+}  // namespace
+
+const char* interpolation_name(Interpolation interpolation) {
+  for (const auto& [value, name] : kInterpolations)
+    if (value == interpolation) return name;
+  return "?";
+}
+
+std::optional<Interpolation> interpolation_named(const std::string& name) {
+  for (const auto& [value, text] : kInterpolations)
+    if (name == text) return value;
+  return std::nullopt;
+}
+
+const std::vector<QueryStrategy>& query_strategies() {
+  static const std::vector<QueryStrategy> all = {QueryStrategy::tricubic, QueryStrategy::trilinear,
+                                                 QueryStrategy::exact_product, QueryStrategy::near_far};
+  return all;
+}
+
+const char* strategy_name(QueryStrategy strategy) {
+  for (const auto& [value, name] : kStrategies)
+    if (value == strategy) return name;
+  return "?";
+}
+
+std::optional<QueryStrategy> strategy_named(const std::string& name) {
+  for (const auto& [value, text] : kStrategies)
+    if (name == text) return value;
+  return std::nullopt;
+}
+
+QueryVariant with_strategy(QueryVariant v, QueryStrategy strategy, ProductUpdate update) {
+  if (v.translation_only) return v;
+  v.interpolation = strategy == QueryStrategy::trilinear ? Interpolation::trilinear : Interpolation::tricubic;
+  v.rotation = RotationMethod::interpolated;
+  v.near_far = false;
+  if (strategy == QueryStrategy::exact_product || strategy == QueryStrategy::near_far) {
+    v.rotation = RotationMethod::exact_product;
+    v.product_update = update;
+    v.near_far = strategy == QueryStrategy::near_far;
+  }
+  return v;
+}
 
 std::string variant_name(const QueryVariant& v) {
   std::string name = v.translation_only ? "translation" : "6dof";
@@ -15,7 +69,7 @@ std::string variant_name(const QueryVariant& v) {
   if (v.rotation == RotationMethod::exact_product)
     name += v.product_update == ProductUpdate::background ? " exact-product background" : " exact-product each-query";
   else
-    name += v.interpolation == Interpolation::tricubic ? " tricubic" : " trilinear";
+    name += std::string(" ") + interpolation_name(v.interpolation);
   if (v.near_far) name += " near-far";
   return name;
 }

@@ -15,6 +15,7 @@
 #include <complex>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,22 @@ struct QueryVariant {
   // product_update says. Needs spectra made with a near field (6-DOF, grid sources).
   bool near_far = false;
 };
+
+// Names and enums, one table each, shared by the scene reader, the tool, the JSON and
+// text writers and the Python module.
+const char* interpolation_name(Interpolation interpolation);  // "trilinear", "tricubic"
+std::optional<Interpolation> interpolation_named(const std::string& name);
+
+// The query strategies a user picks by name: the rotated spectrum interpolated
+// ("tricubic", "trilinear"), the exact product ("exact-product"), or its near-far split
+// ("near-far").
+enum class QueryStrategy { tricubic, trilinear, exact_product, near_far };
+const std::vector<QueryStrategy>& query_strategies();  // in that order
+const char* strategy_name(QueryStrategy strategy);
+std::optional<QueryStrategy> strategy_named(const std::string& name);
+// `base` (a scene's variant) made to render `strategy`, the exact product remade as
+// `update` says. A translation-only variant has only its lines: returned as it is.
+QueryVariant with_strategy(QueryVariant base, QueryStrategy strategy, ProductUpdate update);
 
 // The variant in words: "6dof energy force torque tricubic", "translation energy force",
 // "6dof energy force torque exact-product background", ... (tuning files and reports).
