@@ -1,6 +1,8 @@
 // The names of interpolations, strategies and variants (include/snapfit/query.h): one
 // table each, as scenes, the tool, tuning and strategy files and reports spell them.
+#include <cstddef>
 #include <string>
+#include <utility>
 
 #include "snapfit/query.h"
 
@@ -15,37 +17,39 @@ const std::pair<QueryStrategy, const char*> kStrategies[] = {{QueryStrategy::tri
                                                              {QueryStrategy::exact_product, "exact-product"},
                                                              {QueryStrategy::near_far, "near-far"}};
 
-}  // namespace
-
-const char* interpolation_name(Interpolation interpolation) {
-  for (const auto& [value, name] : kInterpolations)
-    if (value == interpolation) return name;
+// A value's name in `table`, "?" for none; a name's value, none for an unknown name.
+template <typename T, std::size_t N>
+const char* name_in(const std::pair<T, const char*> (&table)[N], T value) {
+  for (const auto& [v, name] : table)
+    if (v == value) return name;
   return "?";
 }
 
-std::optional<Interpolation> interpolation_named(const std::string& name) {
-  for (const auto& [value, text] : kInterpolations)
-    if (name == text) return value;
+template <typename T, std::size_t N>
+std::optional<T> value_in(const std::pair<T, const char*> (&table)[N], const std::string& name) {
+  for (const auto& [v, text] : table)
+    if (name == text) return v;
   return std::nullopt;
 }
 
+}  // namespace
+
+const char* interpolation_name(Interpolation interpolation) { return name_in(kInterpolations, interpolation); }
+
+std::optional<Interpolation> interpolation_named(const std::string& name) { return value_in(kInterpolations, name); }
+
 const std::vector<QueryStrategy>& query_strategies() {
-  static const std::vector<QueryStrategy> all = {QueryStrategy::tricubic, QueryStrategy::trilinear,
-                                                 QueryStrategy::exact_product, QueryStrategy::near_far};
+  static const std::vector<QueryStrategy> all = [] {
+    std::vector<QueryStrategy> v;
+    for (const auto& entry : kStrategies) v.push_back(entry.first);
+    return v;
+  }();
   return all;
 }
 
-const char* strategy_name(QueryStrategy strategy) {
-  for (const auto& [value, name] : kStrategies)
-    if (value == strategy) return name;
-  return "?";
-}
+const char* strategy_name(QueryStrategy strategy) { return name_in(kStrategies, strategy); }
 
-std::optional<QueryStrategy> strategy_named(const std::string& name) {
-  for (const auto& [value, text] : kStrategies)
-    if (name == text) return value;
-  return std::nullopt;
-}
+std::optional<QueryStrategy> strategy_named(const std::string& name) { return value_in(kStrategies, name); }
 
 QueryVariant with_strategy(QueryVariant v, QueryStrategy strategy, ProductUpdate update) {
   if (v.translation_only) return v;
