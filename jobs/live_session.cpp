@@ -1,14 +1,17 @@
-// snapfit/live.h: the main job's preparation, then the haptic loop on its own thread in
-// segments of a few seconds (each reserves its frames' storage before it starts, so no
-// frame allocates), until stopped. A reset or the start or end of a recording ends the
-// current segment at its next frame and the next one starts at once.
+// snapfit/live.h: the main job's preparation, then one haptic loop on its own thread
+// until stopped (its m' governor, passivity controller and force slew carried over every
+// frame). A reset replaces part 2's state between two frames; a recording is the frames
+// between its start and its end, handed by the loop through a lock-free queue to a
+// recorder thread, which does the allocating: no frame allocates.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <cstring>
 #include <mutex>
 #include <optional>
 #include <thread>
 
+#include "core/spsc_ring.h"
 #include "jobs/job_steps.h"
 #include "jobs/live_device.h"
 #include "scheduler/assembly_verdict.h"
@@ -21,57 +24,34 @@
 namespace snapfit {
 namespace {
 
-constexpr double kSegmentS = 10;  // loop time per segment
 constexpr int kWarmupQueries = 50;
 // A status measures part 2's surface deviation at most this often, and no more than a
 // tenth of the time (a measure takes milliseconds; a page asks 60 times a second).
 constexpr double kSurfacePeriodS = 0.1;
+// The recorder's queue: 8 s of frames at 1 kHz; it is drained every kRecorderPeriod.
+constexpr std::size_t kRecorderQueue = 8192;
+constexpr auto kRecorderPeriod = std::chrono::milliseconds(10);
 
 bool same_pose(const Pose& a, const Pose& b) {
   return a.translation == b.translation && a.rotation.coeffs() == b.rotation.coeffs();
 }
 
-// Appends a segment's report to the recording's.
-void append_segment(LoopReport& all, const LoopReport& segment) {
-  all.rate_hz = segment.rate_hz;
-  all.elapsed_s += segment.elapsed_s;
-  all.ticks += segment.ticks;
-  all.frames += segment.frames;
-  all.misses += segment.misses;
-  all.skipped_ticks += segment.skipped_ticks;
-  all.flagged_frames += segment.flagged_frames;
-  all.trust_scaled_frames += segment.trust_scaled_frames;
-  all.trust_withheld_frames += segment.trust_withheld_frames;
-  all.out_of_region_frames += segment.out_of_region_frames;
-  all.bad_device_reads += segment.bad_device_reads;
-  all.part_resets += segment.part_resets;
-  all.passivity_frames += segment.passivity_frames;
-  all.passivity_dissipated_j += segment.passivity_dissipated_j;
-  all.rate_limited_frames += segment.rate_limited_frames;
-  all.rate_limit_dissipated_j += segment.rate_limit_dissipated_j;
-  all.rate_slewed_frames += segment.rate_slewed_frames;
-  all.rate_slew_work_j += segment.rate_slew_work_j;
-  all.late_wakeup_misses += segment.late_wakeup_misses;
-  all.stall_misses += segment.stall_misses;
-  const double offset = all.log.empty() ? 0 : all.log.back().time_s + 1 / segment.rate_hz;
-  all.frame_ms.insert(all.frame_ms.end(), segment.frame_ms.begin(), segment.frame_ms.end());
-  all.wake_late_ms.insert(all.wake_late_ms.end(), segment.wake_late_ms.begin(), segment.wake_late_ms.end());
-  for (FrameRecord f : segment.log) {
-    f.time_s += offset;
-    all.log.push_back(f);
-  }
-  for (ModeChange c : segment.mode_changes) {
-    c.time_s += offset;
-    all.mode_changes.push_back(c);
-  }
-  all.final_part = segment.final_part;
-  all.final_modes = segment.final_modes;
-  all.measured_rate_hz = all.elapsed_s > 0 ? all.frames / all.elapsed_s : 0;
-}
-
 }  // namespace
 
 struct LiveSession::State {
+  // What the loop hands the recorder: a frame (with the m' change it made, if any), or a
+  // recording's start or end (with its counts). Plain data: copied without allocation.
+  struct RecorderItem {
+    enum Kind : std::uint8_t { frame, begin, end } kind = frame;
+    FrameRecord record;
+    bool mode_changed = false;
+    std::size_t modes_from = 0, modes_to = 0;
+    char reason[96] = {};
+    LoopCounts counts;          // end: the recording's
+    std::uint64_t dropped = 0;  // end: frames the full queue refused
+  };
+
+  State() : queue(kRecorderQueue) {}
   Scene scene;
   JobRequest request;
   LiveOptions options;
@@ -84,24 +64,35 @@ struct LiveSession::State {
   std::unique_ptr<LiveDevice> device;
   WrenchEvaluator evaluator;
 
-  std::thread thread;
-  std::atomic<bool> quit{false}, segment_stop{false}, reset_requested{false};
+  std::thread thread, recorder;
+  std::atomic<bool> quit{false}, reset_requested{false}, loop_ended{false};
   std::exception_ptr error;
 
   // Published by the loop's thread (try_lock: a reader never makes a frame wait).
   mutable std::mutex frame_mutex;
   LiveFrame latest_frame;
-  std::uint64_t frames_before_segment = 0;  // frames published so far (the loop's thread only)
-  std::atomic<std::uint64_t> misses{0};     // frames that ended after their deadline
-  double time_before_segment = 0;
+  std::atomic<std::uint64_t> misses{0};  // frames that ended after their deadline
 
-  // Between the loop's thread and the callers: totals, the recording and its requests.
+  // Recordings. Odd epochs record: start and stop each add one (under record_mutex, one
+  // call at a time); the loop's thread follows the epoch between frames.
+  std::mutex record_mutex;
+  std::atomic<std::uint64_t> record_epoch{0};
+  // The loop's thread only.
+  std::uint64_t seen_epoch = 0;
+  LoopCounts record_start;
+  std::size_t mode_changes_seen = 0;
+  double record_t0 = 0;
+  std::uint64_t dropped = 0;
+  SpscRing<RecorderItem> queue;
+  RecorderItem item;  // the one being filled (not on the loop's stack: it is large)
+
+  // The recorder's, handed to stop_recording under `mutex`.
   mutable std::mutex mutex;
   std::condition_variable changed;
-  LiveStatus status;
-  bool record_wanted = false, recording = false;
-  LoopReport recorded;
-  std::uint64_t segments_done = 0;
+  LoopReport building, finished;
+  std::uint64_t finished_dropped = 0;  // frames of `finished` the full queue refused
+  std::uint64_t recordings_finished = 0;
+  bool recorder_done = false;  // its thread has drained the queue after the loop ended
   PriorityChange priority;
 
   // The status's last surface measure (surface_deviation()).
@@ -115,20 +106,24 @@ struct LiveSession::State {
   mutable std::mutex surface_mutex;
   mutable SurfaceMeasure surface;
 
-  void publish(const FrameRecord& f);
+  void publish(const FrameRecord& f, const LoopReport& so_far);
+  void follow_recording(const FrameRecord& f, const LoopReport& so_far);
+  void hand_over(State::RecorderItem::Kind kind, const LoopReport& so_far);
   LiveFrame latest() const;
   // `fresh`: measure part 2's surface now if the pose moved, not at most every kSurfacePeriodS.
   LiveStatus make_status(bool fresh) const;
   double surface_deviation(const Pose& pose, bool fresh) const;
+  bool replace_part(BodyState& part);
   void run();
-  void after_segment(const LoopReport& segment, BodyState& part);
+  void record();
+  void take(const RecorderItem& item);
 };
 
-void LiveSession::State::publish(const FrameRecord& f) {
+void LiveSession::State::publish(const FrameRecord& f, const LoopReport& so_far) {
   const LiveDevice::Seen& seen = device->seen();
   LiveFrame frame;
-  frame.frame = ++frames_before_segment;
-  frame.time_s = time_before_segment + f.time_s;
+  frame.frame = so_far.frames;
+  frame.time_s = f.time_s;
   frame.sequence = seen.sequence;
   frame.device = f.device;
   frame.part = f.part;
@@ -144,54 +139,126 @@ void LiveSession::State::publish(const FrameRecord& f) {
   frame.frame_ms = f.frame_ms;
   frame.flags = f.flags;
   frame.missed = f.missed;
-  if (f.missed) ++misses;
+  misses = so_far.misses;
   if (frame_mutex.try_lock()) {
     latest_frame = frame;
     frame_mutex.unlock();
   }
+  follow_recording(f, so_far);
   if (options.on_frame) options.on_frame(frame);
 }
 
-void LiveSession::State::after_segment(const LoopReport& segment, BodyState& part) {
-  time_before_segment += segment.elapsed_s;
-  part = segment.final_part;
-  if (reset_requested.exchange(false)) {
-    part = initial;
-    device->reset(initial);
+// Queues a recording's start or end (a marker is always queued: frames leave it room).
+void LiveSession::State::hand_over(State::RecorderItem::Kind kind, const LoopReport& so_far) {
+  item.kind = kind;
+  item.mode_changed = false;
+  if (kind == State::RecorderItem::begin) {
+    record_start = so_far;
+    mode_changes_seen = so_far.mode_changes.size();
+    dropped = 0;
+  } else {
+    item.counts = counts_between(record_start, so_far);
+    item.dropped = dropped;
   }
-  const std::lock_guard<std::mutex> lock(mutex);
-  status.part = part.pose;
-  if (recording) append_segment(recorded, segment);
-  if (record_wanted && !recording) recorded = LoopReport{};
-  recording = record_wanted;
-  status.recording = recording;
-  ++segments_done;
-  changed.notify_all();
+  queue.push(item);
+}
+
+// On the loop's thread after each frame: queues the frame while recording, then starts
+// and ends recordings as the epoch says (a recording holds the frames from the one after
+// its start was seen to the one in which its end was).
+void LiveSession::State::follow_recording(const FrameRecord& f, const LoopReport& so_far) {
+  if (seen_epoch % 2 == 1) {
+    if (record_t0 < 0) record_t0 = f.time_s;  // the recording's time starts at its first frame
+    item.kind = RecorderItem::frame;
+    item.record = f;
+    item.record.time_s -= record_t0;
+    item.mode_changed = so_far.mode_changes.size() > mode_changes_seen;
+    if (item.mode_changed) {
+      const ModeChange& c = so_far.mode_changes.back();
+      mode_changes_seen = so_far.mode_changes.size();
+      item.modes_from = c.from, item.modes_to = c.to;
+      std::strncpy(item.reason, c.reason.c_str(), sizeof item.reason - 1);
+    }
+    if (!queue.push(item, 2)) ++dropped;  // two slots kept for a recording's end and the next start
+  }
+  const std::uint64_t epoch = record_epoch.load(std::memory_order_acquire);
+  if (epoch == seen_epoch) return;
+  const bool was = seen_epoch % 2 == 1, wants = epoch % 2 == 1;
+  if (was) hand_over(RecorderItem::end, so_far);
+  if (!was && !wants) {  // started and stopped between two frames: an empty recording
+    hand_over(RecorderItem::begin, so_far);
+    hand_over(RecorderItem::end, so_far);
+  }
+  if (wants) {
+    hand_over(RecorderItem::begin, so_far);  // from the next frame on: this one's counts are before it
+    record_t0 = -1;
+  }
+  seen_epoch = epoch;
+}
+
+// A reset asked for from another thread: part 2 and the device back to the start, between frames.
+bool LiveSession::State::replace_part(BodyState& part) {
+  if (!reset_requested.exchange(false)) return false;
+  part = initial;
+  device->reset(initial);
+  return true;
 }
 
 void LiveSession::State::run() {
   try {
     BodyState part = initial;
     for (int i = 0; i < kWarmupQueries; ++i) evaluator.evaluate(part.pose);
-    while (!quit) {
-      LoopConfig c = config;
-      c.duration_s = kSegmentS;
-      {
-        const std::lock_guard<std::mutex> lock(mutex);
-        c.keep_log = recording;
-      }
-      c.stop = &segment_stop;
-      c.on_frame = [this](const FrameRecord& f) { publish(f); };
-      const LoopReport segment = run_haptic_loop(*device, evaluator, c, steady_loop_clock(request.loop_wait), part);
-      segment_stop = false;
-      after_segment(segment, part);
-    }
+    LoopConfig c = config;
+    c.duration_s = 0;  // until stopped
+    c.stop = &quit;
+    c.keep_log = false;
+    c.keep_frame_times = false;
+    c.on_frame = [this](const FrameRecord& f, const LoopReport& so_far) { publish(f, so_far); };
+    c.replace_part = [this](BodyState& p) { return replace_part(p); };
+    const LoopReport last = run_haptic_loop(*device, evaluator, c, steady_loop_clock(request.loop_wait), part);
+    if (seen_epoch % 2 == 1) hand_over(State::RecorderItem::end, last);  // stopped while recording
   } catch (...) {
     error = std::current_exception();
-    const std::lock_guard<std::mutex> lock(mutex);
-    ++segments_done;
-    changed.notify_all();
   }
+  loop_ended = true;
+}
+
+// The recorder's side of one item.
+void LiveSession::State::take(const RecorderItem& it) {
+  if (it.kind == State::RecorderItem::begin) {
+    building = LoopReport{};
+    return;
+  }
+  if (it.kind == State::RecorderItem::frame) {
+    building.log.push_back(it.record);
+    building.frame_ms.push_back(it.record.frame_ms);
+    building.wake_late_ms.push_back(it.record.wake_late_ms);
+    if (it.mode_changed)
+      building.mode_changes.push_back(ModeChange{it.record.time_s, building.log.size() - 1, it.modes_from,
+                                                 it.modes_to, std::string(it.reason)});
+    return;
+  }
+  static_cast<LoopCounts&>(building) = it.counts;
+  const std::lock_guard<std::mutex> lock(mutex);
+  finished = std::move(building);
+  finished_dropped = it.dropped;
+  building = LoopReport{};
+  ++recordings_finished;
+  changed.notify_all();
+}
+
+// The recorder's thread: drains the loop's queue until the loop has ended and the queue is empty.
+void LiveSession::State::record() {
+  RecorderItem it;
+  for (;;) {
+    const bool ended = loop_ended.load();
+    while (queue.pop(it)) take(it);
+    if (ended) break;
+    std::this_thread::sleep_for(kRecorderPeriod);
+  }
+  const std::lock_guard<std::mutex> lock(mutex);
+  recorder_done = true;
+  changed.notify_all();
 }
 
 namespace {
@@ -244,7 +311,6 @@ LiveSession::LiveSession(const Scene& scene_in, const JobRequest& request, const
   s.evaluator = wrench_evaluator(*s.job.loop_engine);
   s.prepared = job_result(s.job.record);
   s.latest_frame.part = s.latest_frame.device = s.initial.pose;
-  s.status.part = s.initial.pose;
 }
 
 LiveSession::~LiveSession() {
@@ -260,8 +326,14 @@ void LiveSession::start() {
   State& s = *state_;
   if (s.thread.joinable()) throw Error("live session: already started");
   s.quit = false;
+  s.loop_ended = false;
+  {
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    s.recorder_done = false;
+  }
   s.priority = raise_process_priority(loop_priority(PriorityRequest{-20, 10}, s.request.loop_wait));
   s.session.priority = s.priority;
+  s.recorder = std::thread([&s] { s.record(); });
   s.thread = std::thread([&s] { s.run(); });
 }
 
@@ -269,8 +341,8 @@ LiveStatus LiveSession::stop() {
   State& s = *state_;
   if (s.thread.joinable()) {
     s.quit = true;
-    s.segment_stop = true;
     s.thread.join();
+    s.recorder.join();  // after the loop's last item
     restore_process_priority(s.priority);
   }
   if (s.error) std::rethrow_exception(std::exchange(s.error, nullptr));
@@ -287,10 +359,7 @@ void LiveSession::hold_device_pose(const Pose& pose) {
   state_->device->set_state(state, 0, LiveDevice::Clock::now(), false);
 }
 
-void LiveSession::reset() {
-  state_->reset_requested = true;
-  state_->segment_stop = true;
-}
+void LiveSession::reset() { state_->reset_requested = true; }
 
 LiveFrame LiveSession::State::latest() const {
   const std::lock_guard<std::mutex> lock(frame_mutex);
@@ -316,10 +385,8 @@ double LiveSession::State::surface_deviation(const Pose& pose, bool fresh) const
 
 LiveStatus LiveSession::State::make_status(bool fresh) const {
   LiveStatus out;
-  {
-    const std::lock_guard<std::mutex> lock(mutex);
-    out = status;
-  }
+  out.recording = record_epoch.load() % 2 == 1;
+  out.part = initial.pose;
   const LiveFrame frame = latest();
   out.frames = frame.frame;
   out.elapsed_s = frame.time_s;
@@ -341,31 +408,36 @@ LiveStatus LiveSession::status() const { return state_->make_status(false); }
 
 void LiveSession::start_recording() {
   State& s = *state_;
-  {
-    const std::lock_guard<std::mutex> lock(s.mutex);
-    s.record_wanted = true;
-  }
-  s.segment_stop = true;
+  const std::lock_guard<std::mutex> serial(s.record_mutex);
+  const std::uint64_t epoch = s.record_epoch.load();
+  if (epoch % 2 == 0) s.record_epoch.store(epoch + 1, std::memory_order_release);
 }
 
 JobResult LiveSession::stop_recording() {
   State& s = *state_;
+  const std::lock_guard<std::mutex> serial(s.record_mutex);
+  const std::uint64_t epoch = s.record_epoch.load();
+  if (epoch % 2 == 0) throw Error("live session: no recording to stop");
   std::unique_lock<std::mutex> lock(s.mutex);
-  if (!s.record_wanted && !s.recording) throw Error("live session: no recording to stop");
-  s.record_wanted = false;
+  const std::uint64_t before = s.recordings_finished;
+  s.record_epoch.store(epoch + 1, std::memory_order_release);
   if (s.thread.joinable()) {
-    // Wait for the segment that ends the recording (it ends at its next frame).
-    const std::uint64_t after = s.segments_done;
-    s.segment_stop = true;
-    s.changed.wait(lock, [&] { return s.segments_done > after && !s.recording; });
+    // The loop ends the recording after its next frame; the recorder then hands it over.
+    // A loop that has ended (an error) ended it already.
+    s.changed.wait(lock, [&] { return s.recordings_finished > before || s.recorder_done; });
+  } else if (!s.recorder_done) {
+    s.finished = LoopReport{};  // never started: nothing was recorded
   }
   if (s.error) std::rethrow_exception(s.error);
   auto record = std::make_shared<JobRecord>(*s.job.record);
   SessionResult session = s.session;
-  session.loop = std::move(s.recorded);
-  s.recorded = LoopReport{};
-  s.recording = false;
+  session.loop = std::move(s.finished);
+  s.finished = LoopReport{};
+  const std::uint64_t dropped = std::exchange(s.finished_dropped, 0);
   lock.unlock();
+  if (dropped > 0)
+    job_output(s.request).note("live session: " + std::to_string(dropped) +
+                               " frames of the recording were not kept (the recorder fell behind)");
   judge_session_end(session, s.scene, s.job.pair->part(2).mesh);
   record->session = std::move(session);
   return job_result(std::move(record));

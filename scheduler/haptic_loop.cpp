@@ -394,6 +394,18 @@ std::size_t hold_over_missed_ticks(std::size_t tick, double end, BodyState& part
   return next;
 }
 
+// The report's counts after a frame (or at the end), so that on_frame sees them whole:
+// ticks, elapsed time, the slew's totals, the part and m' now.
+void count_so_far(LoopReport& report, const LoopState& s, const BodyState& part, double elapsed_s) {
+  report.ticks = report.frames + report.skipped_ticks;
+  report.elapsed_s = elapsed_s;
+  report.rate_slewed_frames = s.slew.slewed_frames;
+  report.rate_slew_work_j = s.slew.spent_j;
+  report.measured_rate_hz = elapsed_s > 0 ? report.frames / elapsed_s : 0;
+  report.final_part = part;
+  report.final_modes = s.governor.modes();
+}
+
 }  // namespace
 
 WrenchEvaluator wrench_evaluator(QueryEngine& engine) {
@@ -413,8 +425,10 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
 
   LoopReport report;
   report.rate_hz = config.rate_hz;
+  report.final_part = part;
+  report.final_modes = s.governor.modes();
   const std::size_t expected = config.duration_s > 0 ? static_cast<std::size_t>(config.duration_s * config.rate_hz) : 0;
-  report.frame_ms.reserve(expected);
+  if (config.keep_frame_times) report.frame_ms.reserve(expected), report.wake_late_ms.reserve(expected);
   if (config.keep_log) report.log.reserve(expected);
 
   std::size_t tick = 0, frame = 0;
@@ -425,6 +439,10 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     if (config.stop && config.stop->load()) break;
     clock.wait_until(start + tick_time);
     const double woke = clock.now() - start;  // later than the tick when the OS wakes us late
+    if (config.replace_part && config.replace_part(part)) {
+      s.passivity.invalidate();  // the step from the last pose to this one was not the part's motion
+      s.last_coupling_force.reset();
+    }
 
     const BodyState handle = read_handle(device, tick_time, part, s, report);
     const Pose queried = part.pose;
@@ -438,16 +456,8 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     const double frame_ms = 1e3 * (end - tick_time);
     const double compute_ms = 1e3 * (end - woke);
     const FrameTiming timing = frame_timing(end, tick_time, compute_ms, period, config, s.governor, report);
-    report.frame_ms.push_back(frame_ms);
-    report.wake_late_ms.push_back(1e3 * (woke - tick_time));
-    if (config.keep_log || config.on_frame) {
-      const FrameRecord record{tick_time, frame_ms,      handle.pose,     queried,         q.energy,
-                               s.geometric, s.contact.wrench, s.contact.depth, geometric_error, sent,
-                               q.modes,   q.flags,       timing.missed,   q.constraint,    q.constraint_weight,
-                               s.trust};
-      if (config.keep_log) report.log.push_back(record);
-      if (config.on_frame) config.on_frame(record);
-    }
+    const double wake_late_ms = 1e3 * (woke - tick_time);
+    if (config.keep_frame_times) report.frame_ms.push_back(frame_ms), report.wake_late_ms.push_back(wake_late_ms);
     ++report.frames;
     if (timing.missed) ++report.misses;
     const std::size_t next =
@@ -460,17 +470,45 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
       report.mode_changes.push_back(ModeChange{tick_time, frame, before, m, reason});
       if (engine.set_modes) engine.set_modes(m);
     }
+    count_so_far(report, s, part, end);
+    if (config.keep_log || config.on_frame) {
+      const FrameRecord record{tick_time,   frame_ms,         handle.pose,     queried,         q.energy,
+                               s.geometric, s.contact.wrench, s.contact.depth, geometric_error, sent,
+                               q.modes,     q.flags,          timing.missed,   q.constraint,    q.constraint_weight,
+                               s.trust,     wake_late_ms};
+      if (config.keep_log) report.log.push_back(record);
+      if (config.on_frame) config.on_frame(record, report);
+    }
     ++frame;
     tick = next;
   }
-  report.ticks = report.frames + report.skipped_ticks;
-  report.elapsed_s = clock.now() - start;
-  report.rate_slewed_frames = s.slew.slewed_frames;
-  report.rate_slew_work_j = s.slew.spent_j;
-  report.measured_rate_hz = report.elapsed_s > 0 ? report.frames / report.elapsed_s : 0;
-  report.final_part = part;
-  report.final_modes = s.governor.modes();
+  count_so_far(report, s, part, clock.now() - start);
   return report;
+}
+
+LoopCounts counts_between(const LoopCounts& a, const LoopCounts& b) {
+  LoopCounts d = b;
+  d.elapsed_s = b.elapsed_s - a.elapsed_s;
+  d.ticks = b.ticks - a.ticks;
+  d.frames = b.frames - a.frames;
+  d.misses = b.misses - a.misses;
+  d.skipped_ticks = b.skipped_ticks - a.skipped_ticks;
+  d.flagged_frames = b.flagged_frames - a.flagged_frames;
+  d.trust_scaled_frames = b.trust_scaled_frames - a.trust_scaled_frames;
+  d.trust_withheld_frames = b.trust_withheld_frames - a.trust_withheld_frames;
+  d.out_of_region_frames = b.out_of_region_frames - a.out_of_region_frames;
+  d.bad_device_reads = b.bad_device_reads - a.bad_device_reads;
+  d.part_resets = b.part_resets - a.part_resets;
+  d.passivity_frames = b.passivity_frames - a.passivity_frames;
+  d.passivity_dissipated_j = b.passivity_dissipated_j - a.passivity_dissipated_j;
+  d.rate_limited_frames = b.rate_limited_frames - a.rate_limited_frames;
+  d.rate_limit_dissipated_j = b.rate_limit_dissipated_j - a.rate_limit_dissipated_j;
+  d.rate_slewed_frames = b.rate_slewed_frames - a.rate_slewed_frames;
+  d.rate_slew_work_j = b.rate_slew_work_j - a.rate_slew_work_j;
+  d.late_wakeup_misses = b.late_wakeup_misses - a.late_wakeup_misses;
+  d.stall_misses = b.stall_misses - a.stall_misses;
+  d.measured_rate_hz = d.elapsed_s > 0 ? d.frames / d.elapsed_s : 0;
+  return d;
 }
 
 struct HapticLoopThread::State {

@@ -128,6 +128,7 @@ struct FrameRecord {
   std::uint8_t constraint = 0;   // QueryResult::constraint: the hybrid's engaged constraint
   double constraint_weight = 0;  // and its blend weight x
   double trust = 1;              // the share of the engine's wrench rendered (WrenchTrust); 0 when flagged
+  double wake_late_ms = 0;       // how late the loop's thread woke after the tick
 };
 
 // How much of the engine's wrench the loop renders, from its per-query error estimate
@@ -155,6 +156,8 @@ struct ModePolicy {
   double stall_factor = 4;  // work beyond this multiple of predicted_ms(m') is a stall (0: none)
 };
 
+struct LoopReport;
+
 struct LoopConfig {
   double rate_hz = 1000;
   double duration_s = 1;  // loop time to run; <= 0 runs until `stop` is set
@@ -169,9 +172,20 @@ struct LoopConfig {
   double max_travel = 0;
   double max_rotation = 0;
   bool keep_log = true;  // one FrameRecord per frame
-  // Called on the loop's thread after each frame with its record (a live display, a
-  // device bridge): keep it short, it runs inside the frame's budget; null: none.
-  std::function<void(const FrameRecord&)> on_frame;
+  // LoopReport::frame_ms and wake_late_ms, one value per frame. Off for a loop that runs
+  // until stopped (a live session): its storage would grow without end, and reallocate.
+  bool keep_frame_times = true;
+  // Called on the loop's thread at the end of each frame with its record and the report
+  // so far (its counts include this frame and the ticks it overran; its vectors hold what
+  // keep_log and keep_frame_times keep): a live display, a device bridge, a recorder.
+  // Keep it short, it runs inside the frame's budget; null: none.
+  std::function<void(const FrameRecord&, const LoopReport& so_far)> on_frame;
+  // Called on the loop's thread at each tick before its frame: may set the part's state
+  // anew (a reset) and then returns true. The loop forgets the last frame's pose (the
+  // passivity observer's step and the force-rate bound's last force) but keeps its m'
+  // governor, the passivity controller's energy budget and the force slew's tank, as it
+  // does over any frame. null: never.
+  std::function<bool(BodyState& part)> replace_part;
   const std::atomic<bool>* stop = nullptr;
   // Rigid contact at the part's pose, added to the geometric wrench each frame, its
   // stiffness integrated implicitly; null: none (Behandish & Ilies 2016's energy alone).
@@ -194,7 +208,9 @@ struct ModeChange {
   std::string reason;
 };
 
-struct LoopReport {
+// What a loop has counted: plain data, copied without allocation (a live session
+// takes the counts at a recording's start and end; the recording's are the difference).
+struct LoopCounts {
   double rate_hz = 0;           // the configured rate
   double measured_rate_hz = 0;  // frames run / wall time of the loop
   double elapsed_s = 0;
@@ -216,13 +232,20 @@ struct LoopReport {
   double rate_slew_work_j = 0;          // net work the slewed force's offset did on the hand, J
   std::size_t late_wakeup_misses = 0;   // misses whose own work fit: the thread woke late
   std::size_t stall_misses = 0;         // misses whose work was far beyond the model (ModePolicy::stall_factor)
-  std::vector<double> frame_ms;         // every frame: tick to wrench sent
-  std::vector<double> wake_late_ms;     // every frame: how late the thread woke after its tick
-  std::vector<FrameRecord> log;         // when keep_log
-  std::vector<ModeChange> mode_changes;
-  BodyState final_part;
+  BodyState final_part;                 // after the last frame's step
   std::size_t final_modes = 0;
   double miss_rate() const { return frames ? double(misses) / frames : 0; }
+};
+
+// The counts of `end` less those of `start` (two snapshots of one loop, start earlier):
+// rates, final part and m' from `end`.
+LoopCounts counts_between(const LoopCounts& start, const LoopCounts& end);
+
+struct LoopReport : LoopCounts {
+  std::vector<double> frame_ms;         // every frame: tick to wrench sent (keep_frame_times)
+  std::vector<double> wake_late_ms;     // every frame: how late the thread woke after its tick (keep_frame_times)
+  std::vector<FrameRecord> log;         // when keep_log
+  std::vector<ModeChange> mode_changes;
 };
 
 // Runs the loop on the calling thread until duration or stop. The evaluator is set to
