@@ -10,6 +10,7 @@
 #include <iostream>
 #include <optional>
 
+#include "cli/cli_terms.h"
 #include "cli/commands.h"
 #include "cli/parse_options.h"
 #include "report/run_report.h"
@@ -64,7 +65,8 @@ void run_main_job(const RunOptions& opt) {
   request.simulated_time = opt.simulated_time;
   request.loop_wait = parse_loop_wait(opt.loop_wait);
   request.progress = true;
-  request.say = [](const std::string& text) { std::cout << text << std::flush; };
+  request.say = [](const std::string& text) { std::cout << in_cli_terms(text) << std::flush; };
+  request.note = [](const std::string& text) { std::cerr << "snapfit: " << in_cli_terms(text) << "\n"; };
   const JobResult result = run_job(scene, request);
   write_report(opt, *result.record, start);
 }

@@ -7,6 +7,7 @@
 #include <optional>
 #include <sstream>
 
+#include "cli/cli_terms.h"
 #include "cli/commands.h"
 #include "cli/parse_options.h"
 #include "cli/search_ranks.h"
@@ -49,7 +50,7 @@ void print_plan(const SearchPlan& plan, const std::string& interpolation, const 
             << "maps: " << d[0] << " x " << d[1] << " x " << d[2] << " translations, spacing " << plan.spacing << " "
             << units << ", " << interpolation << ", " << plan.processes << (plan.processes == 1 ? " rank" : " ranks")
             << "\n"
-            << "map FFT: " << plan.map_fft << "\n"
+            << "map FFT: " << in_cli_terms(plan.map_fft) << "\n"
             << "map minima: "
             << (plan.minima_on_device ? "on the device, a short list read back per map"
                                       : "on the host, in each map read back")

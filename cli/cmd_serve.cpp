@@ -10,6 +10,7 @@
 #include <optional>
 #include <thread>
 
+#include "cli/cli_terms.h"
 #include "cli/commands.h"
 #include "cli/live_server.h"
 #include "cli/parse_options.h"
@@ -59,7 +60,8 @@ void run_serve(const ServeOptions& opt) {
   request.strategy = opt.strategy;
   request.loop_wait = parse_loop_wait(opt.loop_wait);
   request.progress = true;
-  request.say = [](const std::string& text) { std::cout << text << std::flush; };
+  request.say = [](const std::string& text) { std::cout << in_cli_terms(text) << std::flush; };
+  request.note = [](const std::string& text) { std::cerr << "snapfit: " << in_cli_terms(text) << "\n"; };
 
   // The loop sends each frame to the bridge, the bridge hands each state to the session:
   // the session's loop stops first, then the bridge, then the session goes.

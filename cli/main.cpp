@@ -5,6 +5,7 @@
 #include <iostream>
 #include <string>
 
+#include "cli/cli_terms.h"
 #include "cli/commands.h"
 #include "snapfit/devices.h"
 #include "snapfit/error.h"
@@ -41,7 +42,7 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const snapfit::Error& e) {
     // The first line is the reason; anything after it (a compiler log, a device list) is detail.
-    std::cerr << "snapfit: error: " << e.what() << "\n";
+    std::cerr << "snapfit: error: " << snapfit::cli::in_cli_terms(e.what()) << "\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "snapfit: error: " << e.what() << "\n";

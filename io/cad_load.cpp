@@ -43,7 +43,7 @@ const occt::NamedSolid& pick_solid(const std::string& path, const occt::CadFile&
   }
   if (file.solids.size() > 1)
     file_error(path, "holds " + std::to_string(file.solids.size()) + " solids (" + solid_list(file.solids) +
-                         "); name the one to use (a scene part's cad.solid, mesh-info's --solid)");
+                         "); name the one to use (a scene part's cad.solid, MeshFileRequest::solid)");
   return file.solids.front();
 }
 

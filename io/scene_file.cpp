@@ -569,17 +569,14 @@ VpsParams read_vps(const Ctx& c, const json& v, const std::string& path) {
 
 Method read_method(const Ctx& c, const json& v, const std::string& path) {
   const std::string m = text(c, v, path);
-  if (m == "snapfit") return Method::snapfit;
-  if (m == "vps") return Method::vps;
-  if (m == "vps_hybrid") return Method::vps_hybrid;
-  fail(c, path, "unknown method '" + m + "' (expected snapfit, vps or vps_hybrid)");
+  if (const std::optional<Method> method = method_named(m)) return *method;
+  fail(c, path, "unknown method '" + m + "' (expected " + method_names() + ")");
 }
 
 Motion read_motion(const Ctx& c, const json& v, const std::string& path) {
   const std::string m = text(c, v, path);
-  if (m == "translation") return Motion::translation;
-  if (m == "6dof") return Motion::six_dof;
-  fail(c, path, "unknown motion '" + m + "' (expected translation or 6dof)");
+  if (const std::optional<Motion> motion = motion_named(m)) return *motion;
+  fail(c, path, "unknown motion '" + m + "' (expected " + motion_names() + ")");
 }
 
 Outputs read_outputs(const Ctx& c, const json& v, const std::string& path, Motion motion) {
@@ -825,7 +822,7 @@ std::string scene_to_json(const Scene& s) {
   if (s.outputs.force) outputs.push_back("force");
   if (s.outputs.torque) outputs.push_back("torque");
   j["outputs"] = outputs;
-  j["motion"] = s.motion == Motion::translation ? "translation" : "6dof";
+  j["motion"] = motion_name(s.motion);
 
   if (!s.trajectory.keyframes.empty()) {
     ordered_json keys = ordered_json::array();

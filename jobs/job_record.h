@@ -39,7 +39,7 @@ struct JobRecord {
   std::string strategy;        // variant_name() of the loop's engine
   std::string strategy_label;  // the same, short (strategy_short_name)
   std::string
-      strategy_chosen_by;  // "lowest error that fits (measured)", "... (strategy file)", "--strategy", "--modes"
+      strategy_chosen_by;  // "lowest error that fits (measured)", "... (strategy file)", "JobRequest::strategy", "JobRequest::modes (not measured)"
   std::optional<AccuracyReport> strategies;  // the candidates, when chosen by error
   std::string strategy_file;                 // where the choice is kept
   std::optional<SessionResult> session;      // the scripted assembly, when the scene has a trajectory

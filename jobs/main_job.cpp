@@ -58,7 +58,7 @@ ComputeContext open_checked_device(const JobRequest& request, const JobOutput& o
        << ", program " << (check.origin == ProgramOrigin::cache_hit ? "from cache" : "compiled") << " in "
        << check.build_ms << " ms)\n";
   out.say(line.str());
-  if (!check.passed) throw Error("device " + device.info.name + " failed its self-check; choose another with --device");
+  if (!check.passed) throw Error("device " + device.info.name + " failed its self-check; choose another (JobRequest::device)");
   record.device = device.info;
   record.check = check;
   return ctx;
@@ -104,9 +104,9 @@ std::unique_ptr<QueryEngine> fixed_modes_engine(const ComputeContext& ctx, const
   record.loop_device = ctx.device.info;
   record.strategy = variant_name(variant);
   record.strategy_label = strategy_short_name(variant);
-  record.strategy_chosen_by = request.strategy == "auto" ? "--modes (not measured)" : "--strategy";
+  record.strategy_chosen_by = request.strategy == "auto" ? "JobRequest::modes (not measured)" : "JobRequest::strategy";
   out.say("    " + record.strategy + ", m' = " + std::to_string(record.tuning.chosen_modes) +
-          " (--modes; not tuned)\n");
+          " (JobRequest::modes; not tuned)\n");
   return engine;
 }
 
@@ -168,7 +168,7 @@ LoopDevices tuned_loop_devices(const ComputeContext& ctx, const AssemblyPair& pa
             d.tuning.path + "\n" + tuning_table(d.tuning.result));
   };
   LoopDevices devices = tune_loop_devices(ctx, scene, pair.spectra, variant, tune);
-  record.strategy_chosen_by = "--strategy";
+  record.strategy_chosen_by = "JobRequest::strategy";
   if (request.strategy == "auto") {
     const AccuracyOptions accuracy = strategy_accuracy_options(scene, request, out, record);
     if (const std::optional<StrategyChoice> choice =

@@ -86,10 +86,10 @@ MapperOnDevice make_mapper(const SearchRequest& request, const PairSpectra& spec
     m.fft_used = describe_map_fft_choice(choice);
   } else {
     kind = parse_map_fft(request.map_fft);
-    m.fft_used = map_fft_name(kind) + " (--map-fft)";
+    m.fft_used = map_fft_name(kind) + " (SearchRequest::map_fft)";
   }
   if (request.map_batch)
-    m.fft_used += ", " + std::to_string(batch) + (batch == 1 ? " rotation" : " rotations") + " per batch (--map-batch)";
+    m.fft_used += ", " + std::to_string(batch) + (batch == 1 ? " rotation" : " rotations") + " per batch (SearchRequest::map_batch)";
   m.mapper = std::make_unique<TranslationMapper>(*m.fft, *m.ctx, spectra, request.interpolation, request.modes, kind,
                                                  default_program_cache(), batch);
   return m;

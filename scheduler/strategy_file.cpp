@@ -10,8 +10,8 @@
 namespace snapfit {
 namespace {
 
-constexpr const char* kKind = "snapfit strategy";
-constexpr std::uint32_t kVersion = 1;
+constexpr const char* kStrategyFileKind = "snapfit strategy";
+constexpr std::uint32_t kStrategyFileVersion = 1;
 
 nlohmann::json triple(const double v[3]) { return nlohmann::json::array({v[0], v[1], v[2]}); }
 
@@ -97,7 +97,7 @@ AccuracyReport accuracy_report_from_json(const std::string& text, const QueryVar
 std::optional<AccuracyReport> load_strategy(const std::string& key, const QueryVariant& base,
                                             const std::function<void(const std::string&)>& note) {
   const std::string path = strategy_file_path(key);
-  const CacheRead read = read_cache_file(path, kKind, kVersion, key);
+  const CacheRead read = read_cache_file(path, kStrategyFileKind, kStrategyFileVersion, key);
   if (read.status != CacheStatus::hit) {
     if (note && read.status != CacheStatus::missing)
       note("strategy file " + path + " not used: " + read.reason + "; measuring again");
@@ -113,7 +113,7 @@ std::optional<AccuracyReport> load_strategy(const std::string& key, const QueryV
 
 void save_strategy(const std::string& key, const AccuracyReport& report) {
   const std::string payload = accuracy_report_to_json(report);
-  write_cache_file(strategy_file_path(key), kKind, kVersion, key, payload.data(), payload.size());
+  write_cache_file(strategy_file_path(key), kStrategyFileKind, kStrategyFileVersion, key, payload.data(), payload.size());
 }
 
 }  // namespace snapfit

@@ -10,8 +10,8 @@
 namespace snapfit {
 namespace {
 
-constexpr const char* kKind = "snapfit tuning";
-constexpr std::uint32_t kVersion = 1;
+constexpr const char* kTuningFileKind = "snapfit tuning";
+constexpr std::uint32_t kTuningFileVersion = 1;
 
 }  // namespace
 
@@ -66,7 +66,7 @@ TuningResult tuning_from_json(const std::string& text) {
 
 std::optional<TuningResult> load_tuning(const TuningKey& key, const std::function<void(const std::string&)>& note) {
   const std::string path = tuning_file_path(key);
-  const CacheRead read = read_cache_file(path, kKind, kVersion, key.text());
+  const CacheRead read = read_cache_file(path, kTuningFileKind, kTuningFileVersion, key.text());
   if (read.status != CacheStatus::hit) {
     if (note && read.status != CacheStatus::missing)
       note("tuning file " + path + " not used: " + read.reason + "; re-tuning");
@@ -82,7 +82,7 @@ std::optional<TuningResult> load_tuning(const TuningKey& key, const std::functio
 
 void save_tuning(const TuningKey& key, const TuningResult& result) {
   const std::string payload = tuning_to_json(result);
-  write_cache_file(tuning_file_path(key), kKind, kVersion, key.text(), payload.data(), payload.size());
+  write_cache_file(tuning_file_path(key), kTuningFileKind, kTuningFileVersion, key.text(), payload.data(), payload.size());
 }
 
 }  // namespace snapfit

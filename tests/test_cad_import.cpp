@@ -247,6 +247,12 @@ TEST_CASE("cad import: a file with several solids is refused with their names un
   test::write_cad_boxes(named, {{"base", {0, 0, 0}, {10, 10, 2}}, {"lid", {0, 0, 5}, {10, 10, 6}}});
   const std::string msg = error_of([&] { load_cad_mesh(named, with_deflection(0.1)); });
   CHECK(msg.find(named + ": holds 2 solids ('base', 'lid'); name the one to use") == 0);
+  // The library names the request member; the tool says its option.
+  CHECK(msg.find("(a scene part's cad.solid, MeshFileRequest::solid)") != std::string::npos);
+  CHECK(msg.find("--") == std::string::npos);
+  const test::Command tool = test::run_command(std::string(SNAPFIT_CLI_PATH) + " mesh-info " + named);
+  CHECK(tool.status != 0);
+  CHECK(tool.output.find("(a scene part's cad.solid, mesh-info's --solid)") != std::string::npos);
   CadImportOptions o = with_deflection(0.1);
   o.solid = "lid";
   const CadMesh lid = load_cad_mesh(named, o);

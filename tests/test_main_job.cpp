@@ -33,7 +33,7 @@ TEST_CASE("main job: the default scene at a fixed m' on simulated time ends asse
     at = next == std::string::npos ? at : next;
   }
   CHECK(r.tuning.chosen_modes == 2048);
-  CHECK(r.strategy_chosen_by == "--modes (not measured)");
+  CHECK(r.strategy_chosen_by == "JobRequest::modes (not measured)");
   REQUIRE(r.loop);
   const Trajectory& t = scene.trajectory;
   const double seconds = t.keyframes.back().time_s - t.keyframes.front().time_s + scene.haptics.settle_s;

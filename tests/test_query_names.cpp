@@ -1,9 +1,17 @@
 // The one table of names for interpolations and query strategies (include/snapfit/query.h
-// interpolation_name, strategy_named, with_strategy): every name round-trips, an unknown
-// one is refused, and each strategy makes the variant it names.
+// interpolation_name, strategy_named, with_strategy), methods and motions
+// (include/snapfit/scene.h) and map FFTs (engine/maps/map_fft.h): every name round-trips,
+// an unknown one is refused, and each strategy makes the variant it names.
 #include <doctest/doctest.h>
 
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "engine/maps/map_fft.h"
+#include "snapfit/error.h"
 #include "snapfit/query.h"
+#include "snapfit/scene.h"
+#include "tests/test_support.h"
 
 using namespace snapfit;
 
@@ -41,4 +49,33 @@ TEST_CASE("query names: each strategy makes the variant it names") {
   QueryVariant lines;
   lines.translation_only = true;
   CHECK(variant_name(with_strategy(lines, QueryStrategy::near_far, ProductUpdate::background)) == variant_name(lines));
+}
+
+TEST_CASE("scene and map names: methods, motions and map FFTs round-trip; scenes name the table's choices") {
+  for (Method m : {Method::snapfit, Method::vps, Method::vps_hybrid}) CHECK(method_named(method_name(m)) == m);
+  CHECK(std::string(method_name(Method::vps_hybrid)) == "vps_hybrid");
+  CHECK_FALSE(method_named("voxmap"));
+  CHECK(method_names() == "snapfit, vps or vps_hybrid");
+  for (Motion m : {Motion::translation, Motion::six_dof}) CHECK(motion_named(motion_name(m)) == m);
+  CHECK(std::string(motion_name(Motion::six_dof)) == "6dof");
+  CHECK_FALSE(motion_named("6-dof"));
+  CHECK(motion_names() == "translation or 6dof");
+  for (MapFft f : map_ffts_built()) CHECK(parse_map_fft(map_fft_name(f)) == f);
+  CHECK_THROWS_WITH_AS(parse_map_fft("cufft"), "unknown map FFT 'cufft' (expected clfft, fftw or vkfft)", Error);
+
+  // The scene reader's messages list the table's names; the writer spells them so.
+  const std::string origin = std::string(SNAPFIT_SOURCE_DIR) + "/scenes/default.json";
+  std::ifstream in(origin);
+  nlohmann::json j = nlohmann::json::parse(in);
+  j["motion"] = "6-dof";
+  CHECK(test::error_of([&] { parse_scene(j.dump(), origin); }).find("(expected translation or 6dof)") !=
+        std::string::npos);
+  j["motion"] = "6dof";
+  j["method"] = "voxmap";
+  CHECK(test::error_of([&] { parse_scene(j.dump(), origin); }).find("(expected snapfit, vps or vps_hybrid)") !=
+        std::string::npos);
+  j["method"] = "vps_hybrid";
+  const nlohmann::json written = nlohmann::json::parse(scene_to_json(parse_scene(j.dump(), origin)));
+  CHECK(written["method"] == "vps_hybrid");
+  CHECK(written["motion"] == "6dof");
 }

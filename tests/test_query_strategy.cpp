@@ -198,7 +198,7 @@ TEST_CASE("query strategy: --strategy names one, a translation-only scene has on
   REQUIRE(named.status == 0);
   const nlohmann::json s = read_json(out.path / "named" / "summary.json")["query_strategy"];
   CHECK(s["name"] == "6dof energy force torque trilinear");
-  CHECK(s["chosen_by"] == "--strategy");
+  CHECK(s["chosen_by"] == "JobRequest::strategy");
   CHECK(s["candidates"].is_null());
 
   const test::Command refused = test::run_command(cli + " run " + SNAPFIT_SOURCE_DIR +

@@ -1,10 +1,18 @@
 #include "engine/maps/map_fft.h"
 
+#include "core/name_table.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
 
-std::string map_fft_name(MapFft fft) { return fft == MapFft::fftw ? "fftw" : fft == MapFft::vkfft ? "vkfft" : "clfft"; }
+namespace {
+
+const std::pair<MapFft, const char*> kMapFfts[] = {
+    {MapFft::clfft, "clfft"}, {MapFft::fftw, "fftw"}, {MapFft::vkfft, "vkfft"}};
+
+}  // namespace
+
+std::string map_fft_name(MapFft fft) { return name_in(kMapFfts, fft); }
 
 std::vector<MapFft> map_ffts_built() {
   std::vector<MapFft> built{MapFft::clfft};
@@ -20,11 +28,12 @@ std::vector<MapFft> map_ffts_built() {
 bool map_fft_on_device(MapFft fft) { return fft != MapFft::fftw; }
 
 MapFft parse_map_fft(const std::string& name) {
-  for (MapFft fft : map_ffts_built())
-    if (map_fft_name(fft) == name) return fft;
-  if (name == "fftw") throw Error("map FFT 'fftw': this build has no FFTW (install libfftw3-dev and reconfigure)");
-  if (name == "vkfft") throw Error("map FFT 'vkfft': this build has no VkFFT (install libvkfft-dev and reconfigure)");
-  throw Error("unknown map FFT '" + name + "' (expected clfft, fftw or vkfft)");
+  const std::optional<MapFft> fft = value_in(kMapFfts, name);
+  if (!fft) throw Error("unknown map FFT '" + name + "' (expected " + names_in(kMapFfts) + ")");
+  for (MapFft built : map_ffts_built())
+    if (built == *fft) return built;
+  if (*fft == MapFft::fftw) throw Error("map FFT 'fftw': this build has no FFTW (install libfftw3-dev and reconfigure)");
+  throw Error("map FFT 'vkfft': this build has no VkFFT (install libvkfft-dev and reconfigure)");
 }
 
 }  // namespace snapfit

@@ -4,6 +4,7 @@
 #include <string>
 #include <utility>
 
+#include "core/name_table.h"
 #include "snapfit/query.h"
 
 namespace snapfit {
@@ -16,21 +17,6 @@ const std::pair<QueryStrategy, const char*> kStrategies[] = {{QueryStrategy::tri
                                                              {QueryStrategy::trilinear, "trilinear"},
                                                              {QueryStrategy::exact_product, "exact-product"},
                                                              {QueryStrategy::near_far, "near-far"}};
-
-// A value's name in `table`, "?" for none; a name's value, none for an unknown name.
-template <typename T, std::size_t N>
-const char* name_in(const std::pair<T, const char*> (&table)[N], T value) {
-  for (const auto& [v, name] : table)
-    if (v == value) return name;
-  return "?";
-}
-
-template <typename T, std::size_t N>
-std::optional<T> value_in(const std::pair<T, const char*> (&table)[N], const std::string& name) {
-  for (const auto& [v, text] : table)
-    if (name == text) return v;
-  return std::nullopt;
-}
 
 }  // namespace
 

@@ -95,6 +95,12 @@ struct GridParams {
 
 enum class Motion { translation, six_dof };
 
+// The motion's name in scene files ("translation", "6dof"), and a name's motion (none for
+// an unknown name): one table (io/scene_names.cpp).
+const char* motion_name(Motion m);
+std::optional<Motion> motion_named(const std::string& name);
+std::string motion_names();  // "translation or 6dof"
+
 struct Outputs {
   bool energy = true;
   bool force = true;
@@ -149,10 +155,11 @@ enum class Method {
 
 // Whether the run voxelises part 1 and samples part 2's point shell (vps, vps_hybrid).
 inline bool uses_vps(Method m) { return m == Method::vps || m == Method::vps_hybrid; }
-// The method's name in scene files and reports.
-inline const char* method_name(Method m) {
-  return m == Method::vps ? "vps" : m == Method::vps_hybrid ? "vps_hybrid" : "snapfit";
-}
+// The method's name in scene files and reports ("snapfit", "vps", "vps_hybrid"), and a
+// name's method (none for an unknown name): one table (io/scene_names.cpp).
+const char* method_name(Method m);
+std::optional<Method> method_named(const std::string& name);
+std::string method_names();  // "snapfit, vps or vps_hybrid" 
 
 // Which contacts a constraint's region holds (their collision force is scaled by 1 - w):
 enum class HybridRegion {
