@@ -7,9 +7,9 @@
 #include "engine/runtime/device.h"
 #include "engine/runtime/device_check.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/accuracy.h"
-#include "scheduler/assembly_session.h"
-#include "scheduler/mode_tuning.h"
+#include "scheduler/tuning/accuracy.h"
+#include "scheduler/haptics/assembly_session.h"
+#include "scheduler/modes/mode_tuning.h"
 
 namespace snapfit {
 
@@ -34,7 +34,7 @@ struct JobRecord {
   DeviceCheckResult check;
   TuningResult tuning;
   std::string tuning_key;  // "" when m' was fixed by the user
-  // The query strategy the loop renders and why (scheduler/query_strategy.h): the
+  // The query strategy the loop renders and why (scheduler/tuning/query_strategy.h): the
   // measured candidates when it was chosen by error, else none.
   std::string strategy;        // variant_name() of the loop's engine
   std::string strategy_label;  // the same, short (strategy_short_name)
@@ -44,7 +44,7 @@ struct JobRecord {
   std::string strategy_file;                 // where the choice is kept
   std::optional<SessionResult> session;      // the scripted assembly, when the scene has a trajectory
   // The rigid contact the loop adds, and the frame time reserved for it before the
-  // strategy and m' were chosen (scheduler/haptic_setup.h reserved_contact_ms); null / 0
+  // strategy and m' were chosen (scheduler/haptics/haptic_setup.h reserved_contact_ms); null / 0
   // without contact or with a fixed m'.
   std::shared_ptr<const RigidContactModel> contact;
   std::string contact_off;  // why the scene's contact is off (a part not watertight); empty otherwise

@@ -7,7 +7,7 @@
 
 #include "engine/query/query_engine.h"
 #include "jobs/job_record.h"
-#include "scheduler/loop_devices.h"
+#include "scheduler/tuning/loop_devices.h"
 #include "snapfit/job.h"
 
 namespace snapfit {

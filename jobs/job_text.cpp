@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "core/quantile.h"
-#include "scheduler/session_text.h"
+#include "scheduler/tuning/session_text.h"
 
 namespace snapfit {
 

@@ -3,8 +3,8 @@
 // scripted session's summary (frame times, misses, m' changes, the final pose error).
 #include <string>
 
-#include "scheduler/assembly_session.h"
-#include "scheduler/query_strategy.h"
+#include "scheduler/haptics/assembly_session.h"
+#include "scheduler/tuning/query_strategy.h"
 #include "snapfit/scene.h"
 
 namespace snapfit {

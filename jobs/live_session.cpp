@@ -13,11 +13,11 @@
 
 #include "core/spsc_ring.h"
 #include "jobs/job_steps.h"
-#include "jobs/live_device.h"
-#include "scheduler/assembly_verdict.h"
-#include "scheduler/haptic_setup.h"
-#include "scheduler/rigid_contact.h"
-#include "scheduler/thread_priority.h"
+#include "scheduler/haptics/live_device.h"
+#include "scheduler/haptics/assembly_verdict.h"
+#include "scheduler/haptics/haptic_setup.h"
+#include "scheduler/haptics/rigid_contact.h"
+#include "scheduler/haptics/thread_priority.h"
 #include "snapfit/error.h"
 #include "snapfit/live.h"
 

@@ -12,11 +12,11 @@
 #include "jobs/job_text.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/scene_summary.h"
-#include "scheduler/accuracy.h"
-#include "scheduler/contact_reserve.h"
-#include "scheduler/haptic_setup.h"
-#include "scheduler/loop_devices.h"
-#include "scheduler/session_text.h"
+#include "scheduler/tuning/accuracy.h"
+#include "scheduler/haptics/contact_reserve.h"
+#include "scheduler/haptics/haptic_setup.h"
+#include "scheduler/tuning/loop_devices.h"
+#include "scheduler/tuning/session_text.h"
 #include "snapfit/error.h"
 #include "snapfit/job.h"
 
@@ -76,7 +76,7 @@ void compute_fields_and_spectra(AssemblyPair& pair, const ComputeContext& ctx, c
   if (request.progress) options.descriptors.progress = pass_progress_bars();
   options.note = out.note;
   // The near-far strategy's near field, only where it may run: named, or a candidate of
-  // the measured choice (scheduler/accuracy.h); a fixed m' with "auto" runs tricubic.
+  // the measured choice (scheduler/tuning/accuracy.h); a fixed m' with "auto" runs tricubic.
   options.near_field = request.strategy == "near-far" || (request.strategy == "auto" && !request.modes);
   for (int part = 1; part <= 2; ++part) {
     const GridSpec& grid = pair.grid(part);
@@ -146,7 +146,7 @@ AccuracyOptions strategy_accuracy_options(const Scene& scene, const JobRequest& 
 // "[6/7]" tuned: m' on this device (and the others with no device named), then with
 // strategy "auto" the most accurate strategy that fits, from the strategy file. Not
 // measured yet, the loop starts on the tuned variant (tricubic): whatever it renders, its
-// error estimate vouches for (scheduler/wrench_trust.h), and the strategies are measured
+// error estimate vouches for (scheduler/haptics/wrench_trust.h), and the strategies are measured
 // after the loop (measure_strategies_after_loop) rather than before its first frame.
 LoopDevices tuned_loop_devices(const ComputeContext& ctx, const AssemblyPair& pair, const QueryVariant& variant,
                                const JobRequest& request, const JobOutput& out, JobRecord& record) {
@@ -193,7 +193,7 @@ LoopDevices tuned_loop_devices(const ComputeContext& ctx, const AssemblyPair& pa
     out.say("    the loop runs on " + chosen.ctx.device.info.name + " (of " + std::to_string(devices.devices.size()) +
             " tuned devices: " +
             (chosen.ctx.device.info.runs_in_caller_thread() ? "runs kernels in the loop's own thread, " : "") + "m' " +
-            std::to_string(chosen.tuning.result.chosen_modes) + ", scheduler/device_choice.h)\n");
+            std::to_string(chosen.tuning.result.chosen_modes) + ", scheduler/tuning/device_choice.h)\n");
   record.tuning = chosen.tuning.result;
   record.tuning_key = chosen.key.text();
   record.loop_device = chosen.ctx.device.info;

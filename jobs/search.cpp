@@ -16,10 +16,10 @@
 #include "engine/query/query_engine.h"
 #include "jobs/search_codec.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/haptic_setup.h"
-#include "scheduler/mode_tuning.h"
-#include "scheduler/rendered_wrench.h"
-#include "scheduler/rigid_contact.h"
+#include "scheduler/haptics/haptic_setup.h"
+#include "scheduler/modes/mode_tuning.h"
+#include "scheduler/haptics/rendered_wrench.h"
+#include "scheduler/haptics/rigid_contact.h"
 #include "snapfit/error.h"
 
 namespace snapfit {

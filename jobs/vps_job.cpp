@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "jobs/job_steps.h"
-#include "scheduler/haptic_setup.h"
+#include "scheduler/haptics/haptic_setup.h"
 #include "scheduler/vps/vps_hybrid.h"
 #include "scheduler/vps/vps_method.h"
 

@@ -1,6 +1,6 @@
 // Error against run time: for a scene, a reference energy, force and torque at poses
 // along its trajectory that is exact in rotation (every mode of the exact-rotation
-// product made for each pose's rotation, scheduler/accuracy.h; checked against a double
+// product made for each pose's rotation, scheduler/tuning/accuracy.h; checked against a double
 // sum over the DTFT of part 2 by tests/test_exact_rotation.cpp), then for every setting
 // the engine offers — m', interpolation (trilinear, tricubic) or the exact product,
 // oversampling (zero padding 1.5, 2, 3), float (the OpenCL kernel) or double (the host
@@ -30,9 +30,9 @@
 #include "pipeline/assembly_pair.h"
 #include "report/accuracy_json.h"
 #include "report/chart_spec.h"
-#include "scheduler/accuracy.h"
-#include "scheduler/engine_tuning.h"
-#include "scheduler/trajectory.h"
+#include "scheduler/tuning/accuracy.h"
+#include "scheduler/tuning/engine_tuning.h"
+#include "scheduler/haptics/trajectory.h"
 
 using namespace snapfit;
 namespace fs = std::filesystem;

@@ -44,9 +44,9 @@
 #include "perf/bench_options.h"
 #include "perf/imprecise_users.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/assembly_session.h"
-#include "scheduler/haptic_setup.h"
-#include "scheduler/rigid_contact.h"
+#include "scheduler/haptics/assembly_session.h"
+#include "scheduler/haptics/haptic_setup.h"
+#include "scheduler/haptics/rigid_contact.h"
 #include "scheduler/vps/vps_hybrid.h"
 #include "scheduler/vps/vps_method.h"
 
@@ -125,7 +125,7 @@ Options parse_options(int argc, char** argv) {
                  "the scenes' vps.hybrid section for vps_hybrid, as JSON (e.g. '{\"x_full\": 0.9}'; docs/scenes.md)");
   app.add_flag("--no-three-pegs", no_three_pegs, "the peg in the hole only");
   app.add_flag("--no-contact", no_contact,
-               "seed 000's energy alone, without the rigid contact (scheduler/rigid_contact.h)");
+               "seed 000's energy alone, without the rigid contact (scheduler/haptics/rigid_contact.h)");
   bench::parse(app, argc, argv);
   o.three_pegs = !no_three_pegs && !o.quick;
   o.contact = !no_contact;

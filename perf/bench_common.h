@@ -54,7 +54,7 @@ inline int guarded_main(const char* name, const std::function<int()>& body) {
   return 1;
 }
 
-// The loop's device as `snapfit run` picks it (scheduler/device_choice.h): PoCL's
+// The loop's device as `snapfit run` picks it (scheduler/tuning/device_choice.h): PoCL's
 // single-threaded driver, which runs kernels in the loop's own thread, when there is one
 // (asked for as the CLI's main() does); a non-empty `spec` overrides.
 inline Device loop_device(const std::string& spec) {
@@ -273,7 +273,7 @@ struct RunSpan {
 };
 
 // The variant of the exact reference: every one of `modes` modes of the exact-rotation
-// product, made for each pose's own rotation (scheduler/accuracy.h); translation-only
+// product, made for each pose's own rotation (scheduler/tuning/accuracy.h); translation-only
 // variants have no rotation and stay as they are.
 inline QueryVariant exact_reference_variant(QueryVariant v, std::size_t modes) {
   if (v.translation_only) return v;

@@ -1,5 +1,5 @@
-// The rigid contact's time per frame (scheduler/rigid_contact.h), on one thread and split
-// over several (scheduler/parallel_contact.h), on the shipped scenes. Poses: the gain's
+// The rigid contact's time per frame (scheduler/haptics/rigid_contact.h), on one thread and split
+// over several (scheduler/haptics/parallel_contact.h), on the shipped scenes. Poses: the gain's
 // reference pose (the fit) and that pose moved half a fine distance spacing along +-x,
 // +-y, +-z, as contact_cost_ms times them for the loop. Beside each thread count, the
 // straightforward double-precision evaluation (perf/reference_contact.h) as a reference.
@@ -21,9 +21,9 @@
 #include "perf/bench_options.h"
 #include "perf/reference_contact.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/haptic_setup.h"
-#include "scheduler/parallel_contact.h"
-#include "scheduler/rigid_contact.h"
+#include "scheduler/haptics/haptic_setup.h"
+#include "scheduler/haptics/parallel_contact.h"
+#include "scheduler/haptics/rigid_contact.h"
 
 using namespace snapfit;
 namespace fs = std::filesystem;

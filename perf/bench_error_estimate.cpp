@@ -1,7 +1,7 @@
 // How the per-query error estimate (engine/query/error_estimate.h) relates to the true error:
 // at poses along a scene's trajectory, for the loop's strategy (tricubic interpolation, or
 // the translation lines) at several m', the true error of E, |F| and |T| against the
-// exact reference (every mode, exact rotation: scheduler/accuracy.h) divided by the root
+// exact reference (every mode, exact rotation: scheduler/tuning/accuracy.h) divided by the root
 // sum of squares of the two band sums (the estimate before kErrorEstimateScale). Its
 // quantiles are what the scale is chosen from (the 95th percentile: the estimate covers
 // the error at 95 % of poses); the coverage and the median estimate / error at the
@@ -21,8 +21,8 @@
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/accuracy.h"
-#include "scheduler/engine_tuning.h"
+#include "scheduler/tuning/accuracy.h"
+#include "scheduler/tuning/engine_tuning.h"
 
 using namespace snapfit;
 

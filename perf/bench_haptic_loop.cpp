@@ -1,7 +1,7 @@
 // The haptic loop benchmark: the auto-tuned m' held in the 1 kHz loop for a
 // long run on this machine. The scene's scripted trajectory is played back and forth
 // by a ScriptedDevice for --seconds (default 60) of real time through the same code as
-// `snapfit run` (scheduler/assembly_session.h). Reported: measured rate, frame-time
+// `snapfit run` (scheduler/haptics/assembly_session.h). Reported: measured rate, frame-time
 // p50/p99/max and histogram, misses and miss rate (target <= 0.1 %), every m' change,
 // and the tuned m' next to seed 000's 4096 on a Tesla K20c (published, not measured).
 //
@@ -20,9 +20,9 @@
 #include "pipeline/assembly_pair.h"
 #include "report/chart_spec.h"
 #include "report/loop_json.h"
-#include "scheduler/assembly_session.h"
-#include "scheduler/engine_tuning.h"
-#include "scheduler/trajectory.h"
+#include "scheduler/haptics/assembly_session.h"
+#include "scheduler/tuning/engine_tuning.h"
+#include "scheduler/haptics/trajectory.h"
 
 using namespace snapfit;
 namespace fs = std::filesystem;

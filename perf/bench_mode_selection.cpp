@@ -8,7 +8,7 @@
 // |W_k|); "largest torque weight" (largest |G_k|, the same for the torque); "largest
 // normalised sum" (|W|, |w||W| and |G|, each divided by its sum over the modes). The reference is the
 // sum over every mode, checked against the engine's own all-mode query at each pose.
-// Error over the poses as scheduler/accuracy.h: sqrt(sum |x - ref|^2 / sum |ref|^2).
+// Error over the poses as scheduler/tuning/accuracy.h: sqrt(sum |x - ref|^2 / sum |ref|^2).
 //
 //   bench_mode_selection --help lists its options.
 #include <algorithm>
@@ -24,7 +24,7 @@
 #include "perf/bench_options.h"
 #include "perf/product_modes.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/accuracy.h"
+#include "scheduler/tuning/accuracy.h"
 
 using namespace snapfit;
 using Cd = std::complex<double>;

@@ -6,7 +6,7 @@
 //   - the near part in space (near_wrench), its time on one thread and its error against
 //     its own modes;
 //   - the split, far part truncated at m' plus near part in space, against the reference.
-// Error over the poses as scheduler/accuracy.h: sqrt(sum |x - ref|^2 / sum |ref|^2).
+// Error over the poses as scheduler/tuning/accuracy.h: sqrt(sum |x - ref|^2 / sum |ref|^2).
 //
 //   bench_near_far --help lists its options.
 #include <algorithm>
@@ -24,7 +24,7 @@
 #include "perf/bench_options.h"
 #include "perf/product_modes.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/accuracy.h"
+#include "scheduler/tuning/accuracy.h"
 
 using namespace snapfit;
 using Cd = std::complex<double>;

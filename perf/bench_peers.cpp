@@ -12,7 +12,7 @@
 // (--quick: 1e3 and 1e4). One radius for both parts, adjusted until the count is within
 // 30% of the target.
 // Poses: N (default 400, --quick 60) times evenly spread over the scene's trajectory
-// (scheduler/trajectory.h), each perturbed by up to +-0.5 (scene units) per axis and up
+// (scheduler/haptics/trajectory.h), each perturbed by up to +-0.5 (scene units) per axis and up
 // to 2 degrees about a random axis (seeded); poses that snapfit flags as outside its
 // padded box are dropped for both. Part 2's pose is relative to part 1 (part 1 at the
 // identity), as in include/snapfit/query.h: x -> R x + t.

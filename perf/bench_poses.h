@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "engine/query/query_engine.h"
-#include "scheduler/trajectory.h"
+#include "scheduler/haptics/trajectory.h"
 #include "snapfit/pose.h"
 #include "snapfit/scene.h"
 

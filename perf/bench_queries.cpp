@@ -40,7 +40,7 @@
 //                m' = 4096 on a Tesla K20c, translation only) is listed as published, not
 //                measured here. PoCL's single-threaded driver is visible as well
 //                (--device basic): it runs each query in the calling thread, as the haptic
-//                loop does (scheduler/device_choice.h), without the multi-threaded
+//                loop does (scheduler/tuning/device_choice.h), without the multi-threaded
 //                driver's dispatch to worker threads (0.02-0.07 ms per launch here).
 // Output in DIR (default results/bench_queries): queries.csv, throughput.csv,
 // queries.json (everything, with device, driver, load averages, command line, date) and

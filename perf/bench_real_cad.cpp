@@ -35,8 +35,8 @@
 #include "perf/bench_options.h"
 #include "perf/imprecise_users.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/accuracy.h"
-#include "scheduler/rigid_contact.h"
+#include "scheduler/tuning/accuracy.h"
+#include "scheduler/haptics/rigid_contact.h"
 #include "tests/cad_pairs.h"
 
 using namespace snapfit;
@@ -156,7 +156,7 @@ struct PairResult {
 };
 
 // The variant named `strategy` among the strategies the loop chooses from
-// (scheduler/accuracy.h); none named: bench_assembly's, the tricubic sum.
+// (scheduler/tuning/accuracy.h); none named: bench_assembly's, the tricubic sum.
 QueryVariant users_variant(const Scene& scene, const std::string& strategy) {
   if (strategy.empty()) return query_variant_for(scene, Interpolation::tricubic);
   for (const QueryVariant& v : accuracy_candidates(accuracy_base_variant(scene), true))

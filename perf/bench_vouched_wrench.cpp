@@ -1,9 +1,9 @@
 // The wrench the loop renders against the exact one: each scene's scripted insertion is
-// replayed through the same code as `snapfit run` (scheduler/assembly_session.h, at the
+// replayed through the same code as `snapfit run` (scheduler/haptics/assembly_session.h, at the
 // m' the loop renders on this machine: the tuned m' less the rigid contact's share), on
 // simulated time so that every tick runs; at --frames frames evenly along it, the
 // geometric wrench sent (the engine's times the gain, times the trust its error estimate
-// gave: scheduler/wrench_trust.h) is compared with the exact one (every mode, the
+// gave: scheduler/haptics/wrench_trust.h) is compared with the exact one (every mode, the
 // exact-rotation product made for the frame's own rotation, times the same gain), and
 // so is the raw wrench the same query gives without the trust.
 //
@@ -22,10 +22,10 @@
 #include "perf/bench_common.h"
 #include "perf/bench_options.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/assembly_session.h"
-#include "scheduler/engine_tuning.h"
-#include "scheduler/trajectory.h"
-#include "scheduler/wrench_trust.h"
+#include "scheduler/haptics/assembly_session.h"
+#include "scheduler/tuning/engine_tuning.h"
+#include "scheduler/haptics/trajectory.h"
+#include "scheduler/haptics/wrench_trust.h"
 
 using namespace snapfit;
 namespace fs = std::filesystem;

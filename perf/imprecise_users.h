@@ -25,10 +25,10 @@
 #include "mesh/interpenetration.h"
 #include "mesh/mesh_distance.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/assembly_session.h"
-#include "scheduler/haptic_setup.h"
-#include "scheduler/mode_tuning.h"
-#include "scheduler/rigid_contact.h"
+#include "scheduler/haptics/assembly_session.h"
+#include "scheduler/haptics/haptic_setup.h"
+#include "scheduler/modes/mode_tuning.h"
+#include "scheduler/haptics/rigid_contact.h"
 
 namespace snapfit::bench {
 
@@ -127,7 +127,7 @@ inline WrenchEvaluator timed(const WrenchEvaluator& inner, FrameWork& work) {
 
 // The rigid contact's time goes to the same frame's work as the engine's query (it
 // runs right after it in the loop). It may run on helper threads
-// (scheduler/parallel_contact.h) while the loop's thread waits: its wall time is what
+// (scheduler/haptics/parallel_contact.h) while the loop's thread waits: its wall time is what
 // the frame spends on it, and counts in both.
 inline std::function<ContactWrench(const Pose&)> timed_contact(std::function<ContactWrench(const Pose&)> inner,
                                                                FrameWork& work) {
@@ -146,7 +146,7 @@ inline std::function<ContactWrench(const Pose&)> timed_contact(std::function<Con
 // One user's insertion with snapfit's engine at a fixed m' (at most the engine's), the
 // scene's coupling and gain, and the rigid contact when `rigid` is given; simulated time.
 // `in_region`: the loop's check that part 2 is inside the region part 1's fields cover
-// (scheduler/haptic_setup.h region_guard; null: everywhere).
+// (scheduler/haptics/haptic_setup.h region_guard; null: everywhere).
 inline SessionResult run_engine_trial(const Scene& scene, const Mesh& part2, double spacing, QueryEngine& engine,
                                       const std::shared_ptr<const RigidContactModel>& rigid, long modes,
                                       FrameWork& work, std::function<bool(const Pose&)> in_region = nullptr) {

@@ -1,10 +1,10 @@
 #pragma once
-// The rigid contact's straightforward evaluation (scheduler/rigid_contact.h's sum, as the
+// The rigid contact's straightforward evaluation (scheduler/haptics/rigid_contact.h's sum, as the
 // engine evaluated it before its point blocks), for bench_contact's reference rows: the
 // samples' chunks (8 sample spacings across) skipped when their centre's distance exceeds
 // their radius plus a fine spacing, every other point's distance and gradient in double,
 // each term's stiffness by Eigen's rank update.
-#include "scheduler/rigid_contact.h"
+#include "scheduler/haptics/rigid_contact.h"
 
 namespace snapfit::bench {
 
@@ -25,7 +25,7 @@ inline void add_term(ContactWrench& c, double phi, double skin, const Eigen::Vec
 
 }  // namespace reference_detail
 
-// A ContactShareFunction (scheduler/parallel_contact.h).
+// A ContactShareFunction (scheduler/haptics/parallel_contact.h).
 inline ContactWrench reference_contact_share(const RigidContactModel& m, const Pose& pose, std::size_t share,
                                              std::size_t shares) {
   using reference_detail::add_term;

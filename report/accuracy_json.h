@@ -1,9 +1,9 @@
 #pragma once
-// One strategy of an accuracy report (scheduler/accuracy.h) as the JSON object that
+// One strategy of an accuracy report (scheduler/tuning/accuracy.h) as the JSON object that
 // `snapfit accuracy` prints and perf/bench_accuracy writes.
 #include <nlohmann/json.hpp>
 
-#include "scheduler/accuracy.h"
+#include "scheduler/tuning/accuracy.h"
 
 namespace snapfit {
 

@@ -88,7 +88,7 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
     return {{"p50", quantile(v, 0.5)}, {"p95", quantile(v, 0.95)}, {"max", quantile(v, 1.0)}};
   };
   const auto& fp = run.loop.final_part.pose;
-  // The rigid contact (scheduler/rigid_contact.h) and the stiffness the user feels at the fit.
+  // The rigid contact (scheduler/haptics/rigid_contact.h) and the stiffness the user feels at the fit.
   nlohmann::json contact = nullptr;
   if (!run.contact_off.empty()) contact = {{"off", run.contact_off}};
   if (run.contact) {

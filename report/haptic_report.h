@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include "report/chart_spec.h"
-#include "scheduler/assembly_session.h"
-#include "scheduler/mode_tuning.h"
-#include "scheduler/session_text.h"
+#include "scheduler/haptics/assembly_session.h"
+#include "scheduler/modes/mode_tuning.h"
+#include "scheduler/tuning/session_text.h"
 
 namespace snapfit {
 
@@ -15,7 +15,7 @@ namespace snapfit {
 nlohmann::json write_haptic_report(const std::filesystem::path& out, const SessionResult& run,
                                    const TuningResult& tuning);
 
-// The rendered stiffness at a pose (scheduler/rendered_wrench.h) as JSON: N/mm along
+// The rendered stiffness at a pose (scheduler/haptics/rendered_wrench.h) as JSON: N/mm along
 // and N m/degree about +-x, +-y, +-z, beside the coupling's.
 nlohmann::json stiffness_json(const RenderedStiffness& stiffness);
 

@@ -13,8 +13,8 @@
 #include "report/page_encoding.h"
 #include "report/part_contact.h"
 #include "report/strategy_chart.h"
-#include "scheduler/accuracy.h"
-#include "scheduler/haptic_setup.h"
+#include "scheduler/tuning/accuracy.h"
+#include "scheduler/haptics/haptic_setup.h"
 #include "snapfit/error.h"
 
 namespace snapfit {

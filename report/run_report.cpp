@@ -13,7 +13,7 @@
 #include "report/run_page.h"
 #include "report/slice_figure.h"
 #include "report/web_assets.h"
-#include "scheduler/tuning_file.h"
+#include "scheduler/modes/tuning_file.h"
 
 namespace snapfit {
 namespace {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "scheduler/accuracy.h"
+#include "scheduler/tuning/accuracy.h"
 
 namespace snapfit {
 

@@ -1,4 +1,4 @@
-// `snapfit accuracy` (scheduler/accuracy.h) as a user reads it: every strategy with its
+// `snapfit accuracy` (scheduler/tuning/accuracy.h) as a user reads it: every strategy with its
 // m', frame time and errors, the choice and why, and the exact product's errors while
 // part 2 turns, beside the same final poses at rest.
 #include <doctest/doctest.h>

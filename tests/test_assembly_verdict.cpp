@@ -1,11 +1,11 @@
-// The "assembled" verdict (scheduler/assembly_verdict.h, judge_session_end): a pose that
+// The "assembled" verdict (scheduler/haptics/assembly_verdict.h, judge_session_end): a pose that
 // the part's symmetry makes equal to the assembled one counts, one that only looks close
 // by its angle does not, and the pose's own tolerances still count as before.
 #include <cmath>
 #include <doctest/doctest.h>
 
-#include "scheduler/assembly_session.h"
-#include "scheduler/assembly_verdict.h"
+#include "scheduler/haptics/assembly_session.h"
+#include "scheduler/haptics/assembly_verdict.h"
 #include "snapfit/error.h"
 #include "tests/test_meshes.h"
 

@@ -1,13 +1,13 @@
-// Auto-tuning of m' (scheduler/mode_tuning.h) from injected timings with a known cost,
-// and the tuning file (scheduler/tuning_file.h): round trip, key changes, corruption.
+// Auto-tuning of m' (scheduler/modes/mode_tuning.h) from injected timings with a known cost,
+// and the tuning file (scheduler/modes/tuning_file.h): round trip, key changes, corruption.
 #include <algorithm>
 #include <cmath>
 #include <doctest/doctest.h>
 #include <filesystem>
 
-#include "scheduler/mode_tuning.h"
-#include "scheduler/device_choice.h"
-#include "scheduler/tuning_file.h"
+#include "scheduler/modes/mode_tuning.h"
+#include "scheduler/tuning/device_choice.h"
+#include "scheduler/modes/tuning_file.h"
 #include "snapfit/error.h"
 #include "tests/test_support.h"
 

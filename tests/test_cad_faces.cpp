@@ -18,7 +18,7 @@
 #include "io/face_codec.h"
 #include "io/mesh_export.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/haptic_setup.h"
+#include "scheduler/haptics/haptic_setup.h"
 #include "scheduler/vps/vps_hybrid.h"
 #include "snapfit/error.h"
 #include "tests/cad_fixtures.h"

@@ -1,4 +1,4 @@
-// The rigid contact's disk cache (scheduler/contact_cache.h) on the shipped peg and
+// The rigid contact's disk cache (scheduler/haptics/contact_cache.h) on the shipped peg and
 // hole: a model read back from the cache renders exactly the wrench, energy and stiffness
 // of the one built; a corrupt or truncated entry is rebuilt, never used; the key changes
 // with either mesh and with the spacings.
@@ -7,8 +7,8 @@
 #include <filesystem>
 
 #include "pipeline/assembly_pair.h"
-#include "scheduler/contact_cache.h"
-#include "scheduler/rigid_contact.h"
+#include "scheduler/haptics/contact_cache.h"
+#include "scheduler/haptics/rigid_contact.h"
 #include "tests/test_support.h"
 
 using namespace snapfit;

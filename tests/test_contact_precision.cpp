@@ -1,4 +1,4 @@
-// The rigid contact's evaluation (scheduler/rigid_contact.h: point blocks, a broad phase,
+// The rigid contact's evaluation (scheduler/haptics/rigid_contact.h: point blocks, a broad phase,
 // distances in single precision) against a straightforward one written here: every
 // sample point of both parts, its distance and gradient by sample_signed_distance in
 // double, the terms of the header's formula summed in double. On the shipped scenes at
@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "pipeline/assembly_pair.h"
-#include "scheduler/parallel_contact.h"
-#include "scheduler/rigid_contact.h"
+#include "scheduler/haptics/parallel_contact.h"
+#include "scheduler/haptics/rigid_contact.h"
 #include "snapfit/error.h"
 #include "tests/shipped_engine.h"
 
@@ -32,7 +32,7 @@ constexpr double kDistanceError = 1e-5, kGradientError = 1e-5, kSumError = 64 * 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
-// One point's terms (scheduler/rigid_contact.h's formula) at distance phi with
+// One point's terms (scheduler/haptics/rigid_contact.h's formula) at distance phi with
 // derivatives j = (dphi/dt, dphi/dtheta per radian in scene units).
 struct Term {
   bool on = false;
@@ -119,7 +119,7 @@ void add_point(Reference& ref, const RigidContactModel& m, const SignedDistanceG
   ref.stiffness_tol += (2 * kGradientError + kSumError) * k_a * j.squaredNorm();
 }
 
-// Every point, in double, as scheduler/rigid_contact.h defines the sum.
+// Every point, in double, as scheduler/haptics/rigid_contact.h defines the sum.
 Reference reference_contact(const RigidContactModel& m, const Pose& pose) {
   Reference ref;
   const Eigen::Matrix3d r = pose.rotation.toRotationMatrix();

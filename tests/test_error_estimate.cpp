@@ -15,7 +15,7 @@
 #include "engine/query/error_estimate.h"
 #include "engine/query/query_engine.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/trajectory.h"
+#include "scheduler/haptics/trajectory.h"
 #include "tests/stability_support.h"
 
 namespace snapfit {

@@ -20,7 +20,7 @@
 #include "engine/query/query_engine.h"
 #include "engine/spectra/spectra.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/trajectory.h"
+#include "scheduler/haptics/trajectory.h"
 #include "snapfit/query.h"
 #include "tests/stability_support.h"
 

@@ -1,4 +1,4 @@
-// The passive bound on the sent force's rate (scheduler/force_rate_limit.h): a part
+// The passive bound on the sent force's rate (scheduler/haptics/force_rate_limit.h): a part
 // released from a stretched coupling (the pop-in of a peg that rested on a rim) hands the
 // force back within the bound, by damping alone (the coupling's energy never rises), with
 // the least damping that does it; free motion is never damped; a change that comes from
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <doctest/doctest.h>
 
-#include "scheduler/force_rate_limit.h"
-#include "scheduler/virtual_coupling.h"
+#include "scheduler/haptics/force_rate_limit.h"
+#include "scheduler/haptics/virtual_coupling.h"
 #include "snapfit/haptic_loop.h"
 
 using namespace snapfit;

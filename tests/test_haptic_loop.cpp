@@ -6,8 +6,8 @@
 #include <doctest/doctest.h>
 #include <map>
 
-#include "scheduler/scripted_device.h"
-#include "scheduler/virtual_coupling.h"
+#include "scheduler/haptics/scripted_device.h"
+#include "scheduler/haptics/virtual_coupling.h"
 #include "snapfit/error.h"
 #include "snapfit/haptic_loop.h"
 

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "jobs/job_record.h"
-#include "scheduler/assembly_verdict.h"
+#include "scheduler/haptics/assembly_verdict.h"
 #include "snapfit/bridge.h"
 #include "snapfit/live.h"
 #include "tests/test_support.h"

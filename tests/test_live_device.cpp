@@ -1,9 +1,9 @@
-// jobs/live_device.h: the live session's device holds a late state at rest, fades the
+// scheduler/haptics/live_device.h: the live session's device holds a late state at rest, fades the
 // wrench linearly from `late` to `late + fade`, and never sends a non-finite wrench.
 #include <doctest/doctest.h>
 #include <limits>
 
-#include "jobs/live_device.h"
+#include "scheduler/haptics/live_device.h"
 
 using namespace snapfit;
 

@@ -1,4 +1,4 @@
-// Which query strategy the loop renders (scheduler/query_strategy.h): the rule (the
+// Which query strategy the loop renders (scheduler/tuning/query_strategy.h): the rule (the
 // lowest error of the rendered wrench among the strategies that fit), the strategy
 // file that keeps the choice, and `snapfit run` choosing, saying why, and reading the
 // choice back, checked from its summary.json as a user would.
@@ -6,9 +6,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "scheduler/accuracy.h"
-#include "scheduler/engine_tuning.h"
-#include "scheduler/strategy_file.h"
+#include "scheduler/tuning/accuracy.h"
+#include "scheduler/tuning/engine_tuning.h"
+#include "scheduler/tuning/strategy_file.h"
 #include "snapfit/assembly.h"
 #include "snapfit/tuning.h"
 #include "tests/progress_lines.h"

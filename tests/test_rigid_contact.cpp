@@ -1,5 +1,5 @@
 // Rigid contact (mesh/signed_distance_grid.h, mesh/contact_samples.h,
-// scheduler/rigid_contact.h) on the shipped peg and hole: the distance grid against the
+// scheduler/haptics/rigid_contact.h) on the shipped peg and hole: the distance grid against the
 // exact point-to-mesh signed distance, the wrench against central differences of the
 // contact energy, its stiffness against differences of the wrench, nothing at an exact
 // zero-clearance fit; and with the engine, the rendered potential's rest point at the fit
@@ -13,14 +13,14 @@
 #include "engine/query/query_engine.h"
 #include "mesh/mesh_distance.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/mode_tuning.h"
-#include "scheduler/haptic_setup.h"
-#include "scheduler/parallel_contact.h"
-#include "scheduler/rendered_wrench.h"
-#include "scheduler/rigid_contact.h"
+#include "scheduler/modes/mode_tuning.h"
+#include "scheduler/haptics/haptic_setup.h"
+#include "scheduler/haptics/parallel_contact.h"
+#include "scheduler/haptics/rendered_wrench.h"
+#include "scheduler/haptics/rigid_contact.h"
 #include "tests/shipped_engine.h"
-#include "scheduler/scripted_device.h"
-#include "scheduler/virtual_coupling.h"
+#include "scheduler/haptics/scripted_device.h"
+#include "scheduler/haptics/virtual_coupling.h"
 #include "tests/allocation_count.h"
 
 using namespace snapfit;

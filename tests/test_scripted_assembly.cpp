@@ -1,16 +1,16 @@
 // The scripted insertion of the peg-and-hole scenes at zero clearance through the real
-// engine and the haptic loop (scheduler/assembly_session.h), in simulated time so the
+// engine and the haptic loop (scheduler/haptics/assembly_session.h), in simulated time so the
 // physics is deterministic: the part must end assembled, within the stated tolerance
 // (one grid spacing, 1 degree), centred in the hole and upright, having felt the
 // geometry on the way in. The truncated energy's minimum lies below the blind hole's
 // bottom (the skeletal-density penalty is soft at lambda_in/lambda_out = 3); the rigid
-// contact (scheduler/rigid_contact.h) holds the part at the floor.
+// contact (scheduler/haptics/rigid_contact.h) holds the part at the floor.
 #include <doctest/doctest.h>
 #include <iostream>
 
 #include "engine/query/query_engine.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/assembly_session.h"
+#include "scheduler/haptics/assembly_session.h"
 #include "tests/shipped_engine.h"
 
 using namespace snapfit;

@@ -20,7 +20,7 @@
 #include "engine/query/query_engine.h"
 #include "io/cache_file.h"
 #include "io/mesh_load.h"
-#include "scheduler/virtual_coupling.h"
+#include "scheduler/haptics/virtual_coupling.h"
 #include "snapfit/error.h"
 #include "snapfit/haptic_loop.h"
 #include "tests/stability_support.h"

@@ -13,7 +13,7 @@
 #include <utility>
 
 #include "engine/query/query_engine.h"
-#include "scheduler/virtual_coupling.h"
+#include "scheduler/haptics/virtual_coupling.h"
 #include "tests/stability_support.h"
 
 using namespace snapfit;

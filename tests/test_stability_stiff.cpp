@@ -3,7 +3,7 @@
 // a device's maximum stiffness, and the haptic loop run in simulated time for 60 s with
 // the device held still in contact. The loop must stay finite, must not oscillate with
 // growing amplitude, and must be passive: the total energy (coupling + kinetic,
-// scheduler/virtual_coupling.h coupling_energy, plus the geometric potential
+// scheduler/haptics/virtual_coupling.h coupling_energy, plus the geometric potential
 // gain * E * metres_per_unit) never rises above its start by more than a stated tolerance.
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 #include <memory>
 
 #include "engine/query/query_engine.h"
-#include "scheduler/haptic_setup.h"
+#include "scheduler/haptics/haptic_setup.h"
 #include "snapfit/haptic_loop.h"
 #include "tests/stability_support.h"
 
@@ -89,7 +89,7 @@ StiffPair stiff_pair(const test::SmallPairParams& params, double stiffness) {
 }
 
 // The device held at `device_pose`; the part starts at rest at the device pose; the
-// gain from the scene's geometry_strength (scheduler/haptic_setup.h).
+// gain from the scene's geometry_strength (scheduler/haptics/haptic_setup.h).
 StiffRun run_static_contact(StiffPair& s, double strength, const Pose& device_pose, double seconds, bool passivity) {
   Scene scene = s.scene;
   scene.haptics.geometry_strength = strength;

@@ -1,4 +1,4 @@
-// scheduler/thread_priority.h: raising every thread of the process for the haptic loop
+// scheduler/haptics/thread_priority.h: raising every thread of the process for the haptic loop
 // and putting each back afterwards.
 #include <atomic>
 #include <cerrno>
@@ -10,7 +10,7 @@
 #include <sys/resource.h>
 #include <thread>
 
-#include "scheduler/thread_priority.h"
+#include "scheduler/haptics/thread_priority.h"
 
 namespace snapfit {
 namespace {

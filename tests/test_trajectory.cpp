@@ -1,8 +1,8 @@
-// Scripted trajectories (scheduler/trajectory.h): keyframes reproduced, linear
+// Scripted trajectories (scheduler/haptics/trajectory.h): keyframes reproduced, linear
 // positions and slerp rotations in between, held outside, errors.
 #include <doctest/doctest.h>
 
-#include "scheduler/trajectory.h"
+#include "scheduler/haptics/trajectory.h"
 #include "snapfit/error.h"
 
 using namespace snapfit;

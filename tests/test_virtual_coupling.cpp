@@ -1,4 +1,4 @@
-// The virtual coupling and its integrator (scheduler/virtual_coupling.h): settling
+// The virtual coupling and its integrator (scheduler/haptics/virtual_coupling.h): settling
 // without overshoot when critically damped, passivity with a stiff coupling, and the
 // solid moments the proxy's inertia comes from (mesh/mesh_mass_properties.h).
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <random>
 
 #include "mesh/mesh_mass_properties.h"
-#include "scheduler/virtual_coupling.h"
+#include "scheduler/haptics/virtual_coupling.h"
 #include "snapfit/error.h"
 #include "snapfit/haptic_device.h"
 #include "tests/test_meshes.h"

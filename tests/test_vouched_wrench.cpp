@@ -1,7 +1,7 @@
 // The wrench the loop renders from seed 000's energy at the smallest m' of the ladder,
 // on a part much larger than the region in use (a wide plate with one hole, the peg
 // above it and away from it, never touching): what the per-query error estimate vouches
-// for (scheduler/wrench_trust.h) is either within the tolerance of the exact wrench
+// for (scheduler/haptics/wrench_trust.h) is either within the tolerance of the exact wrench
 // (every mode, double precision, reference_query) or never pushes against it and is
 // never stronger than it. Without the trust the same truncated wrench does push against
 // the exact one at some of these poses: the spurious push the trust removes.
@@ -12,7 +12,7 @@
 #include "engine/query/query_engine.h"
 #include "engine/query/reference_query.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/wrench_trust.h"
+#include "scheduler/haptics/wrench_trust.h"
 #include "tests/test_engine_support.h"
 
 namespace snapfit {

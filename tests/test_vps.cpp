@@ -7,10 +7,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "scheduler/assembly_session.h"
-#include "scheduler/haptic_setup.h"
-#include "scheduler/scripted_device.h"
-#include "scheduler/virtual_coupling.h"
+#include "scheduler/haptics/assembly_session.h"
+#include "scheduler/haptics/haptic_setup.h"
+#include "scheduler/haptics/scripted_device.h"
+#include "scheduler/haptics/virtual_coupling.h"
 #include "scheduler/vps/voxmap.h"
 #include "scheduler/vps/vps_method.h"
 #include "tests/test_meshes.h"

@@ -1,12 +1,12 @@
-// The share of the engine's wrench the loop renders (scheduler/wrench_trust.h): its
+// The share of the engine's wrench the loop renders (scheduler/haptics/wrench_trust.h): its
 // closed form at the ends and inside the ramp, its continuity, the smaller of force and
 // torque, and in the loop: a wrench its estimate cannot vouch for is not rendered.
 #include <cmath>
 #include <doctest/doctest.h>
 
-#include "scheduler/scripted_device.h"
-#include "scheduler/virtual_coupling.h"
-#include "scheduler/wrench_trust.h"
+#include "scheduler/haptics/scripted_device.h"
+#include "scheduler/haptics/virtual_coupling.h"
+#include "scheduler/haptics/wrench_trust.h"
 #include "snapfit/haptic_loop.h"
 
 using namespace snapfit;

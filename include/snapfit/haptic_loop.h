@@ -138,7 +138,7 @@ struct FrameRecord {
 // direction is then not known); linearly in between, the whole wrench by the smaller of
 // the force's and the torque's weights. A weight w < 1 shrinks the wrench towards zero: if
 // the estimate covers the true error, the rendered force never pushes against the exact
-// one and is never stronger than it (scheduler/wrench_trust.h).
+// one and is never stronger than it (scheduler/haptics/wrench_trust.h).
 struct WrenchTrust {
   bool enabled = true;
   double relative = 0.2;

@@ -4,7 +4,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "scheduler/haptic_setup.h"
+#include "scheduler/haptics/haptic_setup.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
