@@ -251,3 +251,44 @@ TEST_CASE("exact rotation: the background product update ends at the each-query 
 }
 
 }  // namespace snapfit
+
+TEST_CASE("exact rotation: a larger m' requested of the background product waits for its product, a smaller one does not") {
+  const AssemblyPair pair = test::build_small_pair(test::small_peg_hole_scene());
+  const Pose pose = test::pose_at({0.5, 0.2, 3}, 7, {1, 1, 0});
+  auto now = make_query_engine(test::test_context(), pair.spectra, exact_variant(), test::test_program_cache());
+  QueryVariant bg = exact_variant();
+  bg.product_update = ProductUpdate::background;
+  auto later = make_query_engine(test::test_context(), pair.spectra, bg, test::test_program_cache());
+  now->request_modes(2048);  // each query: at once
+  CHECK(now->modes() == 2048);
+  later->set_modes(2048);
+  (void)later->query(pose);  // the first product, made here
+
+  later->request_modes(8192);
+  CHECK(later->modes() == 2048);  // the worker makes the product for 8192 modes; the frame keeps 2048
+  QueryResult r;
+  for (int i = 0; i < 300 && r.modes != 8192; ++i) {
+    r = later->query(pose);
+    CHECK((r.modes == 2048 || r.modes == 8192));
+    if (r.modes != 8192) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  REQUIRE(r.modes == 8192);
+  CHECK(later->modes() == 8192);
+  now->set_modes(8192);
+  const QueryResult ref = now->query(pose);
+  for (int i = 0; i < 200; ++i) {  // the product for the held rotation
+    r = later->query(pose);
+    if (std::abs(r.energy - ref.energy) <= 1e-5 * std::abs(ref.energy)) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  CHECK(r.energy == doctest::Approx(ref.energy).epsilon(1e-5));
+
+  // Smaller: at once, from the product that covers more modes.
+  later->request_modes(1024);
+  CHECK(later->modes() == 1024);
+  now->set_modes(1024);
+  const QueryResult small = later->query(pose), small_ref = now->query(pose);
+  CHECK(small.modes == 1024);
+  CHECK(small.energy == doctest::Approx(small_ref.energy).epsilon(1e-5));
+  CHECK((small.force - small_ref.force).norm() <= 1e-5 * small_ref.force.norm());
+}

@@ -133,7 +133,7 @@ TEST_CASE("program build: a compile error names the kernel, the device and carri
   CHECK(!std::filesystem::exists(f.dir.file("programs")));
 }
 
-TEST_CASE("program build: compiler warnings are said once, naming the kernel; a cached build says nothing") {
+TEST_CASE("program build: compiler warnings are said once, naming the kernel, and a cached build says nothing") {
   CacheFixture f;
   const std::string warns = "#warning snapfit_test_warning\n__kernel void warns(__global float* x) { x[0] = 1.0f; }";
   const BuiltProgram first = build_program(f.ctx, "warns", warns, "", f.config());

@@ -51,7 +51,7 @@ TEST_CASE("query names: each strategy makes the variant it names") {
   CHECK(variant_name(with_strategy(lines, QueryStrategy::near_far, ProductUpdate::background)) == variant_name(lines));
 }
 
-TEST_CASE("scene and map names: methods, motions and map FFTs round-trip; scenes name the table's choices") {
+TEST_CASE("scene and map names: methods, motions and map FFTs round-trip, and scenes name the tables choices") {
   for (Method m : {Method::snapfit, Method::vps, Method::vps_hybrid}) CHECK(method_named(method_name(m)) == m);
   CHECK(std::string(method_name(Method::vps_hybrid)) == "vps_hybrid");
   CHECK_FALSE(method_named("voxmap"));

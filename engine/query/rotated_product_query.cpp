@@ -85,8 +85,24 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
 
   void set_modes(std::size_t m) override {
     const std::size_t clamped = std::clamp<std::size_t>(m, 1, max_modes());
-    if (clamped == selection_.modes) return;
+    pending_modes_ = 0;
+    if (clamped == selection_.modes) {
+      target_modes_.store(clamped);
+      return;
+    }
     select(clamped);
+  }
+
+  // Background: a larger m' is the worker's to make a product for (the frame never
+  // waits for one); the frame takes it when a product covering it is published.
+  void request_modes(std::size_t m) override {
+    const std::size_t clamped = std::clamp<std::size_t>(m, 1, max_modes());
+    if (variant_.product_update != ProductUpdate::background || clamped <= selection_.modes) {
+      set_modes(clamped);
+      return;
+    }
+    pending_modes_ = clamped;
+    target_modes_.store(clamped);
   }
 
   QueryResult query(const Pose& pose) override {
@@ -112,6 +128,7 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
       return;
     }
     // Background: the latest product; the worker hears of the pose for the next one.
+    if (pending_modes_ > 0) take_pending_modes();
     int slot = published_.load();
     for (;;) {
       in_use_.store(slot);
@@ -124,7 +141,7 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
       std::lock_guard<std::mutex> lock(product_mutex_);
       if (published_.load() < 0) {
         make_product(poses[0].rotation.normalized().toRotationMatrix(), selection_.modes, 0, launch_->queue());
-        published_.store(0);
+        publish(0);
       }
       slot = published_.load();
       in_use_.store(slot);
@@ -143,9 +160,26 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
     bool valid = false;
   };
 
-  // Selects and uploads the lines and extras for m' = modes; a product covering fewer
-  // modes is remade (at once; in the background mode by the worker's rule too).
-  void select(std::size_t modes) {
+  // The requested m' once the published product covers it (request_modes); never waits.
+  // Every product made after the request covers it too (target_modes_).
+  void take_pending_modes() {
+    if (published_modes_.load() < pending_modes_) return;
+    const std::size_t modes = pending_modes_;
+    pending_modes_ = 0;
+    select(modes, false);
+  }
+
+  // Makes slot `index` the product queries read (under product_mutex_).
+  void publish(int index) {
+    published_modes_.store(slots_[index].modes);
+    published_.store(index);
+  }
+
+  // Selects and uploads the lines and extras for m' = modes. With `remake`, a published
+  // product covering fewer modes is remade at once (the worker's rule remakes it too);
+  // one covering at least the m' in use covers a smaller one, so a step down never waits.
+  void select(std::size_t modes, bool remake = true) {
+    const bool more = modes > selection_.modes;
     select_lines(lines_, modes, selection_);
     try {
       upload_line_selection(*launch_, selection_, reach_[modes - 1], records_, line_capacity_);
@@ -167,14 +201,14 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
     }
     launch_->set_work(selection_.nodes, modes);
     target_modes_.store(modes);
-    if (variant_.product_update == ProductUpdate::background) {
+    if (variant_.product_update == ProductUpdate::background && remake && more) {
       // A published product that covers fewer modes is remade now for the new m'.
       std::lock_guard<std::mutex> lock(product_mutex_);
       const int slot = published_.load();
       if (slot >= 0 && slots_[slot].modes < modes) {
         const int target = free_slot();
         make_product(slots_[slot].R0, modes, target, launch_->queue());
-        published_.store(target);
+        publish(target);
       }
     }
   }
@@ -300,7 +334,7 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
         continue;  // the frame keeps the last product; the next pose tries again
       }
       product_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      published_.store(target);
+      publish(target);
     }
   }
 
@@ -317,6 +351,8 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
   const Slot* current_ = &slots_[0];
   std::atomic<int> published_{-1}, in_use_{-1};
   std::atomic<std::size_t> target_modes_{0};
+  std::size_t pending_modes_ = 0;  // requested, waiting for a product that covers it (0: none)
+  std::atomic<std::size_t> published_modes_{0};  // the modes the published product covers
   // Background mode.
   cl::CommandQueue worker_queue_;
   std::thread worker_;

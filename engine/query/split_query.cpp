@@ -77,6 +77,7 @@ class SplitQuery final : public QueryEngine {
   std::size_t modes() const override { return far_->modes(); }
   std::size_t evaluated_terms() const override { return far_->evaluated_terms(); }
   void set_modes(std::size_t m) override { far_->set_modes(m); }
+  void request_modes(std::size_t m) override { far_->request_modes(m); }
 
   QueryResult query(const Pose& pose) override {
     QueryResult result;

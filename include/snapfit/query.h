@@ -142,6 +142,12 @@ class QueryEngine {
   virtual std::size_t evaluated_terms() const = 0;
   // Clamped to [1, max_modes()]. May allocate and upload; call it outside the frame.
   virtual void set_modes(std::size_t m) = 0;
+  // m' for the frames to come, from a loop that must not wait: as set_modes, except that
+  // an engine whose larger m' needs work of its background thread (the exact rotation's
+  // product made for more modes) keeps the m' it has until that work is done, and takes
+  // the new one at the first query after; modes() and each result's `modes` say which is
+  // in use.
+  virtual void request_modes(std::size_t m) { set_modes(m); }
 
   // One pose: no heap allocation once set_modes has run (the haptic frame's path).
   virtual QueryResult query(const Pose& pose) = 0;

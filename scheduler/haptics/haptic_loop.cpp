@@ -411,7 +411,7 @@ void count_so_far(LoopReport& report, const LoopState& s, const BodyState& part,
 WrenchEvaluator wrench_evaluator(QueryEngine& engine) {
   WrenchEvaluator e;
   e.evaluate = [&engine](const Pose& p) { return engine.query(p); };
-  e.set_modes = [&engine](std::size_t m) { engine.set_modes(m); };
+  e.set_modes = [&engine](std::size_t m) { engine.request_modes(m); };  // never waits for a product
   return e;
 }
 
