@@ -100,6 +100,27 @@ QueryVariant exact_variant(std::size_t product_modes = 0) {
   return v;
 }
 
+// The same exact-rotation engine twice on `pair`: the product made at each query, and
+// made by its worker in the background.
+std::pair<std::unique_ptr<QueryEngine>, std::unique_ptr<QueryEngine>> now_and_later(const AssemblyPair& pair) {
+  QueryVariant background = exact_variant();
+  background.product_update = ProductUpdate::background;
+  return {make_query_engine(test::test_context(), pair.spectra, exact_variant(), test::test_program_cache()),
+          make_query_engine(test::test_context(), pair.spectra, background, test::test_program_cache())};
+}
+
+// The background engine's result at a held pose once its worker has made the product
+// for it (its energy within 1e-5 of `ref`), or after 2 s.
+QueryResult settled(QueryEngine& later, const Pose& pose, const QueryResult& ref) {
+  QueryResult r;
+  for (int i = 0; i < 200; ++i) {
+    r = later.query(pose);
+    if (std::abs(r.energy - ref.energy) <= 1e-5 * std::abs(ref.energy)) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return r;
+}
+
 }  // namespace
 
 TEST_CASE("exact rotation: every mode at off-lattice rotations equals the double sum over the DTFT of part 2") {
@@ -232,33 +253,20 @@ TEST_CASE("exact rotation: force and torque are the energy's central differences
 TEST_CASE("exact rotation: the background product update ends at the each-query values at a held pose") {
   const AssemblyPair pair = test::build_small_pair(test::small_peg_hole_scene());
   const Pose pose = test::pose_at({0.5, 0.2, 3}, 7, {1, 1, 0});
-  auto now = make_query_engine(test::test_context(), pair.spectra, exact_variant(), test::test_program_cache());
-  QueryVariant bg = exact_variant();
-  bg.product_update = ProductUpdate::background;
-  auto later = make_query_engine(test::test_context(), pair.spectra, bg, test::test_program_cache());
+  auto [now, later] = now_and_later(pair);
   now->set_modes(8192);
   later->set_modes(8192);
   const QueryResult ref = now->query(pose);
-  QueryResult r;
-  for (int i = 0; i < 200; ++i) {  // the worker makes the product for the held rotation
-    r = later->query(pose);
-    if (std::abs(r.energy - ref.energy) <= 1e-5 * std::abs(ref.energy)) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  const QueryResult r = settled(*later, pose, ref);
   CHECK(r.energy == doctest::Approx(ref.energy).epsilon(1e-5));
   CHECK((r.force - ref.force).norm() <= 1e-5 * ref.force.norm());
   CHECK((r.torque - ref.torque).norm() <= 1e-5 * ref.torque.norm());
 }
 
-}  // namespace snapfit
-
 TEST_CASE("exact rotation: a larger m' requested of the background product waits for its product, a smaller one does not") {
   const AssemblyPair pair = test::build_small_pair(test::small_peg_hole_scene());
   const Pose pose = test::pose_at({0.5, 0.2, 3}, 7, {1, 1, 0});
-  auto now = make_query_engine(test::test_context(), pair.spectra, exact_variant(), test::test_program_cache());
-  QueryVariant bg = exact_variant();
-  bg.product_update = ProductUpdate::background;
-  auto later = make_query_engine(test::test_context(), pair.spectra, bg, test::test_program_cache());
+  auto [now, later] = now_and_later(pair);
   now->request_modes(2048);  // each query: at once
   CHECK(now->modes() == 2048);
   later->set_modes(2048);
@@ -276,11 +284,7 @@ TEST_CASE("exact rotation: a larger m' requested of the background product waits
   CHECK(later->modes() == 8192);
   now->set_modes(8192);
   const QueryResult ref = now->query(pose);
-  for (int i = 0; i < 200; ++i) {  // the product for the held rotation
-    r = later->query(pose);
-    if (std::abs(r.energy - ref.energy) <= 1e-5 * std::abs(ref.energy)) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  r = settled(*later, pose, ref);
   CHECK(r.energy == doctest::Approx(ref.energy).epsilon(1e-5));
 
   // Smaller: at once, from the product that covers more modes.
@@ -292,3 +296,5 @@ TEST_CASE("exact rotation: a larger m' requested of the background product waits
   CHECK(small.energy == doctest::Approx(small_ref.energy).epsilon(1e-5));
   CHECK((small.force - small_ref.force).norm() <= 1e-5 * small_ref.force.norm());
 }
+
+}  // namespace snapfit
