@@ -12,6 +12,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "core/host_endian.h"
 #include "core/markup_escape.h"
 #include "io/atomic_write.h"
 #include "io/file_error.h"
@@ -47,13 +48,6 @@ void check_inputs(const std::string& path, const GridSpec& grid, const std::vect
       file_error(path, "cannot write VTI: " + which + " has " + std::to_string(field.components) +
                            " components; 1 to 9 are allowed");
   }
-}
-
-bool host_is_little_endian() {
-  const std::uint32_t one = 1;
-  unsigned char first;
-  std::memcpy(&first, &one, 1);
-  return first == 1;
 }
 
 bool put_u64(std::FILE* f, std::uint64_t v) {

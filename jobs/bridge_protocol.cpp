@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/host_endian.h"
 #include "snapfit/bridge.h"
 
 namespace snapfit {
@@ -14,13 +15,6 @@ static_assert(sizeof(double) == 8 && sizeof(float) == 4, "the protocol's numbers
 
 // Little-endian writer and reader (the host order on every machine snapfit runs on is
 // checked at run time, so a big-endian host swaps).
-bool host_is_little_endian() {
-  const std::uint16_t one = 1;
-  unsigned char first = 0;
-  std::memcpy(&first, &one, 1);
-  return first == 1;
-}
-
 template <typename T>
 void put(unsigned char*& at, T value) {
   unsigned char bytes[sizeof(T)];

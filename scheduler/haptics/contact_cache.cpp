@@ -14,7 +14,7 @@ namespace snapfit {
 namespace {
 
 constexpr std::uint32_t kContactCacheVersion = 1;
-constexpr const char* kKind = "rigid-contact";
+constexpr const char* kContactCacheKind = "rigid-contact";
 
 void put_grid(PayloadWriter& w, const SignedDistanceGrid& g) {
   w.put_vector3(g.origin), w.put(g.coarse), w.put(std::int32_t(g.refine)), w.put_vector3(g.dims);
@@ -97,7 +97,7 @@ std::string contact_cache_path(const std::string& key) {
 }
 
 std::optional<RigidContactModel> load_cached_contact(const std::string& key) {
-  const CacheRead read = read_cache_file(contact_cache_path(key), kKind, kContactCacheVersion, key);
+  const CacheRead read = read_cache_file(contact_cache_path(key), kContactCacheKind, kContactCacheVersion, key);
   if (read.status != CacheStatus::hit) return std::nullopt;
   PayloadReader r{read.payload};
   RigidContactModel m;
@@ -117,7 +117,7 @@ bool save_cached_contact(const std::string& key, const RigidContactModel& m) {
   put_grid(w, m.part1_distance), put_grid(w, m.part2_distance);
   put_samples(w, m.part1_samples), put_samples(w, m.part2_samples);
   try {
-    write_cache_file(contact_cache_path(key), kKind, kContactCacheVersion, key, w.bytes.data(), w.bytes.size());
+    write_cache_file(contact_cache_path(key), kContactCacheKind, kContactCacheVersion, key, w.bytes.data(), w.bytes.size());
     return true;
   } catch (const Error&) {
     return false;
