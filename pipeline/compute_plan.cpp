@@ -66,7 +66,7 @@ ComputePlan vps_plan(const Scene& scene, double grid_spacing) {
         "concentric and planar constraints between contacting faces are phased in, "
         "F = F_C (1 - w) + F_A w with w = min(1, x / " +
         number(scene.vps.hybrid.x_full) + ") (eq. 13-19), region '" +
-        (scene.vps.hybrid.region == HybridRegion::face ? "face" : "pair") +
+        hybrid_region_name(scene.vps.hybrid.region) +
         "'; a part without analytic faces runs as plain VPS");
   plan.lines.push_back(std::string("outputs per frame: force") + (plan.torque ? ", torque" : "") +
                        " (and the points' penalty energy)" +

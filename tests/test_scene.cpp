@@ -217,7 +217,7 @@ TEST_CASE("scene: method and vps fields round-trip, and bad ones are named") {
   CHECK_ERROR(with("voxel_size", -1), "vps.voxel_size: must be > 0");
   CHECK_ERROR(with("voxel_size", "fine"), "vps.voxel_size: expected a number");
   CHECK_ERROR(with("stiffness_n_per_m", 0), "vps.stiffness_n_per_m: must be > 0");
-  CHECK_ERROR(with("shell_density", 20), "vps.shell_density: must be <= 8 (got 20)");
+  CHECK_ERROR(with("shell_density", 20), "vps.shell_density: must be in (0, 8] (got 20)");
   CHECK_ERROR(with("proximity_layers", 1.5), "vps.proximity_layers: must be an integer in [0, 16] (got 1.5)");
   CHECK_ERROR(with("braking_n_s_per_m", -2), "vps.braking_n_s_per_m: must be >= 0");
   CHECK_ERROR(with("density", 2), "vps.density: unknown field");

@@ -36,6 +36,11 @@ struct CadPartSpec {
 // Behandish & Ilies 2015's spherical decomposition with analytic ball transforms summed by a
 // non-uniform DFT (docs/scenes.md "Spectra from balls"; indicator descriptor only).
 enum class SpectrumSource { grid, spheres };
+// Its name in scene files ("grid", "spheres"), and a name's source: one table
+// (io/scene_names.cpp), as for every enum below.
+const char* spectrum_source_name(SpectrumSource s);
+std::optional<SpectrumSource> spectrum_source_named(const std::string& name);
+std::string spectrum_source_names();  // "grid or spheres"
 
 struct PartDescriptorSpec {
   SpectrumSource source = SpectrumSource::grid;
@@ -61,6 +66,9 @@ enum class DescriptorKind {
   skeletal_density,  // rho = i * lambda * s_sigma (docs/design.md "Shape descriptors")
   indicator,         // winding number only: collision gap function (Behandish & Ilies 2016 eq. 1)
 };
+const char* descriptor_kind_name(DescriptorKind k);  // "skeletal_density", "indicator"
+std::optional<DescriptorKind> descriptor_kind_named(const std::string& name);
+std::string descriptor_kind_names();
 
 struct DescriptorParams {
   DescriptorKind kind = DescriptorKind::skeletal_density;
@@ -167,6 +175,9 @@ enum class HybridRegion {
   face,  // every contact with its voxel on the constraint's face of part 1 or its point on
          // the constraint's face of part 2
 };
+const char* hybrid_region_name(HybridRegion r);  // "pair", "face"
+std::optional<HybridRegion> hybrid_region_named(const std::string& name);
+std::string hybrid_region_names();
 
 // The VPS - constraint hybrid's parameters (the scene's `vps.hybrid` section; every field
 // optional; docs/scenes.md, docs/haptics.md "The VPS - constraint hybrid").
@@ -224,5 +235,22 @@ Scene parse_scene(const std::string& json_text, const std::string& origin);
 
 // The scene as JSON text in the same format (load_scene(save) round-trips).
 std::string scene_to_json(const Scene& scene);
+
+// One field of the scene format as docs/scenes.md lists it. The reader, the writer and
+// those docs share one description of the fields (io/scene_fields.cpp).
+struct SceneFieldInfo {
+  std::string section;  // its path in a scene: "top", "part", "part.descriptor", "haptics", "vps.hybrid", ...
+  std::string name;
+  std::string type;           // "number", "integer", "boolean", "string", or a link to a section
+  std::string default_value;  // "`0.05`", "required", or what the default depends on
+  std::string meaning;        // the values allowed ("> 0", "in (0, 1]"), then what it does
+};
+// Every field, section by section in the docs' order.
+std::vector<SceneFieldInfo> scene_fields();
+// The sections, in the docs' order.
+std::vector<std::string> scene_field_sections();
+// One section's fields as docs/scenes.md's markdown table. Throws snapfit::Error for an
+// unknown section.
+std::string scene_fields_markdown(const std::string& section);
 
 }  // namespace snapfit
