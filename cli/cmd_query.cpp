@@ -10,6 +10,7 @@
 #include "snapfit/assembly.h"
 #include "snapfit/collision.h"
 #include "snapfit/error.h"
+#include "snapfit/pose_json.h"
 
 namespace snapfit::cli {
 namespace {
@@ -59,21 +60,18 @@ nlohmann::json result_json(const Pose& pose, const QueryResult& r, std::size_t b
   nlohmann::json flags = nlohmann::json::array();
   if (r.flags & query_outside_grid) flags.push_back("outside_grid");
   if (r.flags & query_bad_pose) flags.push_back("bad_pose");
-  const Eigen::AngleAxisd aa(pose.rotation);
-  nlohmann::json j = {
-      {"position", {pose.translation.x(), pose.translation.y(), pose.translation.z()}},
-      {"rotation_axis", {aa.axis().x(), aa.axis().y(), aa.axis().z()}},
-      {"rotation_deg", aa.angle() * 180.0 / M_PI},
-      {"energy", r.energy},
-      {"force", {r.force.x(), r.force.y(), r.force.z()}},
-      {"torque", {r.torque.x(), r.torque.y(), r.torque.z()}},
-      {"score", {r.score.real(), r.score.imag()}},
-      {"error_estimate",
-       {{"energy", r.error_estimate.energy}, {"force", r.error_estimate.force}, {"torque", r.error_estimate.torque}}},
-      {"flags", flags},
-      {"modes", r.modes},
-      {"batch_mean_ms", r.seconds * 1e3},
-      {"batch_poses", batch_poses}};
+  nlohmann::json j = pose_json<nlohmann::json>(pose);
+  j.update(
+      {{"energy", r.energy},
+       {"force", {r.force.x(), r.force.y(), r.force.z()}},
+       {"torque", {r.torque.x(), r.torque.y(), r.torque.z()}},
+       {"score", {r.score.real(), r.score.imag()}},
+       {"error_estimate",
+        {{"energy", r.error_estimate.energy}, {"force", r.error_estimate.force}, {"torque", r.error_estimate.torque}}},
+       {"flags", flags},
+       {"modes", r.modes},
+       {"batch_mean_ms", r.seconds * 1e3},
+       {"batch_poses", batch_poses}});
   if (tails) {
     // The predicate is one-sided: an overlap above its truncation bound proves a
     // collision; below it the truncated sum cannot tell a touch from a small overlap.

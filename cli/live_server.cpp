@@ -12,6 +12,7 @@
 #include "report/run_page.h"
 #include "report/run_report.h"
 #include "snapfit/error.h"
+#include "snapfit/pose_json.h"
 
 namespace snapfit::cli {
 namespace {
@@ -25,8 +26,8 @@ nlohmann::json state_json(const LiveFrame& f, const LiveStatus& s, const BridgeS
            {{"frame", f.frame},
             {"time_s", f.time_s},
             {"sequence", f.sequence},
-            {"device", pose_json(f.device)},
-            {"part", pose_json(f.part)},
+            {"device", pose_json<nlohmann::json>(f.device)},
+            {"part", pose_json<nlohmann::json>(f.part)},
             {"energy", std::isfinite(f.energy) ? f.energy : 0.0},
             {"geometric", wrench_json(f.geometric)},
             {"contact", wrench_json(f.contact)},

@@ -9,6 +9,7 @@
 #include "io/atomic_write.h"
 #include "report/chart_spec.h"
 #include "report/loop_json.h"
+#include "snapfit/pose_json.h"
 
 namespace snapfit {
 namespace {
@@ -30,7 +31,8 @@ std::string loop_csv(const LoopReport& loop) {
     for (const Eigen::Vector3d* v : {&f.geometric.force, &f.geometric.torque, &f.sent.force, &f.sent.torque})
       csv << ',' << v->x() << ',' << v->y() << ',' << v->z();
     csv << ',' << f.geometric_error.energy << ',' << f.geometric_error.force << ',' << f.geometric_error.torque;
-    for (const Eigen::Vector3d* v : {&f.contact.force, &f.contact.torque}) csv << ',' << v->x() << ',' << v->y() << ',' << v->z();
+    for (const Eigen::Vector3d* v : {&f.contact.force, &f.contact.torque})
+      csv << ',' << v->x() << ',' << v->y() << ',' << v->z();
     csv << ',' << f.contact_depth << ',' << static_cast<int>(f.constraint) << ',' << f.constraint_weight << ','
         << f.trust << '\n';
   }
@@ -135,9 +137,7 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
                     {"rot_damping", run.coupling.rot_damping},
                     {"mass_kg", run.coupling.mass_kg},
                     {"inertia_kg_m2", run.coupling.inertia_kg_m2}}},
-                  {"final_pose",
-                   {{"position", {fp.translation.x(), fp.translation.y(), fp.translation.z()}},
-                    {"quaternion_wxyz", {fp.rotation.w(), fp.rotation.x(), fp.rotation.y(), fp.rotation.z()}}}},
+                  {"final_pose", pose_json<nlohmann::json>(fp)},
                   {"final_error",
                    {{"position", run.final_error.position},
                     {"angle_deg", run.final_error.angle_deg},

@@ -3,6 +3,7 @@
 #include "jobs/job_record.h"
 #include "report/html_page.h"
 #include "report/run_page.h"
+#include "snapfit/pose_json.h"
 
 namespace snapfit {
 
@@ -15,7 +16,7 @@ std::string live_page_html(const JobResult& prepared, const LivePageInfo& info) 
       {"kind", "live"},
       {"title", "snapfit serve: " + scene.name},
       {"parts", {part_json(scene.part1.name, pair.part(1).mesh), part_json(scene.part2.name, pair.part(2).mesh)}},
-      {"start_pose", pose_json(scene.part2.pose)},
+      {"start_pose", pose_json<nlohmann::json>(scene.part2.pose)},
       {"units", scene.units},
       {"bridge_port", info.bridge_port},
       {"state_hz", info.state_hz}};

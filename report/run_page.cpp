@@ -249,12 +249,6 @@ nlohmann::json timeline_json(const JobRecord& run, const RunPageLimits& limits) 
 
 }  // namespace
 
-nlohmann::json pose_json(const Pose& p) {
-  const Eigen::Quaterniond q = p.rotation.normalized();
-  return {{"position", {p.translation.x(), p.translation.y(), p.translation.z()}},
-          {"quaternion", {q.w(), q.x(), q.y(), q.z()}}};
-}
-
 nlohmann::json part_json(const std::string& name, const Mesh& mesh) {
   std::vector<float> positions;
   positions.reserve(9 * mesh.triangles.size());
@@ -295,7 +289,7 @@ nlohmann::json run_page_data(const JobRecord& run, const std::vector<PageFigure>
       {"title", "snapfit run: " + scene.name},
       {"summary", summary_json(run)},
       {"parts", {part_json(scene.part1.name, shown[0]), part_json(scene.part2.name, shown[1])}},
-      {"start_pose", pose_json(scene.part2.pose)},
+      {"start_pose", pose_json<nlohmann::json>(scene.part2.pose)},
       {"playback", nullptr},
       {"timeline", nullptr},
       {"tuning_chart",

@@ -12,6 +12,7 @@
 
 #include "mesh/mesh.h"
 #include "jobs/job_record.h"
+#include "snapfit/pose_json.h"
 
 namespace snapfit {
 
@@ -33,9 +34,6 @@ struct PageFigure {
 // wider than about the field grid's spacing, or coarser where that would pass
 // max_triangles; a mesh already above max_triangles as it is.
 Mesh display_mesh(const Mesh& mesh, double spacing, std::size_t max_triangles);
-
-// A pose as {position, quaternion (w, x, y, z)} for the pages' 3D view.
-nlohmann::json pose_json(const Pose& pose);
 
 // A part for the pages' 3D view: a triangle soup, 9 float32 a triangle, in base64.
 nlohmann::json part_json(const std::string& name, const Mesh& mesh);

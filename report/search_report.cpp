@@ -7,6 +7,7 @@
 
 #include "io/atomic_write.h"
 #include "report/chart_spec.h"
+#include "snapfit/pose_json.h"
 
 namespace snapfit {
 namespace {
@@ -15,13 +16,13 @@ constexpr double kDeg = M_PI / 180.0;
 
 nlohmann::json refined_json(const RefinedPose& r) {
   if (!r.error.empty()) return {{"error", r.error}};
-  nlohmann::json by_energy = search_pose_json(r.energy_minimum);
+  nlohmann::json by_energy = pose_json<nlohmann::json>(r.energy_minimum);
   by_energy["energy"] = r.energy_minimum_energy;
   by_energy["queries"] = r.queries;
   nlohmann::json j = by_energy;
   j["by"] = "energy";
   if (r.rendered) {
-    j = search_pose_json(r.pose);
+    j = pose_json<nlohmann::json>(r.pose);
     j["by"] = "rendered potential (energy x gain + rigid contact)";
     j["energy"] = r.energy;
     j["potential_j"] = r.potential_j;
@@ -34,20 +35,11 @@ nlohmann::json refined_json(const RefinedPose& r) {
 
 }  // namespace
 
-nlohmann::json search_pose_json(const Pose& pose) {
-  const Eigen::AngleAxisd aa(pose.rotation);
-  const bool turned = std::abs(aa.angle()) > 1e-12;
-  const Eigen::Vector3d axis = turned ? aa.axis() : Eigen::Vector3d::UnitZ();
-  return {{"position", {pose.translation.x(), pose.translation.y(), pose.translation.z()}},
-          {"rotation_axis", {axis.x(), axis.y(), axis.z()}},
-          {"rotation_deg", turned ? aa.angle() / kDeg : 0.0}};
-}
-
 std::string search_lines(const SearchResult& result) {
   std::ostringstream lines;
   for (std::size_t k = 0; k < result.top.size(); ++k) {
     const FoundPose& found = result.top[k];
-    nlohmann::json line = search_pose_json(found.pose);
+    nlohmann::json line = pose_json<nlohmann::json>(found.pose);
     line["rank"] = k + 1;
     line["energy"] = found.energy;
     line["map_fft"] = result.map_fft;
@@ -67,11 +59,12 @@ void write_search_report(const std::string& dir, const SearchResult& result, con
   series.label = "lowest E of the rotation's map";
   series.style = Series::Style::points;
   for (std::size_t r = 0; r < result.best_energy.size(); ++r) {
-    const nlohmann::json p = search_pose_json(Pose{result.rotations[r], Eigen::Vector3d::Zero()});
+    const Eigen::AngleAxisd aa(result.rotations[r]);
+    const bool turned = std::abs(aa.angle()) > 1e-12;
+    const Eigen::Vector3d axis = turned ? aa.axis() : Eigen::Vector3d::UnitZ();
     char line[256];
-    std::snprintf(line, sizeof line, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g\n", r, double(p["rotation_axis"][0]),
-                  double(p["rotation_axis"][1]), double(p["rotation_axis"][2]), double(p["rotation_deg"]),
-                  result.best_energy[r]);
+    std::snprintf(line, sizeof line, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g\n", r, axis.x(), axis.y(), axis.z(),
+                  turned ? aa.angle() / kDeg : 0.0, result.best_energy[r]);
     csv << line;
     series.x.push_back(double(r));
     series.y.push_back(result.best_energy[r]);

@@ -8,9 +8,6 @@
 
 namespace snapfit {
 
-// A pose as position, rotation axis and angle in degrees (the axis +z for no turn).
-nlohmann::json search_pose_json(const Pose& pose);
-
 // The poses found, one JSON object a line, best first (docs/design.md "snapfit search").
 std::string search_lines(const SearchResult& result);
 

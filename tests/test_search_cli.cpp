@@ -18,8 +18,8 @@ namespace {
 Pose pose_of(const nlohmann::json& j) {
   Pose p;
   p.translation = Eigen::Vector3d(j["position"][0], j["position"][1], j["position"][2]);
-  const Eigen::Vector3d axis(j["rotation_axis"][0], j["rotation_axis"][1], j["rotation_axis"][2]);
-  p.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(double(j["rotation_deg"]) * M_PI / 180, axis.normalized()));
+  const nlohmann::json& q = j["rotation"]["quaternion"];
+  p.rotation = Eigen::Quaterniond(double(q[0]), double(q[1]), double(q[2]), double(q[3]));
   return p;
 }
 
@@ -116,8 +116,7 @@ TEST_CASE("snapfit search: on the shipped peg and hole the assembled pose comes 
     REQUIRE(top.contains("energy"));
     CHECK(top["map_fft"] == map_fft_name(kind));
     CHECK(top["position"] == poses[0]["position"]);
-    CHECK(top["rotation_axis"] == poses[0]["rotation_axis"]);
-    CHECK(top["rotation_deg"] == poses[0]["rotation_deg"]);
+    CHECK(top["rotation"] == poses[0]["rotation"]);
     CHECK(std::abs(double(top["energy"]) - double(poses[0]["energy"])) <= 1e-5 * std::abs(double(poses[0]["energy"])));
   }
 

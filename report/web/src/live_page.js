@@ -30,7 +30,7 @@ async function post(path, body) {
 class MouseDevice {
   constructor(startPose, send) {
     this.position = new THREE.Vector3(...startPose.position);
-    const q = startPose.quaternion;
+    const q = startPose.rotation.quaternion;
     this.turn = new THREE.Quaternion(q[1], q[2], q[3], q[0]);
     this.send = send;
     this.pending = false;
@@ -177,9 +177,10 @@ function main() {
       const begin = performance.now();
       drawn = state;
       const f = state.frame;
-      viewer.setPart2Pose(f.part.position, f.part.quaternion);
+      viewer.setPart2Pose(f.part.position, f.part.rotation.quaternion);
       ghost.position.set(...f.device.position);
-      ghost.quaternion.set(f.device.quaternion[1], f.device.quaternion[2], f.device.quaternion[3], f.device.quaternion[0]);
+      const dq = f.device.rotation.quaternion;
+      ghost.quaternion.set(dq[1], dq[2], dq[3], dq[0]);
       forceMax = Math.max(0.98 * forceMax, norm(f.sent.force));
       torqueMax = Math.max(0.98 * torqueMax, norm(f.sent.torque));
       viewer.setArrows(f.sent.force, f.sent.torque, forceMax, torqueMax);
@@ -210,7 +211,7 @@ function main() {
 
   reset.addEventListener('click', async () => {
     await post('/reset');
-    device.set(data.start_pose.position, data.start_pose.quaternion);
+    device.set(data.start_pose.position, data.start_pose.rotation.quaternion);
     message.textContent = 'reset';
   });
   record.addEventListener('click', async () => {

@@ -245,7 +245,7 @@ function main() {
     slider.disabled = true;
     speed.disabled = true;
     clock.textContent = 'no trajectory: part 2 at its starting pose';
-    viewer.setPart2Pose(data.start_pose.position, data.start_pose.quaternion);
+    viewer.setPart2Pose(data.start_pose.position, data.start_pose.rotation.quaternion);
     viewer.setContact(null);
     viewer.render();
   }
