@@ -49,6 +49,84 @@ struct ErrorSums {
   double rel(int i) const { return std::sqrt(d[i] / std::max(r[i], 1e-300)); }
 };
 
+// Every mode's term at each pose, and their sum (the reference), with progress.
+void mode_terms(bench::ProductModes& product, const std::vector<Pose>& poses, std::vector<std::vector<Wrench>>& terms,
+                std::vector<Wrench>& reference) {
+  terms.assign(poses.size(), {});
+  reference.assign(poses.size(), Wrench{});
+  std::vector<bench::ModeTerm> modes;
+  for (std::size_t p = 0; p < poses.size(); ++p) {
+    product.terms(poses[p], modes);
+    for (const bench::ModeTerm& m : modes) {
+      terms[p].push_back(Wrench{m.e, m.f, m.t});
+      reference[p] += terms[p].back();
+    }
+    std::cerr << "\rreference pose " << p + 1 << "/" << poses.size() << std::flush;
+  }
+  std::cerr << "\n";
+}
+
+// The split's exact parts per pose, from every mode's term: the far part (each term
+// times the Gaussian's exp(-2 pi^2 a^2 |w|^2)) over every mode and over the first m' of
+// each level, and the near part over every mode (the reference less the far part).
+struct SplitByModes {
+  std::vector<Wrench> near, far;
+  std::vector<std::vector<Wrench>> far_at;  // [pose][level]
+};
+
+SplitByModes split_by_modes(const std::vector<std::vector<Wrench>>& terms, const std::vector<Wrench>& reference,
+                            const std::vector<Eigen::Vector3d>& w, double a, const std::vector<std::size_t>& levels) {
+  const std::size_t M = w.size(), poses = terms.size();
+  std::vector<double> gk(M);
+  for (std::size_t i = 0; i < M; ++i) gk[i] = std::exp(-2 * M_PI * M_PI * a * a * w[i].squaredNorm());
+  SplitByModes out{std::vector<Wrench>(poses), std::vector<Wrench>(poses),
+                   std::vector<std::vector<Wrench>>(poses, std::vector<Wrench>(levels.size()))};
+  for (std::size_t p = 0; p < poses; ++p) {
+    Wrench far;
+    std::size_t lv = 0;
+    for (std::size_t i = 0; i < M; ++i) {
+      const Wrench& t = terms[p][i];
+      far.e += gk[i] * t.e, far.f += gk[i] * t.f, far.t += gk[i] * t.t;
+      if (lv < levels.size() && i + 1 == levels[lv]) out.far_at[p][lv++] = far;
+    }
+    out.far[p] = far;
+    out.near[p].e = reference[p].e - far.e, out.near[p].f = reference[p].f - far.f,
+    out.near[p].t = reference[p].t - far.t;
+  }
+  return out;
+}
+
+// One row's settings and costs.
+struct RowSetting {
+  double a_spacings;
+  std::size_t modes;
+  int kernel_width;
+  double build_seconds, samples_median, near_ms_median;
+};
+
+// Prints one row of the table and returns it as JSON.
+nlohmann::json report_row(const RowSetting& r, const ErrorSums& trunc, const ErrorSums& near_err,
+                          const ErrorSums& split, const ErrorSums& split_tricubic) {
+  const auto percent = [](const ErrorSums& e, int digits) {
+    return bench::fixed(100 * e.rel(0), digits) + " / " + bench::fixed(100 * e.rel(1), digits) + " / " +
+           bench::fixed(100 * e.rel(2), digits) + " %";
+  };
+  std::cout << "| " << r.a_spacings << " | " << r.modes << " | " << percent(trunc, 2) << " | " << r.kernel_width
+            << " | " << r.samples_median << " | " << bench::fixed(r.near_ms_median, 2) << " | " << percent(near_err, 3)
+            << " | " << percent(split, 2) << " | " << percent(split_tricubic, 2) << " |\n";
+  const auto rel = [](const ErrorSums& e) { return nlohmann::json{e.rel(0), e.rel(1), e.rel(2)}; };
+  return {{"a_spacings", r.a_spacings},
+          {"modes", r.modes},
+          {"kernel_width", r.kernel_width},
+          {"build_seconds", r.build_seconds},
+          {"samples_evaluated_median", r.samples_median},
+          {"near_ms_median", r.near_ms_median},
+          {"near_error", rel(near_err)},
+          {"far_truncation", rel(trunc)},
+          {"split_error", rel(split)},
+          {"split_tricubic_error", rel(split_tricubic)}};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -100,18 +178,9 @@ int main(int argc, char** argv) {
               << " (" << M << " modes), h " << sp.spacing << ", part 2 samples " << rho2.size() << "\n";
 
     // Per pose: every mode's term (the reference and the split's exact parts).
-    std::vector<std::vector<Wrench>> terms(poses.size());
-    std::vector<Wrench> reference(poses.size());
-    std::vector<bench::ModeTerm> modes;
-    for (std::size_t p = 0; p < poses.size(); ++p) {
-      product.terms(poses[p], modes);
-      for (const bench::ModeTerm& m : modes) {
-        terms[p].push_back(Wrench{m.e, m.f, m.t});
-        reference[p] += terms[p].back();
-      }
-      std::cerr << "\rreference pose " << p + 1 << "/" << poses.size() << std::flush;
-    }
-    std::cerr << "\n";
+    std::vector<std::vector<Wrench>> terms;
+    std::vector<Wrench> reference;
+    mode_terms(product, poses, terms, reference);
     nlohmann::json rows = nlohmann::json::array();
     std::cout << "\n| a (h) | m' | far truncation E / F / T | kernel width | samples evaluated (median) | "
                  "near ms (1 thread, median) | near vs its modes E / F / T | split E / F / T | split, far part "
@@ -119,23 +188,9 @@ int main(int argc, char** argv) {
               << "|---|---|---|---|---|---|---|---|---|\n";
     for (double a_h : widths) {
       const double a = a_h * sp.spacing;
-      // The split's exact parts per pose: near over every mode, far truncated per m'.
-      std::vector<double> gk(M);
-      for (std::size_t i = 0; i < M; ++i) gk[i] = std::exp(-2 * M_PI * M_PI * a * a * w[i].squaredNorm());
-      std::vector<Wrench> near_modes(poses.size()), far_all(poses.size());
-      std::vector<std::vector<Wrench>> far_at(poses.size(), std::vector<Wrench>(levels.size()));
-      for (std::size_t p = 0; p < poses.size(); ++p) {
-        Wrench far;
-        std::size_t lv = 0;
-        for (std::size_t i = 0; i < M; ++i) {
-          const Wrench& t = terms[p][i];
-          far.e += gk[i] * t.e, far.f += gk[i] * t.f, far.t += gk[i] * t.t;
-          if (lv < levels.size() && i + 1 == levels[lv]) far_at[p][lv++] = far;
-        }
-        far_all[p] = far;
-        near_modes[p].e = reference[p].e - far.e, near_modes[p].f = reference[p].f - far.f,
-        near_modes[p].t = reference[p].t - far.t;
-      }
+      const SplitByModes by_modes = split_by_modes(terms, reference, w, a, levels);
+      const std::vector<Wrench>&near_modes = by_modes.near, &far_all = by_modes.far;
+      const std::vector<std::vector<Wrench>>& far_at = by_modes.far_at;
       for (int kw : kernel_widths) {
         NearFieldOptions options;
         options.width_spacings = a_h;
@@ -176,26 +231,9 @@ int main(int argc, char** argv) {
             }
             // The far part's truncation relative to the reference's size, not its own.
             for (int q = 0; q < 3; ++q) trunc.r[q] = split.r[q];
-            std::cout << "| " << a_h << " | " << levels[lv] << " | " << bench::fixed(100 * trunc.rel(0), 2) << " / "
-                      << bench::fixed(100 * trunc.rel(1), 2) << " / " << bench::fixed(100 * trunc.rel(2), 2) << " % | "
-                      << kw << " | " << bench::median(counts) << " | " << bench::fixed(bench::median(ms), 2) << " | "
-                      << bench::fixed(100 * near_err.rel(0), 3) << " / " << bench::fixed(100 * near_err.rel(1), 3)
-                      << " / " << bench::fixed(100 * near_err.rel(2), 3) << " % | "
-                      << bench::fixed(100 * split.rel(0), 2) << " / " << bench::fixed(100 * split.rel(1), 2) << " / "
-                      << bench::fixed(100 * split.rel(2), 2) << " % | " << bench::fixed(100 * split_tricubic.rel(0), 2)
-                      << " / " << bench::fixed(100 * split_tricubic.rel(1), 2) << " / "
-                      << bench::fixed(100 * split_tricubic.rel(2), 2) << " % |\n";
             rows.push_back(
-                {{"a_spacings", a_h},
-                 {"modes", levels[lv]},
-                 {"kernel_width", kw},
-                 {"build_seconds", near_field.seconds},
-                 {"samples_evaluated_median", bench::median(counts)},
-                 {"near_ms_median", bench::median(ms)},
-                 {"near_error", {near_err.rel(0), near_err.rel(1), near_err.rel(2)}},
-                 {"far_truncation", {trunc.rel(0), trunc.rel(1), trunc.rel(2)}},
-                 {"split_error", {split.rel(0), split.rel(1), split.rel(2)}},
-                 {"split_tricubic_error", {split_tricubic.rel(0), split_tricubic.rel(1), split_tricubic.rel(2)}}});
+                report_row({a_h, levels[lv], kw, near_field.seconds, bench::median(counts), bench::median(ms)}, trunc,
+                           near_err, split, split_tricubic));
           }
         }
       }

@@ -243,10 +243,8 @@ py::dict live_frame_dict(const LiveFrame& f) {
   return d;
 }
 
-}  // namespace
-
-PYBIND11_MODULE(_snapfit, m) {
-  m.doc() = "snapfit: geometric energy, force and torque between two rigid parts (seed 000's method).";
+// The module's exception: snapfit::Error as snapfit.Error.
+void def_errors(py::module_& m) {
   static py::exception<Error> error(m, "Error", PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
@@ -255,7 +253,10 @@ PYBIND11_MODULE(_snapfit, m) {
       error(e.what());
     }
   });
+}
 
+// Scenes: reading them and their JSON text.
+void def_scene(py::module_& m) {
   py::class_<Scene>(m, "Scene", "An assembly scene: two parts, the grid, the trajectory (docs/scenes.md).")
       .def_property_readonly("name", [](const Scene& s) { return s.name; })
       .def_property_readonly("units", [](const Scene& s) { return s.units; })
@@ -265,7 +266,10 @@ PYBIND11_MODULE(_snapfit, m) {
   m.def("load_scene", &load_scene, py::arg("path"),
         "Reads a scene file; raises snapfit.Error naming the file or field that is wrong.");
   m.def("_parse_scene", &parse_scene, py::arg("json_text"), py::arg("origin"));
+}
 
+// The per-frame engine: queries of poses and their timing.
+void def_query_engine(py::module_& m) {
   py::class_<QueryEngine, std::unique_ptr<QueryEngine>>(m, "QueryEngine",
                                                         "The per-frame engine of an assembly on its device.")
       .def_property_readonly("variant", [](const QueryEngine& q) { return variant_name(q.variant()); })
@@ -306,7 +310,10 @@ PYBIND11_MODULE(_snapfit, m) {
           py::arg("poses"), py::arg("repeats"),
           "Seconds of each of `repeats` batches of the same poses timed in C++ around query_batch alone\n"
           "(perf/bench_python.py sets them beside query() called from Python).");
+}
 
+// An assembly on its device.
+void def_assembly(py::module_& m) {
   py::class_<Assembly>(m, "Assembly", "A scene's parts, fields and spectra on one OpenCL device.")
       .def(py::init([](const Scene& scene, const std::string& device, bool use_cache, bool near_field) {
              AssemblyOptions o;
@@ -334,7 +341,10 @@ PYBIND11_MODULE(_snapfit, m) {
           "A query engine for the scene's variant: 'tricubic' or 'trilinear' (the rotated spectrum\n"
           "interpolated), 'exact-product' (the product made exactly for each new rotation) or 'near-far'\n"
           "(its split into a smooth far sum and an exact near sum; needs Assembly(near_field=True)).");
+}
 
+// The pipeline's stages: a part's mesh and fields, m' tuned for a budget.
+void def_stage_calls(py::module_& m) {
   m.def(
       "part_mesh",
       [](const Scene& scene, int part) {
@@ -402,7 +412,10 @@ PYBIND11_MODULE(_snapfit, m) {
       "m' for the scene's frame budget on this device (read from the tuning file when it matches),\n"
       "for the engine's variant; the engine keeps its m' (set engine.modes = result['chosen_modes']).\n"
       "Returns the sweep as arrays (modes, p50_ms, p99_ms, max_ms) and the choice.");
+}
 
+// Whole calls on an assembly: each strategy's accuracy, the rotation search.
+void def_measurements(py::module_& m) {
   m.def(
       "accuracy",
       [](const Assembly& assembly, std::size_t poses, std::size_t repetitions, bool other_devices) {
@@ -472,7 +485,10 @@ PYBIND11_MODULE(_snapfit, m) {
       "of a grid (about `rotations` of them, or `step_deg` apart). Returns the grid (R, 4) quaternions\n"
       "w, x, y, z, the lowest energy of each map (R,), and the top poses (K, 7) with their energies,\n"
       "refined (NaN energy where a refinement failed).");
+}
 
+// Live sessions.
+void def_live_session(py::module_& m) {
   py::class_<LiveSession>(m, "LiveSession",
                           "A live session: the haptic loop at the scene's rate on its own thread; a Python\n"
                           "program is the device (set_device_state or hold_device_pose) and reads the wrench\n"
@@ -519,7 +535,10 @@ PYBIND11_MODULE(_snapfit, m) {
       .def(
           "status", [](const LiveSession& s) { return live_status_dict(s.status()); },
           "Frames, misses, part 2's pose and the verdict against the assembled pose, now.");
+}
 
+// `snapfit run`'s job.
+void def_run_job(py::module_& m) {
   m.def(
       "run_job",
       [](const Scene& scene, const std::string& device, std::size_t modes, const std::string& strategy,
@@ -557,4 +576,18 @@ PYBIND11_MODULE(_snapfit, m) {
       "`snapfit run`'s job: the strategy and m' chosen for this device, the scripted assembly in the loop\n"
       "(its log as arrays under 'loop'), and the verdict; with `out`, the report folder `snapfit run`\n"
       "writes there (report.html, summary.json, ...), its files listed under 'report'.");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_snapfit, m) {
+  m.doc() = "snapfit: geometric energy, force and torque between two rigid parts (seed 000's method).";
+  def_errors(m);
+  def_scene(m);
+  def_query_engine(m);
+  def_assembly(m);
+  def_stage_calls(m);
+  def_measurements(m);
+  def_live_session(m);
+  def_run_job(m);
 }

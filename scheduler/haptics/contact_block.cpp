@@ -74,6 +74,56 @@ double lower_bound(const FineDistanceView& view, const SignedDistanceGrid& grid,
   return d - (0.5 * std::sqrt(3.0) + 1e-4) * grid.fine_spacing() - 1e-6 * std::abs(d);
 }
 
+// Each point of a block, at this frame's pose: the node at its fine cell's lowest corner
+// (null off the fine level) and its fraction in the cell.
+struct BlockCells {
+  const float* node[kMaxBlockPoints];
+  double fx[kMaxBlockPoints], fy[kMaxBlockPoints], fz[kMaxBlockPoints];
+};
+
+// Fills `cells` for a block centred at `centre_grid` (the grid's frame) and fetches the
+// cells' nodes ahead; false when the centre is far off the grid or not finite (no fine
+// cell to find).
+bool locate_block(const ContactBlocks& points, const ShellChunk& block, const PointMap& map,
+                  const Eigen::Vector3d& centre_grid, const SignedDistanceGrid& grid,
+                  const FineDistanceView& shared_view, BlockCells& cells) {
+  // The centre in fine spacings from the grid's origin, as a whole cell `base` and a
+  // remainder `rest` lifted more than the block's radius above zero: every point's
+  // rest + to_fine d is then positive, and its cell found by truncation.
+  const double per_spacing = 1 / grid.fine_spacing();
+  const Eigen::Vector3d local = (centre_grid - grid.origin) * per_spacing;
+  if (!(local.array().abs() < 1e9).all()) return false;
+  const int lift = int(block.radius * per_spacing) + 2;
+  int base[3];
+  double rest[3];
+  for (int a = 0; a < 3; ++a) base[a] = floor_int(local[a]) - lift, rest[a] = local[a] - base[a];
+
+  // Pass 1: each point's fine cell (relative to base) and fraction in it. In double, as
+  // the distances of pass 3: the energy's change over a small motion (1e-5 of a degree
+  // of turn) may be 1e-5 of itself, below single precision's round-off.
+  const std::size_t n = block.end - block.begin;
+  const float *x = points.x.data() + block.begin, *y = points.y.data() + block.begin,
+              *z = points.z.data() + block.begin;
+  const double* m = map.to_fine;
+  int ci[kMaxBlockPoints], cj[kMaxBlockPoints], ck[kMaxBlockPoints];
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = rest[0] + m[0] * x[i] + m[1] * y[i] + m[2] * z[i];
+    const double v = rest[1] + m[3] * x[i] + m[4] * y[i] + m[5] * z[i];
+    const double w = rest[2] + m[6] * x[i] + m[7] * y[i] + m[8] * z[i];
+    ci[i] = int(u), cj[i] = int(v), ck[i] = int(w);
+    cells.fx[i] = u - ci[i], cells.fy[i] = v - cj[i], cells.fz[i] = w - ck[i];
+  }
+
+  const FineDistanceView view = shared_view;  // a local copy: its fields stay in registers
+  // Pass 2: each point's cell in the grid's bricks, its corners fetched ahead (the
+  // bricks' reads, not the arithmetic, bound the evaluation).
+  for (std::size_t i = 0; i < n; ++i) {
+    cells.node[i] = view.node(base[0] + ci[i], base[1] + cj[i], base[2] + ck[i]);
+    if (cells.node[i]) view.prefetch(cells.node[i]);
+  }
+  return true;
+}
+
 void add_block_contact(const ContactBlocks& points, const ShellChunk& block, const PointMap& map,
                        const Eigen::Vector3d& centre_grid, const Eigen::Vector3d& centre_arm,
                        const SignedDistanceGrid& grid, const FineDistanceView& shared_view, const ContactConstants& k,
@@ -89,42 +139,14 @@ void add_block_contact(const ContactBlocks& points, const ShellChunk& block, con
     if (phi < -k.skin) add_term(map, centre_arm, offset(i), phi, gradient, area[i], k, sum);
   };
 
-  // The centre in fine spacings from the grid's origin, as a whole cell `base` and a
-  // remainder `rest` lifted more than the block's radius above zero: every point's
-  // rest + to_fine d is then positive, and its cell found by truncation.
-  const double per_spacing = 1 / grid.fine_spacing();
-  const Eigen::Vector3d local = (centre_grid - grid.origin) * per_spacing;
-  if (!(local.array().abs() < 1e9).all()) {  // far off the grid, or not finite: no fine cell to find
+  BlockCells cells;
+  if (!locate_block(points, block, map, centre_grid, grid, shared_view, cells)) {
     for (std::size_t i = 0; i < n; ++i) add_exactly(i);
     return;
   }
-  const int lift = int(block.radius * per_spacing) + 2;
-  int base[3];
-  double rest[3];
-  for (int a = 0; a < 3; ++a) base[a] = floor_int(local[a]) - lift, rest[a] = local[a] - base[a];
-
-  // Pass 1: each point's fine cell (relative to base) and fraction in it. In double, as
-  // the distances of pass 3: the energy's change over a small motion (1e-5 of a degree
-  // of turn) may be 1e-5 of itself, below single precision's round-off.
-  const double* m = map.to_fine;
-  int ci[kMaxBlockPoints], cj[kMaxBlockPoints], ck[kMaxBlockPoints];
-  double fx[kMaxBlockPoints], fy[kMaxBlockPoints], fz[kMaxBlockPoints];
-  for (std::size_t i = 0; i < n; ++i) {
-    const double u = rest[0] + m[0] * x[i] + m[1] * y[i] + m[2] * z[i];
-    const double v = rest[1] + m[3] * x[i] + m[4] * y[i] + m[5] * z[i];
-    const double w = rest[2] + m[6] * x[i] + m[7] * y[i] + m[8] * z[i];
-    ci[i] = int(u), cj[i] = int(v), ck[i] = int(w);
-    fx[i] = u - ci[i], fy[i] = v - cj[i], fz[i] = w - ck[i];
-  }
-
+  const float* const* nodes = cells.node;
+  const double *fx = cells.fx, *fy = cells.fy, *fz = cells.fz;
   const FineDistanceView view = shared_view;  // a local copy: its fields stay in registers
-  // Pass 2: each point's cell in the grid's bricks, its corners fetched ahead (the
-  // bricks' reads, not the arithmetic, bound the evaluation).
-  const float* nodes[kMaxBlockPoints];
-  for (std::size_t i = 0; i < n; ++i) {
-    nodes[i] = view.node(base[0] + ci[i], base[1] + cj[i], base[2] + ck[i]);
-    if (nodes[i]) view.prefetch(nodes[i]);
-  }
 
   // Pass 3: each point's distance; those deeper than the skin are kept.
   std::uint8_t deep[kMaxBlockPoints];
