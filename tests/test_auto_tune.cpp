@@ -6,8 +6,9 @@
 #include <filesystem>
 
 #include "scheduler/modes/mode_tuning.h"
-#include "scheduler/tuning/device_choice.h"
 #include "scheduler/modes/tuning_file.h"
+#include "scheduler/tuning/device_choice.h"
+#include "scheduler/tuning/engine_tuning.h"
 #include "snapfit/error.h"
 #include "tests/test_support.h"
 
@@ -229,6 +230,29 @@ TEST_CASE("tuning file: a corrupt, truncated or foreign file is reported and ign
   CHECK(load_tuning(key).has_value());
   // Malformed JSON in a well-formed container is an error naming the problem.
   CHECK_THROWS_WITH_AS(tuning_from_json("{\"points\": []}"), doctest::Contains("malformed"), Error);
+}
+
+TEST_CASE("tuning file: a tuning in which nothing fits is not kept, one that fits is kept and read back") {
+  test::CacheDirScope scope;
+  const TuningKey key = sample_key();
+  TuneOptions opt;
+  opt.repetitions = 20;
+  std::vector<std::string> notes;
+  const auto note = [&](const std::string& n) { notes.push_back(n); };
+  // A machine busy elsewhere: 0.9 ms before any mode, above the 0.75 ms the margin leaves.
+  const EngineTuning busy = tune_and_keep(key, linear_timer(0.9, 1e-5), 1 << 16, opt, false, note);
+  CHECK(!busy.result.fits);
+  CHECK(!busy.from_file);
+  CHECK(!load_tuning(key).has_value());
+  REQUIRE(!notes.empty());
+  CHECK(notes.back().find("tuning not saved: not even m'") != std::string::npos);
+  // The next run measures again, on a quiet machine, and keeps what fits.
+  const EngineTuning quiet = tune_and_keep(key, linear_timer(0.05, 2e-5), 1 << 16, opt, false, note);
+  REQUIRE(quiet.result.fits);
+  CHECK(!quiet.from_file);
+  const EngineTuning again = tune_and_keep(key, linear_timer(0.9, 1e-5), 1 << 16, opt, false, note);
+  CHECK(again.from_file);
+  CHECK(again.result.chosen_modes == quiet.result.chosen_modes);
 }
 
 TEST_CASE("tuning file: an unwritable cache folder is a clear error, not a crash") {

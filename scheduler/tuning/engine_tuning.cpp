@@ -61,8 +61,8 @@ QueryTimer engine_query_timer(QueryEngine& engine, std::vector<Pose> poses, doub
   };
 }
 
-EngineTuning tune_engine(QueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses, TuneOptions options,
-                         bool retune, const std::function<void(const std::string&)>& note) {
+EngineTuning tune_and_keep(const TuningKey& key, const QueryTimer& timer, std::size_t max_modes, TuneOptions options,
+                           bool retune, const std::function<void(const std::string&)>& note) {
   EngineTuning out;
   out.path = tuning_file_path(key);
   if (!retune)
@@ -71,16 +71,31 @@ EngineTuning tune_engine(QueryEngine& engine, const TuningKey& key, const std::v
       out.from_file = true;
       return out;
     }
-  const std::size_t before = engine.modes();
   options.budget_ms = key.budget_ms;
   options.margin = key.margin;
-  out.result = tune_modes(engine_query_timer(engine, poses, key.pace_hz), engine.max_modes(), options);
-  engine.set_modes(before);
+  out.result = tune_modes(timer, max_modes, options);
+  // A tuning in which not even the smallest m' fits is more likely a machine busy with
+  // something else than its real speed; kept, it would hold every later run to that m'.
+  if (!out.result.fits) {
+    if (note)
+      note("tuning not saved: not even m' " + std::to_string(out.result.chosen_modes) +
+           " fits the budget (a busy machine?); the next run measures again");
+    return out;
+  }
   try {
     save_tuning(key, out.result);
   } catch (const Error& e) {
     if (note) note(std::string("tuning not saved: ") + e.what());
   }
+  return out;
+}
+
+EngineTuning tune_engine(QueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses, TuneOptions options,
+                         bool retune, const std::function<void(const std::string&)>& note) {
+  const std::size_t before = engine.modes();
+  EngineTuning out =
+      tune_and_keep(key, engine_query_timer(engine, poses, key.pace_hz), engine.max_modes(), options, retune, note);
+  engine.set_modes(before);
   return out;
 }
 

@@ -35,8 +35,13 @@ struct EngineTuning {
 };
 
 // Loads the tuning for `key`, or (when absent, stale, corrupt, or `retune`) measures it
-// with `engine` at `poses` and saves it. A save failure is reported through `note` and
-// the fresh result is still returned.
+// with `timer` and saves it: unless not even the smallest m' fits (said through `note`;
+// the next run measures again). A save failure is reported through `note` and the fresh
+// result is still returned.
+EngineTuning tune_and_keep(const TuningKey& key, const QueryTimer& timer, std::size_t max_modes, TuneOptions options,
+                           bool retune, const std::function<void(const std::string&)>& note);
+
+// tune_and_keep with `engine` at `poses`; the engine's m' is left as it was.
 // The queries are paced at key.pace_hz (engine_query_timer; 0: back-to-back).
 EngineTuning tune_engine(QueryEngine& engine, const TuningKey& key, const std::vector<Pose>& poses, TuneOptions options,
                          bool retune, const std::function<void(const std::string&)>& note);
