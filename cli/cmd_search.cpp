@@ -117,9 +117,11 @@ void add_search_command(CLI::App& app) {
   cmd->add_option("--refine-modes", opt->refine_modes, "Modes of the refining queries (default 65536)")
       ->check(positive_number());
   cmd->add_option("--refine-queries", opt->refine_queries, "Queries per refined pose at most (default 200)");
+  std::string built;
+  for (const std::string& name : map_ffts_in_this_build()) built += ", " + name;
   cmd->add_option("--map-fft", opt->map_fft,
-                  "Inverse FFT of the maps: auto (the fastest, measured once per device and size), clfft, fftw or "
-                  "vkfft (those this build has)");
+                  "Inverse FFT of the maps: auto (the fastest, measured once per device and size)" + built +
+                      " (those this build has)");
   cmd->add_option("--map-batch", opt->map_batch,
                   "Rotations mapped per batch on a device FFT (default: measured with --map-fft auto, else 1)")
       ->check(positive_number());

@@ -17,9 +17,9 @@
 #include "jobs/search_codec.h"
 #include "pipeline/assembly_pair.h"
 #include "scheduler/haptics/haptic_setup.h"
-#include "scheduler/modes/mode_tuning.h"
 #include "scheduler/haptics/rendered_wrench.h"
 #include "scheduler/haptics/rigid_contact.h"
+#include "scheduler/modes/mode_tuning.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -89,7 +89,8 @@ MapperOnDevice make_mapper(const SearchRequest& request, const PairSpectra& spec
     m.fft_used = map_fft_name(kind) + " (SearchRequest::map_fft)";
   }
   if (request.map_batch)
-    m.fft_used += ", " + std::to_string(batch) + (batch == 1 ? " rotation" : " rotations") + " per batch (SearchRequest::map_batch)";
+    m.fft_used += ", " + std::to_string(batch) + (batch == 1 ? " rotation" : " rotations") +
+                  " per batch (SearchRequest::map_batch)";
   m.mapper = std::make_unique<TranslationMapper>(*m.fft, *m.ctx, spectra, request.interpolation, request.modes, kind,
                                                  default_program_cache(), batch);
   return m;
@@ -199,7 +200,8 @@ SearchResult merge_and_refine(const So3Grid& grid, const std::vector<double>& al
   SearchResult result;
   result.rotations = grid.rotations;
   result.best_energy.assign(grid.rotations.size(), std::nan(""));
-  for (std::size_t i = 0; i + 2 <= all_best.size(); i += 2) result.best_energy[std::size_t(all_best[i])] = all_best[i + 1];
+  for (std::size_t i = 0; i + 2 <= all_best.size(); i += 2)
+    result.best_energy[std::size_t(all_best[i])] = all_best[i + 1];
   for (std::size_t i = 0; i + 2 <= rates.size(); i += 2) {
     result.process_rotations.push_back(std::size_t(rates[i]));
     result.process_seconds.push_back(rates[i + 1]);
@@ -266,8 +268,7 @@ SearchResult search(const Scene& scene, const SearchRequest& request, SearchExch
 
   RotationScan scan;
   double seconds = 0;
-  on_every_process(exchange,
-                   [&] { scan = scan_share(*m.mapper, grid, spectra.spacing, request, exchange, seconds); });
+  on_every_process(exchange, [&] { scan = scan_share(*m.mapper, grid, spectra.spacing, request, exchange, seconds); });
   std::vector<double> best_mine;
   for (std::size_t i = 0; i < scan.rotations.size(); ++i)
     best_mine.insert(best_mine.end(), {double(scan.rotations[i]), scan.best_energy[i]});
@@ -283,6 +284,12 @@ SearchResult search(const Scene& scene, const SearchRequest& request, SearchExch
 SearchResult search(const Scene& scene, const SearchRequest& request) {
   OneProcess one;
   return search(scene, request, one);
+}
+
+std::vector<std::string> map_ffts_in_this_build() {
+  std::vector<std::string> names;
+  for (MapFft fft : map_ffts_built()) names.push_back(map_fft_name(fft));
+  return names;
 }
 
 }  // namespace snapfit

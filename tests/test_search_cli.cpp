@@ -1,6 +1,7 @@
 // `snapfit search` end to end on a shipped scene (the peg and the 0.5 mm clearance
 // hole, at twice the scene's grid spacing so the maps stay small): the assembled pose,
 // or one the peg's symmetry makes equal, comes out first; the files and bad input.
+#include <cctype>
 #include <doctest/doctest.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -9,6 +10,7 @@
 #include "engine/maps/map_fft.h"
 #include "pipeline/prepare_parts.h"
 #include "snapfit/scene.h"
+#include "snapfit/search.h"
 #include "test_support.h"
 
 using namespace snapfit;
@@ -81,9 +83,10 @@ TEST_CASE("snapfit search: on the shipped peg and hole the assembled pose comes 
   const double found = axis_mismatch(pose_of(poses[0]), *scene.assembled_pose, peg);
   const double refined = axis_mismatch(pose_of(poses[0]["refined"]), *scene.assembled_pose, peg);
   REQUIRE(poses[0]["refined"].contains("energy_minimum"));
-  const double energy_minimum = axis_mismatch(pose_of(poses[0]["refined"]["energy_minimum"]), *scene.assembled_pose, peg);
-  MESSAGE("first pose: axis ends " << found << " mm from the assembled pose's, the energy's minimum "
-                                   << energy_minimum << " mm, refined on the rendered potential " << refined << " mm");
+  const double energy_minimum =
+      axis_mismatch(pose_of(poses[0]["refined"]["energy_minimum"]), *scene.assembled_pose, peg);
+  MESSAGE("first pose: axis ends " << found << " mm from the assembled pose's, the energy's minimum " << energy_minimum
+                                   << " mm, refined on the rendered potential " << refined << " mm");
   CHECK(found <= h);  // the grid holds the aligned rotation; the map's translation step is h
   // The rendered potential (energy x gain + rigid contact) rests at the fit, within the
   // contact's skin: 0.35 of its distance spacing h / 3, 0.14 mm here.
@@ -127,4 +130,30 @@ TEST_CASE("snapfit search: on the shipped peg and hole the assembled pose comes 
   const test::Command missing = test::run_command(std::string(SNAPFIT_CLI_PATH) + " search " + dir.file("none.json"));
   CHECK(missing.status != 0);
   CHECK(missing.output.find("none.json") != std::string::npos);
+}
+
+TEST_CASE("snapfit search --help names the map FFTs this build has, and each is one the search takes") {
+  const std::vector<std::string> built = map_ffts_in_this_build();
+  REQUIRE(!built.empty());
+  CHECK(built.front() == "clfft");  // always built
+  std::string listed = "auto (the fastest, measured once per device and size)";
+  for (const std::string& name : built) {
+    CHECK(map_fft_name(parse_map_fft(name)) == name);
+    listed += ", " + name;
+  }
+  const auto help = test::run_command(std::string(SNAPFIT_CLI_PATH) + " search --help");
+  CHECK(help.status == 0);
+  // CLI11 wraps long help lines: compare with the whitespace folded.
+  const auto folded = [](const std::string& text) {
+    std::string out;
+    for (char c : text) {
+      const bool space = std::isspace(static_cast<unsigned char>(c));
+      if (!space)
+        out += c;
+      else if (!out.empty() && out.back() != ' ')
+        out += ' ';
+    }
+    return out;
+  };
+  CHECK(folded(help.output).find(folded(listed + " (those this build has)")) != std::string::npos);
 }

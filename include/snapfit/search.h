@@ -51,15 +51,15 @@ struct SearchPlan {
   std::array<std::size_t, 3> map_dims{};  // translations per map
   double spacing = 0;                     // between translations, scene units
   int processes = 1;
-  std::string map_fft;        // the inverse FFT and why ("clfft x8 (per map: ...)")
+  std::string map_fft;            // the inverse FFT and why ("clfft x8 (per map: ...)")
   bool minima_on_device = false;  // each map reduced on the device to a short list, else read back
 };
 
 struct SearchRequest {
-  std::optional<double> step_deg;         // the grid's spacing (default 30 degrees)
-  std::optional<std::size_t> rotations;   // about this many rotations instead of step_deg
-  std::size_t top = 10;                   // poses returned
-  std::size_t per_rotation = 4;           // lowest minima kept per map
+  std::optional<double> step_deg;        // the grid's spacing (default 30 degrees)
+  std::optional<std::size_t> rotations;  // about this many rotations instead of step_deg
+  std::size_t top = 10;                  // poses returned
+  std::size_t per_rotation = 4;          // lowest minima kept per map
   // The OpenCL device of each process: process r takes entry (local rank mod count);
   // empty: as AssemblyOptions::device "".
   std::vector<std::string> devices;
@@ -68,7 +68,7 @@ struct SearchRequest {
   std::size_t refine_modes = 65536;                        // modes of the refining queries
   std::size_t refine_queries = 200;                        // queries per refined pose at most
   // The maps' inverse FFT: "auto" (the fastest, measured once per device and size and
-  // cached), "clfft", "fftw" or "vkfft" (those this build has).
+  // cached), "clfft", "fftw" or "vkfft" (those this build has: map_ffts_in_this_build).
   std::string map_fft = "auto";
   std::size_t map_batch = 0;  // rotations per batch on a device FFT; 0: measured with "auto", else 1
   bool progress = false;      // a progress bar on stderr (process 0)
@@ -78,7 +78,7 @@ struct SearchRequest {
 };
 
 struct RefinedPose {
-  std::string error;  // the refinement failed (the other fields are unset)
+  std::string error;    // the refinement failed (the other fields are unset)
   Pose energy_minimum;  // the descent of the energy from the map's pose
   double energy_minimum_energy = 0;
   std::size_t queries = 0;
@@ -102,9 +102,9 @@ struct FoundPose {
 
 struct SearchResult {  // on process 0; the other processes return an empty result
   SearchPlan plan;
-  std::vector<Eigen::Quaterniond> rotations;  // the grid, base direction by direction, turn fastest
-  std::vector<double> best_energy;            // per rotation: the lowest energy of its map
-  std::vector<FoundPose> top;                 // by increasing map energy
+  std::vector<Eigen::Quaterniond> rotations;   // the grid, base direction by direction, turn fastest
+  std::vector<double> best_energy;             // per rotation: the lowest energy of its map
+  std::vector<FoundPose> top;                  // by increasing map energy
   std::vector<std::size_t> process_rotations;  // per process: rotations mapped
   std::vector<double> process_seconds;         // per process: time of its maps
   std::string map_fft;                         // the inverse FFT's name ("clfft", "fftw", "vkfft")
@@ -115,5 +115,9 @@ struct SearchResult {  // on process 0; the other processes return an empty resu
 // (on any process, named), before the maps or at the next point all processes meet.
 SearchResult search(const Scene& scene, const SearchRequest& request, SearchExchange& exchange);
 SearchResult search(const Scene& scene, const SearchRequest& request = {});  // one process
+
+// The names SearchRequest::map_fft takes besides "auto": the inverse FFTs this build has,
+// "clfft" first (always built), then "fftw" and "vkfft" where CMake found them.
+std::vector<std::string> map_ffts_in_this_build();
 
 }  // namespace snapfit
