@@ -54,7 +54,10 @@ void run_tune(const TuneCommandOptions& opt) {
   tune.progress = [bars](std::uint64_t done, std::uint64_t total) { bars("tuning m'", done, total); };
   tune.note = [](const std::string& m) { std::cerr << "snapfit: " << m << "\n"; };
   const TuningResult tuned = auto_tune(assembly, *engine, tune);
-  std::cout << tuning_table(tuned) << "saved to " << tuned.file << "\n";
+  std::cout << tuning_table(tuned)
+            << (tuned.file.empty() ? "not saved: no m' fits the budget (the next run measures again)"
+                                   : "saved to " + tuned.file)
+            << "\n";
   if (!opt.html.empty()) {
     write_chart_page(opt.html, "snapfit tune: " + scene.name,
                      {"Scene " + scene.source_path + ", device " + device.name + ", " + variant_name(variant) +

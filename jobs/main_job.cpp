@@ -12,9 +12,9 @@
 #include "jobs/job_text.h"
 #include "pipeline/assembly_pair.h"
 #include "pipeline/scene_summary.h"
-#include "scheduler/tuning/accuracy.h"
 #include "scheduler/haptics/contact_reserve.h"
 #include "scheduler/haptics/haptic_setup.h"
+#include "scheduler/tuning/accuracy.h"
 #include "scheduler/tuning/loop_devices.h"
 #include "scheduler/tuning/session_text.h"
 #include "snapfit/error.h"
@@ -58,7 +58,8 @@ ComputeContext open_checked_device(const JobRequest& request, const JobOutput& o
        << ", program " << (check.origin == ProgramOrigin::cache_hit ? "from cache" : "compiled") << " in "
        << check.build_ms << " ms)\n";
   out.say(line.str());
-  if (!check.passed) throw Error("device " + device.info.name + " failed its self-check; choose another (JobRequest::device)");
+  if (!check.passed)
+    throw Error("device " + device.info.name + " failed its self-check; choose another (JobRequest::device)");
   record.device = device.info;
   record.check = check;
   return ctx;
@@ -164,8 +165,10 @@ LoopDevices tuned_loop_devices(const ComputeContext& ctx, const AssemblyPair& pa
     if (info.index != ctx.device.info.index) out.say("    also tuning " + describe_device(info) + "\n");
   };
   tune.on_tuned = [&](const TunedDevice& d) {
-    out.say("    " + std::string(d.tuning.from_file ? "from the tuning file " : "measured and saved to ") +
-            d.tuning.path + "\n" + tuning_table(d.tuning.result));
+    const std::string where = d.tuning.from_file ? "from the tuning file " + d.tuning.path
+                              : d.tuning.saved   ? "measured and saved to " + d.tuning.path
+                                                 : std::string("measured, not saved: no m' fits the budget");
+    out.say("    " + where + "\n" + tuning_table(d.tuning.result));
   };
   LoopDevices devices = tune_loop_devices(ctx, scene, pair.spectra, variant, tune);
   record.strategy_chosen_by = "JobRequest::strategy";

@@ -138,7 +138,10 @@ TEST_CASE(
   // Every kernel the main job built (both PoCL drivers, all four strategies) compiled silently.
   CHECK(first.output.find("with compiler messages") == std::string::npos);
   CHECK(first.output.find("warning") == std::string::npos);
-  CHECK(first.output.find("measured and saved to") != std::string::npos);
+  // The first run measures m' (and keeps it, unless the machine is too busy for any m').
+  const bool measured = first.output.find("measured and saved to") != std::string::npos ||
+                        first.output.find("measured, not saved: no m' fits the budget") != std::string::npos;
+  CHECK(measured);
   // Nothing measured yet: the loop starts on the tricubic sum and does not wait for the
   // strategies, which are measured after it.
   CHECK(first.output.find("the loop starts on 6dof energy force torque tricubic") < first.output.find("[7/7]"));

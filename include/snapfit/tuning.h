@@ -37,7 +37,7 @@ struct TuningResult {
   bool fits = false;  // the chosen m' meets the budget with margin
   double budget_ms = 0, margin = 0;
   std::string created;  // UTC date and time of the measurement
-  std::string file;     // the tuning file it was read from or saved to (auto_tune)
+  std::string file;     // the tuning file it was read from or saved to (auto_tune); "" when not kept (nothing fits)
   double target_ms() const { return budget_ms * (1.0 - margin); }
 };
 

@@ -9,10 +9,10 @@
 
 #include "core/quantile.h"
 #include "engine/query/query_engine.h"
-#include "scheduler/tuning/engine_tuning.h"
 #include "scheduler/haptics/haptic_setup.h"
 #include "scheduler/haptics/trajectory.h"
 #include "scheduler/haptics/virtual_coupling.h"
+#include "scheduler/tuning/engine_tuning.h"
 #include "snapfit/error.h"
 
 namespace snapfit {

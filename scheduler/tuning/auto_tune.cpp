@@ -17,7 +17,7 @@ TuningResult auto_tune(const Assembly& assembly, QueryEngine& engine, const Auto
   sweep.repetitions = options.repetitions;
   sweep.progress = options.progress;
   EngineTuning tuned = tune_engine(engine, key, tuning_poses(scene), sweep, options.retune, options.note);
-  tuned.result.file = tuned.path;
+  tuned.result.file = tuned.from_file || tuned.saved ? tuned.path : "";
   return tuned.result;
 }
 

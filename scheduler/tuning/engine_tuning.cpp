@@ -84,6 +84,7 @@ EngineTuning tune_and_keep(const TuningKey& key, const QueryTimer& timer, std::s
   }
   try {
     save_tuning(key, out.result);
+    out.saved = true;
   } catch (const Error& e) {
     if (note) note(std::string("tuning not saved: ") + e.what());
   }

@@ -31,6 +31,7 @@ std::vector<Pose> tuning_poses(const Scene& scene);
 struct EngineTuning {
   TuningResult result;
   bool from_file = false;
+  bool saved = false;  // measured and written to `path` (false when read, or when nothing fits)
   std::string path;
 };
 

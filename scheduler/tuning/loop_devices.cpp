@@ -1,7 +1,7 @@
 #include "scheduler/tuning/loop_devices.h"
 
-#include "engine/runtime/device_check.h"
 #include "engine/query/query_engine.h"
+#include "engine/runtime/device_check.h"
 #include "scheduler/tuning/device_choice.h"
 #include "snapfit/error.h"
 

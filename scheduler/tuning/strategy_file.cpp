@@ -113,7 +113,8 @@ std::optional<AccuracyReport> load_strategy(const std::string& key, const QueryV
 
 void save_strategy(const std::string& key, const AccuracyReport& report) {
   const std::string payload = accuracy_report_to_json(report);
-  write_cache_file(strategy_file_path(key), kStrategyFileKind, kStrategyFileVersion, key, payload.data(), payload.size());
+  write_cache_file(strategy_file_path(key), kStrategyFileKind, kStrategyFileVersion, key, payload.data(),
+                   payload.size());
 }
 
 }  // namespace snapfit

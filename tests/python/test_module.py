@@ -126,9 +126,11 @@ def test_auto_tune_sets_and_saves_m(assembly):
     assert (np.diff(t["modes"]) > 0).all() and (t["p99_ms"] >= t["p50_ms"]).all() and (t["p50_ms"] > 0).all()
     assert 1 <= t["chosen_modes"] <= engine.max_modes and t["budget_ms"] == 1.0
     assert engine.modes == engine.max_modes  # the engine keeps its m', as in C++
-    assert os.path.exists(t["file"])
-    # Again: read from the tuning file, the same choice.
-    assert snapfit.auto_tune(assembly, engine, repetitions=50)["chosen_modes"] == t["chosen_modes"]
+    # Kept only when some m' fits: a tuning in which none does is more likely a busy machine.
+    assert os.path.exists(t["file"]) == bool(t["fits"])
+    if t["fits"]:
+        # Again: read from the tuning file, the same choice.
+        assert snapfit.auto_tune(assembly, engine, repetitions=50)["chosen_modes"] == t["chosen_modes"]
 
 
 def test_run_job_returns_the_loop_as_arrays(tmp_path):
