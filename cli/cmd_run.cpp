@@ -41,10 +41,10 @@ std::filesystem::path report_folder(const RunOptions& opt) {
 }
 
 // Writes the report folder and says where it went.
-void write_report(const RunOptions& opt, JobRecord& record, std::chrono::steady_clock::time_point start) {
+void write_report(const RunOptions& opt, JobResult& result, std::chrono::steady_clock::time_point start) {
   const std::filesystem::path out = report_folder(opt);
   std::cout << "writing the report to " << out.string() << "\n";
-  const RunReportFiles report = write_job_report(out, record, seconds_since(start));
+  const RunReportFiles report = write_job_report(out, result, seconds_since(start));
   std::cout << "done in " << seconds_since(start) << " s: " << (out / report.written.front()).string();
   for (std::size_t i = 1; i < report.written.size(); ++i) std::cout << ", " << report.written[i];
   std::cout << "\n";
@@ -67,8 +67,8 @@ void run_main_job(const RunOptions& opt) {
   request.progress = true;
   request.say = [](const std::string& text) { std::cout << in_cli_terms(text) << std::flush; };
   request.note = [](const std::string& text) { std::cerr << "snapfit: " << in_cli_terms(text) << "\n"; };
-  const JobResult result = run_job(scene, request);
-  write_report(opt, *result.record, start);
+  JobResult result = run_job(scene, request);
+  write_report(opt, result, start);
 }
 
 }  // namespace

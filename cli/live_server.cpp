@@ -162,10 +162,10 @@ void LiveHttpServer::State::routes() {
   post("/record/stop", [this](const httplib::Request&, httplib::Response& res) {
     const std::lock_guard<std::mutex> lock(record_mutex);
     try {
-      const JobResult recorded = session.stop_recording();
+      JobResult recorded = session.stop_recording();
       const std::filesystem::path folder = record_base.string() + "-" + std::to_string(++recordings);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - record_start).count();
-      const RunReportFiles files = write_job_report(folder, *recorded.record, seconds);
+      const RunReportFiles files = write_job_report(folder, recorded, seconds);
       reply(res, 200, {{"folder", folder.string()}, {"files", files.written}, {"warnings", files.warnings}});
     } catch (const std::exception& e) {
       reply(res, 409, {{"error", e.what()}});

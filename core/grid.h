@@ -30,8 +30,4 @@ double common_spacing(const GridParams& params, const std::vector<Eigen::Aligned
 // list's length is a multiple of `lanes`. Throws snapfit::Error for another lane count.
 std::vector<long long> brick_point_order(const GridSpec& grid, int lanes);
 
-// The field `values` (grid.count() floats, grid order) at `p` by trilinear interpolation of
-// the 8 surrounding points; `outside` where p is not inside the grid's box or not finite.
-double sample_trilinear(const GridSpec& grid, const float* values, const Eigen::Vector3d& p, double outside);
-
 }  // namespace snapfit

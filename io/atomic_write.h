@@ -6,6 +6,8 @@
 #include <functional>
 #include <string>
 
+#include "snapfit/export.h"  // write_text_file, the whole file at once
+
 namespace snapfit {
 
 // `body` writes the content to the open temporary and returns "" on success or the
@@ -14,9 +16,6 @@ namespace snapfit {
 // ("<path>.tmp.<pid>.<n>") is unique per call, so concurrent writers of one path in
 // one process do not collide (the last rename wins).
 void write_file_atomically(const std::string& path, const std::function<std::string(std::FILE*)>& body);
-
-// Writes `text` as the whole file, atomically as above.
-void write_text_file(const std::string& path, const std::string& text);
 
 // Adapts a writer that returns false on failure (with errno set) to the form above.
 std::function<std::string(std::FILE*)> errno_status(std::function<bool(std::FILE*)> body);

@@ -1,5 +1,6 @@
 #pragma once
-// Everything the main job (snapfit/job.h) built and measured, for the tool's report.
+// Everything the main job (snapfit/job.h) built and measured, as the job's own steps
+// keep it; job_result (jobs/job_steps.h) gives the public, plain-data JobResult from it.
 #include <memory>
 #include <optional>
 #include <string>
@@ -7,25 +8,12 @@
 #include "engine/runtime/device.h"
 #include "engine/runtime/device_check.h"
 #include "pipeline/assembly_pair.h"
-#include "scheduler/tuning/accuracy.h"
 #include "scheduler/haptics/assembly_session.h"
 #include "scheduler/modes/mode_tuning.h"
+#include "scheduler/tuning/accuracy.h"
+#include "snapfit/job_facts.h"  // VpsFacts
 
 namespace snapfit {
-
-// What a Voxmap PointShell run built (scheduler/vps/vps_method.h).
-struct VpsFacts {
-  double voxel_size = 0, shell_spacing = 0;  // scene units
-  std::size_t surface_voxels = 0, interior_voxels = 0, proximity_voxels = 0, shell_points = 0;
-  double stiffness_n_per_m = 0, braking_n_s_per_m = 0;
-  double build_seconds = 0;
-  // "method": "vps_hybrid": whether it ran as the hybrid, or why it ran as plain VPS.
-  bool hybrid = false;
-  std::string plain_reason;
-  std::size_t faces1 = 0, faces2 = 0;                    // analytic faces of each part
-  std::size_t labelled_voxels = 0, labelled_points = 0;  // on one face (not an edge, not none)
-  double alignment_k_n_per_m = 0;
-};
 
 struct JobRecord {
   std::shared_ptr<const AssemblyPair> pair;  // parts, fields, spectra

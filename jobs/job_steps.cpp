@@ -38,23 +38,45 @@ void run_session_step(const Scene& scene, const JobRequest& request, const JobOu
   out.say(session_text(scene, s));
 }
 
-JobResult job_result(std::shared_ptr<JobRecord> record) {
+JobResult job_result(JobRecord record) {
   JobResult r;
-  r.device = record->device.name;
-  r.loop_device = record->loop_device.name;
-  r.strategy = record->strategy;
-  r.strategy_chosen_by = record->strategy_chosen_by;
-  r.tuning = record->tuning;
-  if (record->session) {
-    const SessionResult& s = *record->session;
-    r.loop = s.loop;
+  const AssemblyPair& pair = *record.pair;
+  r.scene = pair.scene;
+  r.device = record.device.name;
+  r.driver = record.device.driver_version;
+  r.device_check_passed = record.check.passed;
+  r.loop_device = record.loop_device.name;
+  for (int i = 1; i <= 2; ++i) {
+    JobPart& part = i == 1 ? r.part1 : r.part2;
+    part.mesh = std::shared_ptr<const Mesh>(record.pair, &pair.part(i).mesh);
+    part.report = pair.part(i).report;
+    part.cad = pair.part(i).cad;
+    if (!record.vps) part.fields = std::shared_ptr<const PartFieldsResult>(record.pair, &pair.fields(i));
+  }
+  r.plan = pair.plan.lines;
+  r.spacing = pair.grids.spacing;
+  if (!record.vps) r.fft_dims = pair.spectra.dims;
+  r.strategy = record.strategy;
+  r.strategy_label = record.strategy_label;
+  r.strategy_chosen_by = record.strategy_chosen_by;
+  r.strategies = std::move(record.strategies);
+  r.strategy_file = record.strategy_file;
+  r.tuning = record.tuning;
+  r.tuning_key = record.tuning_key;
+  if (record.session) {
+    SessionResult& s = *record.session;
+    SessionFacts& facts = r.session.emplace(s);
+    if (s.contact) facts.rigid_contact = rigid_contact_facts(*s.contact);
+    r.loop = std::move(s.loop);
     r.evaluated = s.evaluated;
     r.assembled = s.assembled;
     r.final_position_error = s.final_error.position;
     r.final_angle_deg = s.final_error.angle_deg;
     r.final_surface_deviation = s.surface_deviation;
   }
-  r.record = std::move(record);
+  r.vps = std::move(record.vps);
+  r.seconds = record.seconds;
+  r.seconds_to_first_frame = record.seconds_to_first_frame;
   return r;
 }
 

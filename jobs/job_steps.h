@@ -43,8 +43,10 @@ struct PreparedJob {
 PreparedJob prepare_job(const Scene& scene, const JobRequest& request, const JobOutput& out,
                         std::shared_ptr<AssemblyPair> pair);
 
-// The public result: the record's summary, and the record itself for the report.
-JobResult job_result(std::shared_ptr<JobRecord> record);
+// The public result, as plain data: the record's summary and everything its report shows.
+// The parts' meshes and fields are shared with the record's pair, not copied; the
+// session's log is moved out of the record.
+JobResult job_result(JobRecord record);
 
 // A scene whose method is "vps" or "vps_hybrid": the Voxmap PointShell peer on the host
 // (scheduler/vps/), through the same loop; `pair` holds the prepared parts.

@@ -5,7 +5,8 @@
 #include <sstream>
 
 #include "core/quantile.h"
-#include "scheduler/tuning/session_text.h"
+#include "snapfit/job_facts.h"
+#include "snapfit/tuning.h"
 
 namespace snapfit {
 

@@ -309,7 +309,7 @@ LiveSession::LiveSession(const Scene& scene_in, const JobRequest& request, const
   s.initial.pose = scene.part2.pose;
   s.device = std::make_unique<LiveDevice>(s.initial, s.session.limits, options.late_s, options.fade_s);
   s.evaluator = wrench_evaluator(*s.job.loop_engine);
-  s.prepared = job_result(s.job.record);
+  s.prepared = job_result(*s.job.record);
   s.latest_frame.part = s.latest_frame.device = s.initial.pose;
 }
 
@@ -429,7 +429,7 @@ JobResult LiveSession::stop_recording() {
     s.finished = LoopReport{};  // never started: nothing was recorded
   }
   if (s.error) std::rethrow_exception(s.error);
-  auto record = std::make_shared<JobRecord>(*s.job.record);
+  JobRecord record = *s.job.record;
   SessionResult session = s.session;
   session.loop = std::move(s.finished);
   s.finished = LoopReport{};
@@ -439,7 +439,7 @@ JobResult LiveSession::stop_recording() {
     job_output(s.request).note("live session: " + std::to_string(dropped) +
                                " frames of the recording were not kept (the recorder fell behind)");
   judge_session_end(session, s.scene, s.job.pair->part(2).mesh);
-  record->session = std::move(session);
+  record.session = std::move(session);
   return job_result(std::move(record));
 }
 

@@ -16,7 +16,8 @@
 #include "scheduler/haptics/haptic_setup.h"
 #include "scheduler/tuning/accuracy.h"
 #include "scheduler/tuning/loop_devices.h"
-#include "scheduler/tuning/session_text.h"
+#include "snapfit/job_facts.h"
+#include "snapfit/tuning.h"
 #include "snapfit/error.h"
 #include "snapfit/job.h"
 
@@ -287,7 +288,7 @@ JobResult run_job(const Scene& scene, const JobRequest& request) {
           << " s after the job started\n";
     out.say(ready.str());
   }
-  return job_result(std::move(job.record));
+  return job_result(std::move(*job.record));
 }
 
 }  // namespace snapfit

@@ -103,7 +103,7 @@ JobResult run_vps_job(std::shared_ptr<AssemblyPair> pair, const JobRequest& requ
                          scene, pair->part(2).mesh, pair->grids.spacing, vps_loop_config(scene, model, coupling),
                          hybrid ? hybrid_evaluator(*hybrid, *hybrid_state) : vps_evaluator(model), session);
                    });
-  return job_result(std::move(record));
+  return job_result(std::move(*record));
 }
 
 }  // namespace snapfit

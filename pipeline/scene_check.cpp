@@ -36,7 +36,7 @@ SceneCheck check_scene(const Scene& scene) {
 PartGeometry part_geometry(const Scene& scene, int part) {
   if (part != 1 && part != 2) throw Error("part must be 1 or 2, not " + std::to_string(part));
   PartMesh built = build_part_mesh(part == 1 ? scene.part1 : scene.part2, scene);
-  return PartGeometry{std::move(built.mesh.vertices), std::move(built.mesh.triangles)};
+  return std::move(built.mesh);
 }
 
 }  // namespace snapfit

@@ -553,7 +553,7 @@ void def_run_job(py::module_& m) {
           const auto start = std::chrono::steady_clock::now();
           j = run_job(scene, r);
           if (!out.empty())
-            files = write_job_report(out, *j.record,
+            files = write_job_report(out, j,
                                      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         }
         py::dict d;

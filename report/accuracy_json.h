@@ -3,7 +3,7 @@
 // `snapfit accuracy` prints and perf/bench_accuracy writes.
 #include <nlohmann/json.hpp>
 
-#include "scheduler/tuning/accuracy.h"
+#include "snapfit/accuracy.h"
 
 namespace snapfit {
 

@@ -5,11 +5,11 @@
 #include <iomanip>
 #include <sstream>
 
-#include "core/quantile.h"
-#include "io/atomic_write.h"
 #include "report/chart_spec.h"
 #include "report/loop_json.h"
+#include "snapfit/export.h"
 #include "snapfit/pose_json.h"
+#include "snapfit/quantile.h"
 
 namespace snapfit {
 namespace {
@@ -76,9 +76,8 @@ nlohmann::json stiffness_json(const RenderedStiffness& k) {
           {"coupling_nm_per_deg", k.coupling_nm_per_deg}};
 }
 
-nlohmann::json write_haptic_report(const std::filesystem::path& out, const SessionResult& run,
+nlohmann::json write_haptic_report(const std::filesystem::path& out, const SessionFacts& run, const LoopReport& loop,
                                    const TuningResult& tuning) {
-  const LoopReport& loop = run.loop;
   write_text_file((out / "loop.csv").string(), loop_csv(loop));
 
   // The engine's per-frame error estimate of the geometric wrench (include/snapfit/query.h).
@@ -89,24 +88,24 @@ nlohmann::json write_haptic_report(const std::filesystem::path& out, const Sessi
     if (v.empty()) return nullptr;
     return {{"p50", quantile(v, 0.5)}, {"p95", quantile(v, 0.95)}, {"max", quantile(v, 1.0)}};
   };
-  const auto& fp = run.loop.final_part.pose;
-  // The rigid contact (scheduler/haptics/rigid_contact.h) and the stiffness the user feels at the fit.
+  const auto& fp = loop.final_part.pose;
+  // The rigid contact and the stiffness the user feels at the fit.
   nlohmann::json contact = nullptr;
   if (!run.contact_off.empty()) contact = {{"off", run.contact_off}};
-  if (run.contact) {
-    const RigidContactModel& m = *run.contact;
+  if (run.rigid_contact) {
+    const RigidContactFacts& m = *run.rigid_contact;
     std::size_t frames_in_contact = 0;
     double deepest = 0;
     for (const FrameRecord& f : loop.log) {
       frames_in_contact += f.contact_depth > 0;
       deepest = std::max(deepest, f.contact_depth);
     }
-    contact = {{"pressure_stiffness_n_per_mm3", m.pressure_stiffness * 1e-9},
-               {"sample_spacing", m.part2_samples.spacing},
-               {"distance_spacing", m.part1_distance.fine_spacing()},
+    contact = {{"pressure_stiffness_n_per_mm3", m.pressure_stiffness_n_per_mm3},
+               {"sample_spacing", m.sample_spacing},
+               {"distance_spacing", m.distance_spacing},
                {"skin", m.skin},
-               {"part1_edge_points", m.part1_samples.points.size()},
-               {"part2_points", m.part2_samples.points.size()},
+               {"part1_edge_points", m.part1_edge_points},
+               {"part2_points", m.part2_points},
                {"build_s", run.contact_build_s},
                {"time_ms_p99", run.contact_ms},
                {"frames_in_contact", frames_in_contact},

@@ -5,17 +5,16 @@
 #include <nlohmann/json.hpp>
 
 #include "report/chart_spec.h"
-#include "scheduler/haptics/assembly_session.h"
-#include "scheduler/modes/mode_tuning.h"
-#include "scheduler/tuning/session_text.h"
+#include "snapfit/job_facts.h"
+#include "snapfit/tuning.h"
 
 namespace snapfit {
 
-// Writes loop.csv into `out`; returns the JSON summary of the run.
-nlohmann::json write_haptic_report(const std::filesystem::path& out, const SessionResult& run,
+// Writes the session's loop.csv into `out`; returns the JSON summary of the run.
+nlohmann::json write_haptic_report(const std::filesystem::path& out, const SessionFacts& run, const LoopReport& loop,
                                    const TuningResult& tuning);
 
-// The rendered stiffness at a pose (scheduler/haptics/rendered_wrench.h) as JSON: N/mm along
+// The rendered stiffness at a pose (include/snapfit/job_facts.h) as JSON: N/mm along
 // and N m/degree about +-x, +-y, +-z, beside the coupling's.
 nlohmann::json stiffness_json(const RenderedStiffness& stiffness);
 

@@ -1,8 +1,7 @@
 #include "report/html_page.h"
 
-#include "core/markup_escape.h"
-#include "io/atomic_write.h"
 #include "report/web_assets.h"
+#include "snapfit/export.h"
 
 namespace snapfit {
 namespace {

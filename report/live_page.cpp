@@ -1,21 +1,20 @@
 #include "report/live_page.h"
 
-#include "jobs/job_record.h"
 #include "report/html_page.h"
 #include "report/run_page.h"
+#include "snapfit/job.h"
 #include "snapfit/pose_json.h"
 
 namespace snapfit {
 
 std::string live_page_html(const JobResult& prepared, const LivePageInfo& info) {
-  const AssemblyPair& pair = *prepared.record->pair;
-  const Scene& scene = pair.scene;
+  const Scene& scene = prepared.scene;
   // The meshes as they are: a live view redraws at the display's rate and colours no
   // contact, so it needs no refinement.
   const nlohmann::json data = {
       {"kind", "live"},
       {"title", "snapfit serve: " + scene.name},
-      {"parts", {part_json(scene.part1.name, pair.part(1).mesh), part_json(scene.part2.name, pair.part(2).mesh)}},
+      {"parts", {part_json(scene.part1.name, *prepared.part1.mesh), part_json(scene.part2.name, *prepared.part2.mesh)}},
       {"start_pose", pose_json<nlohmann::json>(scene.part2.pose)},
       {"units", scene.units},
       {"bridge_port", info.bridge_port},

@@ -1,6 +1,6 @@
 #include "report/loop_json.h"
 
-#include "core/quantile.h"
+#include "snapfit/quantile.h"
 
 namespace snapfit {
 namespace {

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/grid.h"
-#include "mesh/mesh.h"
+#include "snapfit/grid.h"
+#include "snapfit/mesh.h"
 #include "snapfit/pose.h"
 
 namespace snapfit {

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <map>
 
-#include "mesh/triangle_refine.h"
 #include "report/chart_spec.h"
 #include "report/haptic_report.h"
 #include "report/html_page.h"
@@ -13,9 +12,9 @@
 #include "report/page_encoding.h"
 #include "report/part_contact.h"
 #include "report/strategy_chart.h"
-#include "scheduler/tuning/accuracy.h"
-#include "scheduler/haptics/haptic_setup.h"
+#include "snapfit/accuracy.h"
 #include "snapfit/error.h"
+#include "snapfit/mesh.h"
 
 namespace snapfit {
 namespace {
@@ -43,7 +42,7 @@ nlohmann::json rendered_modes_json(const LoopReport& loop) {
 
 // The strategies measured for this scene, one row each, beside their chart: what the
 // strategy card's one line sums up.
-nlohmann::json strategy_table_json(const JobRecord& run) {
+nlohmann::json strategy_table_json(const JobResult& run) {
   if (!run.strategies || run.strategies->strategies.size() < 2) return nullptr;
   nlohmann::json rows = nlohmann::json::array();
   const std::vector<StrategyAccuracy>& all = run.strategies->strategies;
@@ -62,14 +61,14 @@ nlohmann::json strategy_table_json(const JobRecord& run) {
   return rows;
 }
 
-nlohmann::json summary_json(const JobRecord& run) {
-  const Scene& scene = run.pair->scene;
+nlohmann::json summary_json(const JobResult& run) {
+  const Scene& scene = run.scene;
   nlohmann::json s = {{"scene", scene.name},
                       {"scene_file", scene.source_path},
                       {"units", scene.units},
-                      {"device", run.device.name},
-                      {"loop_device", run.loop_device.name},
-                      {"method", method_name(run.pair->scene.method)},
+                      {"device", run.device},
+                      {"loop_device", run.loop_device},
+                      {"method", method_name(scene.method)},
                       {"modes", run.tuning.chosen_modes},
                       {"modes_source", run.vps                  ? "none: Voxmap PointShell"
                                        : run.tuning_key.empty() ? "fixed by --modes"
@@ -89,8 +88,8 @@ nlohmann::json summary_json(const JobRecord& run) {
                            {"label", run.strategy_label},
                            {"chosen_by", run.strategy_chosen_by},
                            {"why", run.strategies ? nlohmann::json(run.strategies->why) : nlohmann::json(nullptr)}};
-  if (run.session) {
-    const LoopReport& loop = run.session->loop;
+  if (run.session && run.loop) {
+    const LoopReport& loop = *run.loop;
     s["frames"] = loop.frames;
     s["misses"] = loop.misses;
     s["miss_rate"] = loop.miss_rate();
@@ -111,8 +110,8 @@ nlohmann::json summary_json(const JobRecord& run) {
 
 // Playback: part 2's pose, the wrench sent to the device, energy and m' at evenly spaced
 // frames; inside-flags of both parts' triangles at as many of them as contact_bits allows.
-nlohmann::json playback_json(const JobRecord& run, const std::vector<Mesh>& shown, const RunPageLimits& limits) {
-  const LoopReport& loop = run.session->loop;
+nlohmann::json playback_json(const JobResult& run, const std::vector<Mesh>& shown, const RunPageLimits& limits) {
+  const LoopReport& loop = *run.loop;
   const std::vector<std::size_t> frames =
       evenly_spaced_frames(loop.log.size(), std::max<std::size_t>(2, limits.playback_frames));
   std::vector<double> time, position, quaternion, force, torque, energy, modes;
@@ -134,14 +133,18 @@ nlohmann::json playback_json(const JobRecord& run, const std::vector<Mesh>& show
   }
 
   // Contact at a subset of the playback frames, evenly spaced among them.
-  const AssemblyPair& pair = *run.pair;
   const std::vector<Eigen::Vector3d> centroids[2] = {triangle_centroids(shown[0]), triangle_centroids(shown[1])};
-  const PartVolume volumes[2] = {{&pair.grid(1), &pair.fields(1).fields.winding},
-                                 {&pair.grid(2), &pair.fields(2).fields.winding}};
+  const bool have_fields = run.part1.fields && run.part2.fields && !run.part1.fields->fields.winding.empty() &&
+                           !run.part2.fields->fields.winding.empty();
+  PartVolume volumes[2];
+  if (have_fields)
+    for (int i = 0; i < 2; ++i) {
+      const DescriptorFields& f = run.part(i + 1).fields->fields;
+      volumes[i] = {&f.grid, &f.winding};
+    }
   const std::size_t bits_a_frame = std::max<std::size_t>(1, centroids[0].size() + centroids[1].size());
   const std::size_t contact_frames = std::min(frames.size(), limits.contact_bits / bits_a_frame);
   nlohmann::json contact = nullptr;
-  const bool have_fields = !pair.fields(1).fields.winding.empty() && !pair.fields(2).fields.winding.empty();
   if (contact_frames >= 1 && have_fields) {
     std::vector<std::size_t> picked;
     std::vector<unsigned char> bytes[2];
@@ -185,10 +188,10 @@ Chart time_chart(const std::string& title, const std::string& y_label, const Env
 }
 
 // The loop's time series, every frame or min/max envelopes of buckets of frames.
-nlohmann::json timeline_json(const JobRecord& run, const RunPageLimits& limits) {
-  const Scene& scene = run.pair->scene;
-  const SessionResult& session = *run.session;
-  const LoopReport& loop = session.loop;
+nlohmann::json timeline_json(const JobResult& run, const RunPageLimits& limits) {
+  const Scene& scene = run.scene;
+  const SessionFacts& session = *run.session;
+  const LoopReport& loop = *run.loop;
   enum { energy, geo_force, sent_force, geo_torque, sent_torque, position_error, angle_error, modes, frame_ms, count };
   std::vector<double> time;
   std::vector<std::vector<double>> v(count);
@@ -270,19 +273,18 @@ Mesh display_mesh(const Mesh& mesh, double spacing, std::size_t max_triangles) {
   return mesh;
 }
 
-nlohmann::json run_page_data(const JobRecord& run, const std::vector<PageFigure>& figures,
+nlohmann::json run_page_data(const JobResult& run, const std::vector<PageFigure>& figures,
                              const RunPageLimits& limits) {
-  const AssemblyPair& pair = *run.pair;
-  const Scene& scene = pair.scene;
-  const std::vector<Mesh> shown = {display_mesh(pair.part(1).mesh, pair.grids.spacing, limits.display_triangles),
-                                   display_mesh(pair.part(2).mesh, pair.grids.spacing, limits.display_triangles)};
+  const Scene& scene = run.scene;
+  const std::vector<Mesh> shown = {display_mesh(*run.part1.mesh, run.spacing, limits.display_triangles),
+                                   display_mesh(*run.part2.mesh, run.spacing, limits.display_triangles)};
   nlohmann::json slices = nlohmann::json::array();
   for (const PageFigure& f : figures)
     slices.push_back({{"caption", f.caption}, {"png", base64_encode(f.png.data(), f.png.size())}});
   std::vector<std::string> notes = {
       "Red triangles: their centre lies inside the other part at that moment, by the other part's winding-number "
       "field on its grid (spacing " +
-      short_number(pair.grids.spacing) + " " + scene.units +
+      short_number(run.spacing) + " " + scene.units +
       ", trilinear, above 1/2), so within about one spacing of a surface the colouring may go either way."};
   nlohmann::json data = {
       {"kind", "run"},
@@ -293,17 +295,17 @@ nlohmann::json run_page_data(const JobRecord& run, const std::vector<PageFigure>
       {"playback", nullptr},
       {"timeline", nullptr},
       {"tuning_chart",
-       run.tuning_key.empty() ? nlohmann::json(nullptr) : chart_json(tuning_chart(run.tuning, run.loop_device.name))},
+       run.tuning_key.empty() ? nlohmann::json(nullptr) : chart_json(tuning_chart(run.tuning, run.loop_device))},
       {"strategy_chart", run.strategies && run.strategies->strategies.size() > 1
                              ? chart_json(strategy_chart(run.strategies->strategies, scene.frame_budget_ms))
                              : nlohmann::json(nullptr)},
       {"strategy_table", strategy_table_json(run)},
       {"slices", slices},
       {"notes", notes}};
-  if (run.session && !run.session->loop.log.empty()) {
+  if (run.session && run.loop && !run.loop->log.empty()) {
     data["playback"] = playback_json(run, shown, limits);
     data["timeline"] = timeline_json(run, limits);
-    const LoopReport& loop = run.session->loop;
+    const LoopReport& loop = *run.loop;
     if (!loop.frame_ms.empty()) {
       Chart hist = histogram_chart("Frame time, " + std::to_string(loop.frames) + " frames at " +
                                        std::to_string(static_cast<int>(loop.rate_hz)) + " Hz",
@@ -314,7 +316,7 @@ nlohmann::json run_page_data(const JobRecord& run, const std::vector<PageFigure>
   return data;
 }
 
-void write_run_page(const std::string& path, const JobRecord& run, const std::vector<PageFigure>& figures,
+void write_run_page(const std::string& path, const JobResult& run, const std::vector<PageFigure>& figures,
                     const RunPageLimits& limits) {
   const nlohmann::json data = run_page_data(run, figures, limits);
   write_html_page(path, "run_report", data["title"].get<std::string>(), data);

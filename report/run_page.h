@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "mesh/mesh.h"
-#include "jobs/job_record.h"
+#include "snapfit/job.h"
+#include "snapfit/mesh.h"
 #include "snapfit/pose_json.h"
 
 namespace snapfit {
@@ -39,11 +39,11 @@ Mesh display_mesh(const Mesh& mesh, double spacing, std::size_t max_triangles);
 nlohmann::json part_json(const std::string& name, const Mesh& mesh);
 
 // The page's data block (report/web/src/run_report.js reads it).
-nlohmann::json run_page_data(const JobRecord& run, const std::vector<PageFigure>& figures,
+nlohmann::json run_page_data(const JobResult& run, const std::vector<PageFigure>& figures,
                              const RunPageLimits& limits = {});
 
 // Writes report.html to `path`. Throws snapfit::Error when this build has no web report.
-void write_run_page(const std::string& path, const JobRecord& run, const std::vector<PageFigure>& figures,
+void write_run_page(const std::string& path, const JobResult& run, const std::vector<PageFigure>& figures,
                     const RunPageLimits& limits = {});
 
 }  // namespace snapfit

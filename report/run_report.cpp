@@ -4,16 +4,15 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "io/atomic_write.h"
-#include "io/mesh_export.h"
-#include "mesh/mesh_report.h"
-#include "mesh/mesh_slice.h"
 #include "report/accuracy_json.h"
 #include "report/haptic_report.h"
 #include "report/run_page.h"
 #include "report/slice_figure.h"
 #include "report/web_assets.h"
-#include "scheduler/modes/tuning_file.h"
+#include "snapfit/export.h"
+#include "snapfit/inspect.h"
+#include "snapfit/mesh.h"
+#include "snapfit/tuning.h"
 
 namespace snapfit {
 namespace {
@@ -57,7 +56,7 @@ nlohmann::json write_affinity_figure(const std::filesystem::path& out, const Sce
 }
 
 // A part's mesh report, with what the CAD import did for a STEP or IGES part.
-nlohmann::json part_json(const PreparedPart& part) {
+nlohmann::json part_json(const JobPart& part) {
   nlohmann::json j = nlohmann::json::parse(mesh_report_json(part.report));
   if (part.cad) j["cad"] = nlohmann::json::parse(cad_facts_json(*part.cad));
   return j;
@@ -65,21 +64,21 @@ nlohmann::json part_json(const PreparedPart& part) {
 
 }  // namespace
 
-std::vector<std::string> write_run_report(const std::filesystem::path& out, const JobRecord& run) {
-  const AssemblyPair& pair = *run.pair;
-  const Scene& scene = pair.scene;
+std::vector<std::string> write_run_report(const std::filesystem::path& out, const JobResult& run) {
+  const Scene& scene = run.scene;
   std::filesystem::create_directories(out);
   std::vector<std::string> written{"summary.json"};
   for (int part = 1; part <= 2; ++part) {
     const std::string stl = "part" + std::to_string(part) + ".stl";
-    write_stl(pair.part(part).mesh, (out / stl).string());
+    write_stl(*run.part(part).mesh, (out / stl).string());
     written.push_back(stl);
   }
   std::vector<PageFigure> figures;
   nlohmann::json fields = nlohmann::json::array();
-  for (int part = 1; part <= 2 && !run.vps; ++part)
-    fields.push_back(
-        write_affinity_figure(out, scene, part, pair.part(part).mesh, pair.fields(part), figures, written));
+  for (int part = 1; part <= 2; ++part)
+    if (run.part(part).fields)
+      fields.push_back(
+          write_affinity_figure(out, scene, part, *run.part(part).mesh, *run.part(part).fields, figures, written));
 
   nlohmann::json tuning = nullptr;
   if (!run.vps) {
@@ -111,12 +110,12 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
            {"stiffness_n_per_m", v.stiffness_n_per_m},
            {"braking_n_s_per_m", v.braking_n_s_per_m},
            {"build_seconds", v.build_seconds}};
-    if (run.pair->scene.method == Method::vps_hybrid) {
+    if (scene.method == Method::vps_hybrid) {
       // Frames with each constraint engaged (weight > 0) and the largest weight reached.
       std::size_t concentric = 0, planar = 0;
       double max_x = 0;
-      if (run.session)
-        for (const FrameRecord& f : run.session->loop.log) {
+      if (run.loop)
+        for (const FrameRecord& f : run.loop->log) {
           if (f.constraint == 1) ++concentric;
           if (f.constraint == 2) ++planar;
           max_x = std::max(max_x, f.constraint_weight);
@@ -134,8 +133,8 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
     }
   }
   nlohmann::json loop = nullptr;
-  if (run.session) {
-    loop = write_haptic_report(out, *run.session, run.tuning);
+  if (run.session && run.loop) {
+    loop = write_haptic_report(out, *run.session, *run.loop, run.tuning);
     written.push_back("loop.csv");
   }
   nlohmann::json report_html = nullptr;
@@ -149,17 +148,17 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
       {"scene", scene.name},
       {"scene_file", scene.source_path},
       {"units", scene.units},
-      {"method", method_name(run.pair->scene.method)},
+      {"method", method_name(scene.method)},
       {"vps", vps},
-      {"device", run.device.name},
-      {"driver", run.device.driver_version},
-      {"loop_device", run.loop_device.name},
-      {"device_check_passed", run.check.passed},
-      {"part1", part_json(pair.parts.part1)},
-      {"part2", part_json(pair.parts.part2)},
-      {"plan", pair.plan.lines},
-      {"spacing", pair.grids.spacing},
-      {"fft_dims", run.vps ? nlohmann::json(nullptr) : nlohmann::json(pair.spectra.dims)},
+      {"device", run.device},
+      {"driver", run.driver},
+      {"loop_device", run.loop_device},
+      {"device_check_passed", run.device_check_passed},
+      {"part1", part_json(run.part1)},
+      {"part2", part_json(run.part2)},
+      {"plan", run.plan},
+      {"spacing", run.spacing},
+      {"fft_dims", run.vps ? nlohmann::json(nullptr) : nlohmann::json(run.fft_dims)},
       {"fields", fields},
       {"query_strategy", strategy},
       {"tuning", tuning},
@@ -172,7 +171,7 @@ std::vector<std::string> write_run_report(const std::filesystem::path& out, cons
   return written;
 }
 
-RunReportFiles write_job_report(const std::filesystem::path& out, JobRecord& run, double seconds) {
+RunReportFiles write_job_report(const std::filesystem::path& out, JobResult& run, double seconds) {
   run.seconds = seconds;
   RunReportFiles files;
   files.written = write_run_report(out, run);

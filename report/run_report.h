@@ -7,14 +7,14 @@
 #include <string>
 #include <vector>
 
-#include "jobs/job_record.h"
+#include "snapfit/job.h"
 
 namespace snapfit {
 
 // Writes every file into `out` (created); returns their names, summary.json first.
 // report.html is left out, and summary.json says so, when this build has no web report
 // (report/web_assets.h). Throws snapfit::Error naming the file that cannot be written.
-std::vector<std::string> write_run_report(const std::filesystem::path& out, const JobRecord& run);
+std::vector<std::string> write_run_report(const std::filesystem::path& out, const JobResult& run);
 
 struct RunReportFiles {
   std::vector<std::string> written;   // summary.json first
@@ -22,6 +22,6 @@ struct RunReportFiles {
 };
 
 // write_run_report for a job that has taken `seconds` so far, with what the folder lacks.
-RunReportFiles write_job_report(const std::filesystem::path& out, JobRecord& run, double seconds);
+RunReportFiles write_job_report(const std::filesystem::path& out, JobResult& run, double seconds);
 
 }  // namespace snapfit

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <sstream>
 
-#include "io/atomic_write.h"
 #include "report/chart_spec.h"
+#include "snapfit/export.h"
 #include "snapfit/pose_json.h"
 
 namespace snapfit {

@@ -1,16 +1,16 @@
 #pragma once
 // A field slice as a figure that explains itself (drawn with cairo): the colour-mapped
-// slice (io/png_export.h render_slice, one block of pixels a grid point), axes in scene
-// units with ticks, the part's outline in that plane (mesh/mesh_slice.h) drawn over it,
+// slice (include/snapfit/slice_image.h render_slice, one block of pixels a grid point), axes in scene
+// units with ticks, the part's outline in that plane (mesh_slice_outline) drawn over it,
 // a colour bar with its values (and "magenta: NaN" under it when the slice has NaN), and a
 // title. `snapfit fields --png`, `snapfit map --png` and report.html use it.
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "core/grid.h"
-#include "io/png_export.h"
-#include "mesh/mesh_slice.h"
+#include "snapfit/grid.h"
+#include "snapfit/mesh.h"
+#include "snapfit/slice_image.h"
 
 namespace snapfit {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "scheduler/tuning/accuracy.h"
+#include "snapfit/accuracy.h"
 
 namespace snapfit {
 

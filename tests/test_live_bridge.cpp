@@ -200,7 +200,8 @@ TEST_CASE("live session: a recording becomes a job result with the recorded fram
   REQUIRE(recorded.loop);
   CHECK(recorded.loop->frames > 100);
   CHECK(recorded.loop->log.size() == recorded.loop->frames);
-  CHECK(recorded.record->session->loop.frames == recorded.loop->frames);
+  REQUIRE(recorded.session);
+  REQUIRE(recorded.part2.mesh);
   // The device 5 mm off: the part follows; a reset puts both back.
   BodyState moved;
   moved.pose = scene.part2.pose;
@@ -217,14 +218,13 @@ TEST_CASE("live session: a recording becomes a job result with the recorded fram
   const LiveStatus end = session.stop();
   // The verdict, with part 2 back near its start ~30 mm above the fit: its surface is
   // measured afresh at the final pose, with the judge `snapfit run` uses.
-  const AssemblyJudge judge(recorded.record->pair->part(2).mesh, *scene.assembled_pose,
-                            recorded.record->session->position_tolerance,
-                            recorded.record->session->angle_tolerance_deg);
+  const AssemblyJudge judge(*recorded.part2.mesh, *scene.assembled_pose, recorded.session->position_tolerance,
+                            recorded.session->angle_tolerance_deg);
   CHECK(end.evaluated);
   CHECK(!end.assembled);
   CHECK(end.surface_deviation > 20);
   CHECK(end.surface_deviation == doctest::Approx(judge.surface(end.part).distance).epsilon(1e-12));
-  CHECK(recorded.final_surface_deviation == recorded.record->session->surface_deviation);
+  CHECK(recorded.final_surface_deviation == recorded.session->surface_deviation);
   CHECK(recorded.final_surface_deviation > 20);
 
   Scene vps = scene;

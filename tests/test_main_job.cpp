@@ -3,9 +3,10 @@
 // errors.
 #include <doctest/doctest.h>
 
-#include "jobs/job_record.h"
 #include "snapfit/assembly.h"
 #include "snapfit/error.h"
+#include "snapfit/fields.h"
+#include "snapfit/inspect.h"
 #include "snapfit/job.h"
 #include "tests/test_support.h"
 
@@ -40,15 +41,39 @@ TEST_CASE("main job: the default scene at a fixed m' on simulated time ends asse
   CHECK(r.loop->frames == std::size_t(std::llround(seconds * scene.loop_rate_hz)));
   CHECK(r.evaluated);
   CHECK(r.assembled);
-  // The record holds what the report reads: the same session, and the pair's spectra on
-  // the grid an Assembly of the same scene builds.
-  REQUIRE(r.record);
-  REQUIRE(r.record->session);
-  CHECK(r.record->session->loop.frames == r.loop->frames);
-  CHECK(r.final_position_error <= r.record->session->position_tolerance);
+  // The result holds, as public data, what the report draws: the session's end, the parts'
+  // meshes as part_geometry builds them, their fields as scene_part_fields gives them, and
+  // the spectra's grid an Assembly of the same scene builds.
+  REQUIRE(r.session);
+  CHECK(r.final_position_error == r.session->final_error.position);
+  CHECK(r.final_position_error <= r.session->position_tolerance);
+  CHECK(session_verdict(*r.session) == "assembled");
+  REQUIRE(r.session->rigid_contact);  // the default scene renders the rigid contact
+  CHECK(r.session->rigid_contact->part2_points > 0);
+  CHECK(r.session->rigid_contact->pressure_stiffness_n_per_mm3 > 0);
+  CHECK(r.scene.name == scene.name);
+  CHECK_FALSE(r.plan.empty());
+  for (int part : {1, 2}) {
+    CAPTURE(part);
+    const JobPart& p = r.part(part);
+    REQUIRE(p.mesh);
+    const PartGeometry built = part_geometry(scene, part);
+    CHECK(p.mesh->vertices == built.vertices);
+    CHECK(p.mesh->triangles == built.triangles);
+    CHECK(p.report.triangle_count == built.triangles.size());
+    REQUIRE(p.fields);
+    PartFieldsRequest fields_request;
+    fields_request.part = part;
+    const ScenePartFields fields = scene_part_fields(scene, fields_request);
+    CHECK(p.fields->fields.grid.dims == fields.grid.dims);
+    CHECK(p.fields->fields.grid.spacing == doctest::Approx(r.spacing));
+    CHECK(p.fields->fields.winding == fields.result.fields.winding);
+    CHECK(p.fields->fields.skeletal_density == fields.result.fields.skeletal_density);
+  }
   const Assembly assembly(scene);
-  CHECK(r.record->pair->spectra.dims == assembly.fft_dims());
+  CHECK(r.fft_dims == assembly.fft_dims());
   CHECK(r.device == assembly.device_name());
+  CHECK(r.device_check_passed);
 }
 
 TEST_CASE("main job: a vps scene runs on the host with the voxmap's facts") {
@@ -59,9 +84,12 @@ TEST_CASE("main job: a vps scene runs on the host with the voxmap's facts") {
   const JobResult r = run_job(scene, request);
   CHECK(r.device == "host");
   CHECK(r.loop_device == "host");
-  REQUIRE(r.record->vps);
-  CHECK(r.record->vps->shell_points > 0);
-  CHECK(r.record->vps->surface_voxels > 0);
+  REQUIRE(r.vps);
+  CHECK(r.vps->shell_points > 0);
+  CHECK(r.vps->surface_voxels > 0);
+  CHECK_FALSE(r.part1.fields);  // no fields for the VPS peer, but its meshes
+  REQUIRE(r.part2.mesh);
+  CHECK(r.part2.mesh->triangles == part_geometry(scene, 2).triangles);
   REQUIRE(r.loop);
   CHECK(r.loop->frames > 0);
 }

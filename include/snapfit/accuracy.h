@@ -49,6 +49,10 @@ struct StrategyAccuracy {
   std::vector<TurningAccuracy> turning;  // exact_product with background updates, when asked for
 };
 
+// A strategy's name for people, short: "tricubic", "trilinear", "exact product",
+// "exact product, near-far", "translation lines".
+std::string strategy_short_name(const QueryVariant& variant);
+
 struct AccuracyReport {
   std::size_t poses = 0;
   std::size_t reference_modes = 0;

@@ -1,12 +1,14 @@
 #pragma once
-// Files for ParaView and VisIt: grid fields as VTK XML ImageData (.vti) and point sets as
-// VTK XML PolyData (.vtp). Both are written to "<path>.tmp.<pid>" and renamed onto
-// `path`, so readers never see half a file; the parent folder must exist.
+// Files snapfit writes: grid fields as VTK XML ImageData (.vti) and point sets as VTK XML
+// PolyData (.vtp) for ParaView and VisIt, meshes as STL and OBJ, and any text. Each is
+// written to a temporary beside `path` and renamed onto it, so readers never see half a
+// file; the parent folder must exist.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
 #include "snapfit/grid.h"
+#include "snapfit/mesh.h"
 
 namespace snapfit {
 
@@ -42,5 +44,22 @@ struct PointPiece {
 // scalars whose count differs from the points', pieces whose scalar names differ, and
 // for I/O failures.
 void write_points_vtp(const std::string& path, const std::vector<PointPiece>& pieces);
+
+// Binary STL: 80-byte header, uint32 triangle count, then per triangle the unit normal
+// and three vertices as float32 and a uint16 attribute (0), little-endian.
+// Coordinates are rounded to float32. Throws snapfit::Error naming `path` and the reason
+// (bad index, non-finite vertex, unwritable folder, ...); no file is left behind then.
+void write_stl(const Mesh& mesh, const std::string& path);
+
+// ASCII OBJ: "v x y z" (17 significant digits, exact round trip) and "f i j k" (1-based).
+void write_obj(const Mesh& mesh, const std::string& path);
+
+// Writes `text` as the whole file, through a temporary renamed onto `path`. Throws
+// snapfit::Error "<path>: cannot write file: <reason>"; no file is left behind then.
+void write_text_file(const std::string& path, const std::string& text);
+
+// Text inside XML or HTML (element content and quoted attribute values): & < > " ' as
+// &amp; &lt; &gt; &quot; &apos;, everything else as it is.
+std::string escape_markup(const std::string& text);
 
 }  // namespace snapfit

@@ -33,4 +33,8 @@ struct GridSpec {
 // spans z in [0, 10]") or the axis is not 'x', 'y' or 'z'.
 int slice_index_for(const GridSpec& grid, char axis, double coordinate);
 
+// The field `values` (grid.count() floats, grid order) at `p` by trilinear interpolation of
+// the 8 surrounding points; `outside` where p is not inside the grid's box or not finite.
+double sample_trilinear(const GridSpec& grid, const float* values, const Eigen::Vector3d& p, double outside);
+
 }  // namespace snapfit

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "snapfit/mesh.h"
 #include "snapfit/scene.h"
 
 namespace snapfit {
@@ -108,10 +109,7 @@ SceneCheck check_scene(const Scene& scene);
 
 // A scene part's triangle mesh as the engine builds it (loaded, tessellated from STEP or
 // IGES, or generated), in the part's own frame, scene units.
-struct PartGeometry {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<Eigen::Vector3i> triangles;  // indices into vertices, counter-clockwise seen from outside
-};
+using PartGeometry = Mesh;
 
 // Part 1 or 2 of the scene. Throws snapfit::Error naming the part when its mesh cannot be
 // made, or when `part` is not 1 or 2.

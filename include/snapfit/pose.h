@@ -27,4 +27,16 @@ struct Pose {
   bool is_finite() const { return rotation.coeffs().allFinite() && translation.allFinite(); }
 };
 
+// How far a pose is from a target: the distance between their translations and the angle
+// of the rotation between them.
+struct PoseError {
+  double position = 0;  // scene units
+  double angle_deg = 0;
+  bool within(double position_tolerance, double angle_tolerance_deg) const {
+    return position <= position_tolerance && angle_deg <= angle_tolerance_deg;
+  }
+};
+
+PoseError pose_error(const Pose& actual, const Pose& target);
+
 }  // namespace snapfit

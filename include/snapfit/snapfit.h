@@ -12,15 +12,20 @@
 //   maps.h           the energy for every translation at one rotation
 //   collision.h      the collision verdict on the truncated sum (indicator scenes)
 //   spheres.h        a part's spherical decomposition and its error
-//   grid.h, export.h sample grids; .vti and .vtp files for ParaView
+//   grid.h, export.h sample grids; .vti and .vtp files for ParaView, STL and OBJ, any text file
+//   mesh.h           triangle meshes, their refinement and their cut by an axis plane
+//   slice_image.h    a grid field's slice as a colour-mapped PNG
 //   progress.h       progress bars on stderr
 //   haptic_device.h  what a haptic device implements (read pose, send wrench, limits)
 //   haptic_loop.h    the fixed-rate loop with virtual coupling, on its own thread
 //   job.h            the main job in one call: parts, device, fields, spectra, m', scripted session
+//   job_facts.h      what a job built and measured, as plain data (its report is drawn from it)
 //   search.h         where part 2 fits part 1 over all rotations (one FFT map each), shared among processes
 //   live.h           a live session: the loop until stopped, driven from another thread (a mouse, a device)
 //   bridge.h         the device bridge: its UDP datagrams, and the session's end of it
-//   pose.h, error.h  rigid poses; the one exception type
+//   pose.h, error.h  rigid poses and their errors; the one exception type
+//   pose_json.h      a pose in the scene files' JSON shape
+//   quantile.h       order statistics of timing samples
 //
 // The papers the comments cite:
 //   Behandish & Ilies 2016  M. Behandish, H. T. Ilies, "Haptic assembly using skeletal
@@ -43,12 +48,17 @@
 #include "snapfit/haptic_loop.h"
 #include "snapfit/inspect.h"
 #include "snapfit/job.h"
+#include "snapfit/job_facts.h"
 #include "snapfit/live.h"
 #include "snapfit/maps.h"
+#include "snapfit/mesh.h"
 #include "snapfit/pose.h"
+#include "snapfit/pose_json.h"
 #include "snapfit/progress.h"
+#include "snapfit/quantile.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
 #include "snapfit/search.h"
+#include "snapfit/slice_image.h"
 #include "snapfit/spheres.h"
 #include "snapfit/tuning.h"

@@ -41,6 +41,13 @@ struct TuningResult {
   double target_ms() const { return budget_ms * (1.0 - margin); }
 };
 
+// The result as the JSON text the tuning file keeps (points, model, chosen m', budget).
+std::string tuning_to_json(const TuningResult& result);
+
+// The tuning table, as `snapfit tune` and `snapfit run` print it: one line per m' level,
+// then the target and the chosen m'.
+std::string tuning_table(const TuningResult& tuning);
+
 struct AutoTuneOptions {
   double margin = 0.25;           // keep p99 at most (1 - margin) of the frame budget
   bool retune = false;            // measure even when the tuning file matches

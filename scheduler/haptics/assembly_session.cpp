@@ -97,7 +97,9 @@ SessionResult run_scripted_session(const Scene& scene, const Mesh& part2_mesh, d
   part.pose = device.read(0).pose;  // the part starts in the user's hand
   const bool raise =
       (options.priority.nice_value != 0 || options.priority.realtime_priority > 0) && !options.simulated_time;
-  if (raise) out.priority = raise_process_priority(loop_priority(options.priority, options.wait));
+  PriorityChange priority;
+  if (raise) priority = raise_process_priority(loop_priority(options.priority, options.wait));
+  out.priority = priority;
   out.wait = options.wait;
   {
     // Warm-up at the loop's m' and the first pose, as a haptics program does before it
@@ -109,7 +111,7 @@ SessionResult run_scripted_session(const Scene& scene, const Mesh& part2_mesh, d
                           options.simulated_time ? simulated_loop_clock() : steady_loop_clock(options.wait));
     out.loop = loop.join();
   }
-  if (raise) restore_process_priority(out.priority);
+  if (raise) restore_process_priority(priority);
   judge_session_end(out, scene, part2_mesh);
   return out;
 }

@@ -7,11 +7,12 @@
 
 #include "mesh/mesh.h"
 #include "scheduler/haptics/haptic_setup.h"
-#include "scheduler/modes/mode_tuning.h"
 #include "scheduler/haptics/rendered_wrench.h"
 #include "scheduler/haptics/rigid_contact.h"
 #include "scheduler/haptics/thread_priority.h"
+#include "scheduler/modes/mode_tuning.h"
 #include "snapfit/haptic_loop.h"
+#include "snapfit/job_facts.h"
 #include "snapfit/query.h"
 #include "snapfit/scene.h"
 
@@ -34,41 +35,13 @@ struct SessionOptions {
   std::optional<double> contact_ms;
 };
 
-struct SessionResult {
+// The session's facts (include/snapfit/job_facts.h), its loop's log, and what the engine's
+// side keeps: the device's limits, the rigid contact it rendered.
+struct SessionResult : SessionFacts {
   LoopReport loop;
-  CouplingParams coupling;
   DeviceLimits limits;
-  double geometry_gain = 0;
-  double max_force_rate_n_per_s = 0;  // the loop's bound on the sent force's rate (0: none)
-  double force_scale = 0;             // largest engine force at the gain's probe poses
-  Pose target;                        // the assembled pose (else the last keyframe)
-  PoseError final_error;
-  // The final position error split along the insertion (the trajectory's last segment,
-  // pointing into the fit) and across it, scene units: axial > 0 is past the target
-  // (deeper than the fit), < 0 short of it.
-  Eigen::Vector3d insertion_direction = Eigen::Vector3d::UnitZ();
-  double axial_error = 0, lateral_error = 0;
-  Eigen::Vector3d final_force = Eigen::Vector3d::Zero();  // sent to the device in the last frame, N
-  // How far part 2's surface at the final pose lies from its surface at the target (the
-  // two-sided Hausdorff distance, scene units; 0 for a round peg turned about its axis),
-  // and the sample farthest off, in part 2's own frame.
-  double surface_deviation = 0;
-  Eigen::Vector3d surface_deviation_at = Eigen::Vector3d::Zero();
-  double position_tolerance = 0;  // scene units
-  double angle_tolerance_deg = 0;
-  bool evaluated = false;  // the scene has an assembled pose to judge the end against
-  // evaluated, and final_error within both tolerances or surface_deviation within the
-  // position tolerance
-  bool assembled = false;
-  PriorityChange priority;                           // what raising the threads' priority did
   std::shared_ptr<const RigidContactModel> contact;  // null: the loop rendered no rigid contact
-  double contact_build_s = 0;
-  double setup_s = 0;           // from the call to the loop's first frame (contact, coupling, gain)
-  std::string contact_off;      // why the scene's rigid contact is off (a part not watertight); empty otherwise
-  double contact_ms = 0;        // its measured time per frame, reserved from the budget (LoopConfig::contact_ms)
-  std::size_t start_modes = 0;  // the m' the loop started at: the tuned m' less the contact's share
-  std::optional<RenderedStiffness> fit_stiffness;  // at the assembled pose, when the scene has one
-  LoopWait wait = LoopWait::spin;
+  double setup_s = 0;  // from the call to the loop's first frame (contact, coupling, gain)
 };
 
 // The direction part 2 moves in at the end of `trajectory` (its last segment that moves),

@@ -73,14 +73,4 @@ LoopConfig loop_config_for(const Scene& scene, const Mesh& part2_mesh, double sp
 // LoopConfig::in_region for a region (pipeline/reach_region.h); null when it is not bounded.
 std::function<bool(const Pose&)> region_guard(const ReachRegion& region);
 
-struct PoseError {
-  double position = 0;  // scene units
-  double angle_deg = 0;
-  bool within(double position_tolerance, double angle_tolerance_deg) const {
-    return position <= position_tolerance && angle_deg <= angle_tolerance_deg;
-  }
-};
-
-PoseError pose_error(const Pose& actual, const Pose& target);
-
 }  // namespace snapfit

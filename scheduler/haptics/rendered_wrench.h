@@ -8,19 +8,10 @@
 #include <functional>
 
 #include "snapfit/haptic_loop.h"
+#include "snapfit/job_facts.h"  // RenderedStiffness
 #include "snapfit/pose.h"
 
 namespace snapfit {
-
-struct RenderedStiffness {
-  double step_mm = 0.1;    // the translation the force is compared over
-  double tilt_deg = 0.2;   // the rotation the torque is compared over
-  // Along +x, -x, +y, -y, +z, -z: how much harder the rendered force pushes back when
-  // part 2 moves that way (N / mm), and the torque when it turns about that axis (N m / degree).
-  std::array<double, 6> force_n_per_mm{};
-  std::array<double, 6> torque_nm_per_deg{};
-  double coupling_n_per_mm = 0, coupling_nm_per_deg = 0;
-};
 
 // The rendered wrench (N, N m) and potential (J) at `pose`: gain * E * metres_per_unit
 // plus the contact's; `flags` are the engine's.

@@ -157,6 +157,17 @@ void finish_contact(const RigidContactModel& m, ContactWrench& c) {
   }
 }
 
+RigidContactFacts rigid_contact_facts(const RigidContactModel& m) {
+  RigidContactFacts f;
+  f.pressure_stiffness_n_per_mm3 = m.pressure_stiffness * 1e-9;  // N/m^3 -> N/mm^3
+  f.sample_spacing = m.part2_samples.spacing;
+  f.distance_spacing = m.part1_distance.fine_spacing();
+  f.skin = m.skin;
+  f.part1_edge_points = m.part1_samples.points.size();
+  f.part2_points = m.part2_samples.points.size();
+  return f;
+}
+
 ContactWrench contact_wrench(const RigidContactModel& m, const Pose& pose) {
   ContactWrench c = contact_wrench_share(m, pose, 0, 1);
   finish_contact(m, c);

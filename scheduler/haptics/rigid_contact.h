@@ -29,6 +29,7 @@
 #include "mesh/mesh.h"
 #include "mesh/signed_distance_grid.h"
 #include "snapfit/haptic_loop.h"
+#include "snapfit/job_facts.h"
 #include "snapfit/pose.h"
 #include "snapfit/scene.h"
 
@@ -70,6 +71,10 @@ void prepare_rigid_contact(RigidContactModel& model);
 // (pipeline/reach_region.h scene_region).
 std::shared_ptr<const RigidContactModel> rigid_contact_for(const Scene& scene, const Mesh& part1, const Mesh& part2,
                                                            double grid_spacing, std::string* why_off = nullptr);
+
+// The model's facts as a report states them (include/snapfit/job_facts.h): the pressure
+// stiffness in N/mm^3, the spacings, the skin and the point counts.
+RigidContactFacts rigid_contact_facts(const RigidContactModel& model);
 
 // The contact at part 2's pose `pose` (relative to part 1). No heap allocation.
 //

@@ -11,7 +11,7 @@
 
 namespace snapfit {
 
-std::string PriorityChange::describe() const {
+std::string ThreadPriority::describe() const {
   std::string s;
   if (realtime > 0)
     s = "SCHED_FIFO " + std::to_string(realtime_priority) + " for " + std::to_string(realtime) + " threads";

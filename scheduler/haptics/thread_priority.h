@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "snapfit/job_facts.h"  // ThreadPriority
+
 namespace snapfit {
 
 struct PriorityRequest {
@@ -15,18 +17,13 @@ struct PriorityRequest {
   int realtime_priority = 0;
 };
 
-struct PriorityChange {
-  int threads = 0;     // threads whose priority was raised
-  int realtime = 0;    // of those, threads now SCHED_FIFO (the others got the nice value)
-  int failed = 0;      // threads it could not change (no CAP_SYS_NICE, or gone)
-  std::string reason;  // why some failed, for the report
-  // What each changed thread had before, for restore_process_priority.
+// What was done (ThreadPriority, include/snapfit/job_facts.h), and what each changed thread
+// had before, for restore_process_priority.
+struct PriorityChange : ThreadPriority {
   struct Previous {
     int tid = 0, policy = 0, priority = 0, nice = 0;
   };
   std::vector<Previous> previous;
-  std::string describe() const;  // e.g. "SCHED_FIFO 10 for 4 threads" or "nice -10 for 4 threads"
-  int realtime_priority = 0, nice_value = 0;
 };
 
 // Raises every thread of this process: SCHED_FIFO at request.realtime_priority when

@@ -26,8 +26,8 @@ struct TuningKey {
 
 std::string tuning_file_path(const TuningKey& key);
 
-// The result as JSON text, and back (throws snapfit::Error on malformed text).
-std::string tuning_to_json(const TuningResult& result);
+// The result as JSON text (tuning_to_json, include/snapfit/tuning.h), and back (throws
+// snapfit::Error on malformed text).
 TuningResult tuning_from_json(const std::string& text);
 
 // Absent when missing, stale (another key or format version) or corrupt; `note` hears why.

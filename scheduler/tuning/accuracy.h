@@ -64,10 +64,6 @@ double rendered_error(const StrategyAccuracy& s);
 // frame (among all when none fits); the first on a tie. strategies must not be empty.
 std::size_t lowest_error_that_fits(const std::vector<StrategyAccuracy>& strategies);
 
-// A strategy's name for people, short: "tricubic", "trilinear", "exact product",
-// "exact product, near-far", "translation lines".
-std::string strategy_short_name(const QueryVariant& variant);
-
 // Why the chosen strategy, in a few words: the rule it won by and its rendered error against
 // the next best's (the comparison itself is the strategies' table).
 std::string strategy_reason(const std::vector<StrategyAccuracy>& strategies, std::size_t chosen);

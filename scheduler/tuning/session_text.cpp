@@ -1,4 +1,7 @@
-#include "scheduler/tuning/session_text.h"
+// tuning_table (include/snapfit/tuning.h), session_verdict and final_error_text
+// (include/snapfit/job_facts.h): text for people about a tuning sweep and a session.
+#include "snapfit/job_facts.h"
+#include "snapfit/tuning.h"
 
 #include <cstdio>
 #include <iomanip>
@@ -23,12 +26,12 @@ std::string tuning_table(const TuningResult& t) {
   return s.str();
 }
 
-std::string session_verdict(const SessionResult& run) {
+std::string session_verdict(const SessionFacts& run) {
   if (!run.evaluated) return "not evaluated (no assembled pose)";
   return run.assembled ? "assembled" : "not assembled";
 }
 
-std::string final_error_text(const SessionResult& run, const std::string& units) {
+std::string final_error_text(const SessionFacts& run, const std::string& units) {
   std::ostringstream t;
   t << std::showpos << std::setprecision(3) << "axial " << run.axial_error << std::noshowpos << " " << units << " ("
     << (run.axial_error > 0 ? "past" : "short of") << (run.evaluated ? " the fit" : " the last keyframe")

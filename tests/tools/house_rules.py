@@ -3,8 +3,9 @@
 
   1. each folder includes only the folders before it in the data flow (and include/),
      a subfolder of engine/ or scheduler/ only those before it there (tuning/ and vps/
-     neither way), and the tool (cli/) and the Python module only the public API, their
-     own files and report/;
+     neither way); the report stage (report/) only the public API and its own files, and
+     the tool (cli/) and the Python module only the public API, their own files and
+     report/ (the build gives those targets include/ alone: this says why it fails);
   2. no function is longer than 120 lines (from its signature to its closing brace).
 
 Usage: house_rules.py SOURCE_DIR    (prints each breach; exit status 1 if any)
@@ -17,7 +18,7 @@ import sys
 MAX_FUNCTION_LINES = 120
 
 # Folders in data-flow order; a folder may include itself and those before it.
-LAYERS = ["include", "core", "mesh", "io", "kernels", "engine", "pipeline", "scheduler", "jobs", "report", "cli"]
+LAYERS = ["include", "core", "mesh", "io", "kernels", "engine", "pipeline", "scheduler", "jobs"]
 # Within a folder, subfolders in order; a pair listed in APART includes neither way.
 SUBLAYERS = {
     "engine": ["runtime", "fields", "spectra", "query", "maps"],
@@ -25,8 +26,8 @@ SUBLAYERS = {
 }
 APART = {("scheduler", "tuning", "vps")}
 # Clients of the public API: what they may include besides include/snapfit.
-CLIENTS = {"cli": {"cli", "report"}, "python": {"python", "report"}}
-CHECKED = LAYERS[1:] + ["python", "perf", "fuzz"]
+CLIENTS = {"report": {"report"}, "cli": {"cli", "report"}, "python": {"python", "report"}}
+CHECKED = LAYERS[1:] + list(CLIENTS) + ["perf", "fuzz"]
 SOURCE = re.compile(r"\.(cpp|h|hpp|cc)$")
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
@@ -181,9 +182,13 @@ def self_test():
     assert include_breach("scheduler/tuning/a.cpp", "scheduler/vps/b.h")
     assert include_breach("jobs/a.cpp", "cli/commands.h")
     assert include_breach("cli/a.cpp", "jobs/job_record.h")
+    assert include_breach("report/a.cpp", "jobs/job_record.h")
+    assert include_breach("report/a.cpp", "cli/commands.h")
+    assert include_breach("jobs/a.cpp", "report/run_report.h")
     assert not include_breach("engine/query/a.cpp", "engine/spectra/b.h")
     assert not include_breach("scheduler/tuning/a.cpp", "scheduler/haptics/b.h")
     assert not include_breach("cli/a.cpp", "report/run_report.h")
+    assert not include_breach("report/a.cpp", "report/b.h")
     assert not include_breach("io/a.cpp", "snapfit/scene.h")
     print("house rules: self-test passed")
     return 0
