@@ -44,11 +44,28 @@ std::string errors_text(const StrategyAccuracy& s) {
   return t;
 }
 
-// The background product's error while part 2 turns: from each of `starts` poses, queries
-// paced at `rate_hz` on the wall clock (the worker predicts the rotation from them) along
-// a steady rotation at each speed about one of six axes, for 0.2 s; the last query is
-// compared with the exact reference at its pose, beside the same m' with the product
-// made for that pose (at rest): the difference is what the lag costs.
+// Queries `engine` at `pose`, paced by `period`, until its background product has caught up
+// with the pose (its result equals `at_rest`'s, made for the pose, to float rounding) or
+// `limit_s` has passed: a hand held still before it turns. A jump to a far pose is no part
+// of a turn, and on a busy machine the product for it can take longer than the turn.
+void settle_at(QueryEngine& engine, const QueryResult& at_rest, const Pose& pose, double period, double limit_s) {
+  const auto start = std::chrono::steady_clock::now();
+  const double tolerance = 1e-5 * std::max(1e-30, std::abs(at_rest.energy));
+  for (int i = 0;; ++i) {
+    const QueryResult r = engine.query(pose);
+    if (std::abs(r.energy - at_rest.energy) <= tolerance) return;
+    const auto next = start + std::chrono::duration<double>((i + 1) * period);
+    if (next - start > std::chrono::duration<double>(limit_s)) return;
+    std::this_thread::sleep_until(next);
+  }
+}
+
+// The background product's error while part 2 turns: from each of `starts` poses, held
+// until the product has caught up with it, queries paced at `rate_hz` on the wall clock
+// (the worker predicts the rotation from them) along a steady rotation at each speed about
+// one of six axes, for 0.2 s; the last query is compared with the exact reference at its
+// pose, beside the same m' with the product made for that pose (at rest): the difference
+// is what the lag costs.
 std::vector<TurningAccuracy> turning_accuracy(const ComputeContext& ctx, const PairSpectra& spectra,
                                               const QueryVariant& background, std::size_t modes,
                                               const std::vector<Pose>& starts, const std::vector<double>& speeds,
@@ -79,6 +96,7 @@ std::vector<TurningAccuracy> turning_accuracy(const ComputeContext& ctx, const P
     for (std::size_t k = 0; k < starts.size(); ++k) {
       const Eigen::Vector3d omega = speed * M_PI / 180.0 * axes[k % 6];
       Pose pose = starts[k];
+      settle_at(*engine, at_rest->query(pose), pose, period, 5.0);
       const auto start = std::chrono::steady_clock::now();
       QueryResult last;
       for (int i = 0; i <= frames; ++i) {
