@@ -14,7 +14,7 @@ namespace {
 
 // 2: each part's sample parity (engine/spectra/spectra.h). 3: part 2's deconvolved spectrum and
 // its kernel width in place of the torque moments.
-constexpr std::uint32_t kSpectraCacheVersion = 3;
+constexpr std::uint32_t kSpectraCacheVersion = 4;  // 4: every FFT axis even
 constexpr const char* kKind = "pair-spectra";
 
 std::uint64_t field_hash(const DescriptorFields& f) {

@@ -64,6 +64,18 @@ TEST_CASE("fft: next_fft_size rounds up to sizes with factors 2, 3, 5, 7 only") 
   CHECK(next_fft_size(121) == 125);
   CHECK(next_fft_size(128) == 128);
   CHECK(next_fft_size(129) == 135);
+  // Even ones, for the spectra's box (engine/spectra/spectra.cpp): 35 and 105 are not.
+  CHECK(next_even_fft_size(31) == 32);
+  CHECK(next_even_fft_size(33) == 36);
+  CHECK(next_even_fft_size(103) == 108);
+  CHECK(next_even_fft_size(175) == 180);
+  for (std::size_t n = 1; n < 400; ++n) {
+    const std::size_t m = next_even_fft_size(n);
+    CAPTURE(n);
+    CHECK(m >= n);
+    CHECK(m % 2 == 0);
+    CHECK(next_fft_size(m) == m);
+  }
 }
 
 TEST_CASE("fft: forward and inverse 3D transforms match a direct DFT in double") {

@@ -50,6 +50,12 @@ std::size_t next_fft_size(std::size_t n) {
   return m;
 }
 
+std::size_t next_even_fft_size(std::size_t n) {
+  std::size_t m = next_fft_size(n);
+  while (m % 2) m = next_fft_size(m + 1);
+  return m;
+}
+
 FftLibrary::FftLibrary() {
   clfftSetupData setup;
   check(clfftInitSetupData(&setup), "clFFT set-up failed");

@@ -19,6 +19,8 @@ namespace snapfit {
 
 // The smallest n' >= n whose prime factors are all in {2, 3, 5, 7} (clFFT's fast radices).
 std::size_t next_fft_size(std::size_t n);
+// The same, even.
+std::size_t next_even_fft_size(std::size_t n);
 
 class FftLibrary {
  public:

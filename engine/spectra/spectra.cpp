@@ -79,12 +79,16 @@ PairSpectra compute_pair_spectra(const FftLibrary& library, const ComputeContext
   PairSpectra out;
   out.spacing = grid1.spacing;
   // The exact rotation's kernel needs part 2's samples within L / 4 of its centre:
-  // 2 N2 + 4 points on each axis cover the half-spacing offsets of the centring.
+  // 2 N2 + 4 points on each axis cover the half-spacing offsets of the centring. Each
+  // axis is even: the centre c = o' + h N / 2 then lies on a node of the samples' lattice,
+  // so the centred spectrum is periodic in its index, S_{k+N} = S_k, and an interpolation
+  // whose taps wrap across the box's edge (a rotated frequency near Nyquist) reads the
+  // right values; with N odd it is anti-periodic (S_{k+N} = -S_k).
   const bool exact_rotation = options.exact_rotation_width > 0 && options.oversampling >= 2.0;
   for (int a = 0; a < 3; ++a) {
     double points = options.oversampling * std::max(grid1.dims[a], grid2.dims[a]);
     if (exact_rotation) points = std::max(points, 2.0 * grid2.dims[a] + 4.0);
-    out.dims[a] = next_fft_size(static_cast<std::size_t>(std::ceil(points - 1e-9)));
+    out.dims[a] = next_even_fft_size(static_cast<std::size_t>(std::ceil(points - 1e-9)));
     out.length[a] = out.dims[a] * out.spacing;
   }
   const Fft3d fft(library, ctx, out.dims);
