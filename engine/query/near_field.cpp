@@ -153,12 +153,13 @@ NearWrench near_wrench(const NearField& near, const Pose& pose) {
     const Eigen::Vector3f u = lever * scale + t;  // fine-node units from near.origin
     int first[3];
     float wv[3][16];
-    bool inside = true;
+    bool inside = true, touches = true;
     for (int ax = 0; ax < 3; ++ax) {
       first[ax] = static_cast<int>(std::ceil(u[ax] - half));
       inside = inside && first[ax] >= 0 && first[ax] + w <= near.dims[ax];
+      touches = touches && first[ax] + w > 0 && first[ax] < near.dims[ax];
     }
-    if (!inside && !near.periodic) continue;
+    if (!touches && !near.periodic) continue;
     for (int ax = 0; ax < 3; ++ax)
       for (int q = 0; q < w; ++q) wv[ax][q] = float(near.kernel.value(double(u[ax]) - (first[ax] + q)));
     Eigen::Vector4f acc = Eigen::Vector4f::Zero();
@@ -171,12 +172,19 @@ NearWrench near_wrench(const NearField& near, const Pose& pose) {
           acc += (wv[1][qy] * wv[2][qz]) * line;
         }
     } else {
-      auto wrap = [&](int i, int ax) { return ((i % near.dims[ax]) + near.dims[ax]) % near.dims[ax]; };
+      // Taps off the kept nodes: wrapped where the fine box is periodic (all of it kept),
+      // else left out, the nodes beyond taken as zero, so that the energy stays continuous
+      // (to the kernel's edge value) as a sample's taps leave the kept region.
+      auto at = [&](int i, int ax) {
+        if (near.periodic) return ((i % near.dims[ax]) + near.dims[ax]) % near.dims[ax];
+        return i >= 0 && i < near.dims[ax] ? i : -1;
+      };
       for (int qz = 0; qz < w; ++qz)
         for (int qy = 0; qy < w; ++qy)
-          for (int qx = 0; qx < w; ++qx)
-            acc += (wv[0][qx] * wv[1][qy] * wv[2][qz]) *
-                   near.node[near.index(wrap(first[0] + qx, 0), wrap(first[1] + qy, 1), wrap(first[2] + qz, 2))];
+          for (int qx = 0; qx < w; ++qx) {
+            const int i = at(first[0] + qx, 0), j = at(first[1] + qy, 1), k = at(first[2] + qz, 2);
+            if (i >= 0 && j >= 0 && k >= 0) acc += (wv[0][qx] * wv[1][qy] * wv[2][qz]) * near.node[near.index(i, j, k)];
+          }
     }
     ++out.samples;
     const double q = s[3];

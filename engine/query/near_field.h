@@ -18,7 +18,8 @@
 // series divided by the kernel's transform, over width^3 taps; its gradient likewise from
 // the series of 2 pi i w times it, so value and gradient share the taps. Only the fine
 // nodes within part 1's grid and a margin of 3 a (where the residual of its smoothing
-// still reaches) are kept; a sample whose taps leave them adds nothing.
+// still reaches) are kept; a sample's taps beyond them add nothing (the nodes there count as
+// zero, so the near energy stays continuous as a sample leaves the kept region).
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
@@ -69,7 +70,7 @@ struct NearWrench {
   double energy = 0;
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // about part 2's origin, part 1's frame
-  std::size_t samples = 0;                           // part 2's samples whose taps were kept
+  std::size_t samples = 0;                           // part 2's samples with a tap on a kept node
 };
 
 // E_near, F_near, T_near at part 2's pose in part 1's frame. No heap allocation.
