@@ -4,7 +4,8 @@
 //     (perf/product_modes.h), which give the reference E, F, T, the split's exact near
 //     part sum_k (1 - G) W_k e^{i phi_k} and its far part's truncation at each m';
 //   - the near part in space (near_wrench), its time on one thread and its error against
-//     its own modes;
+//     its own modes; at the poses where part 2 reaches beyond its kept nodes, whether the
+//     bound on what they leave out (NearWrench::left_out) covers that error;
 //   - the split, far part truncated at m' plus near part in space, against the reference.
 // Error over the poses as scheduler/tuning/accuracy.h: sqrt(sum |x - ref|^2 / sum |ref|^2).
 //
@@ -96,6 +97,17 @@ SplitByModes split_by_modes(const std::vector<std::vector<Wrench>>& terms, const
   return out;
 }
 
+// The poses at which part 2 reached beyond the near field's kept nodes, and at how many
+// of them NearWrench::left_out covered the near part's error (E, F, T).
+struct LeftOutCover {
+  std::size_t poses = 0, covered[3] = {0, 0, 0};
+  std::string text() const {
+    if (poses == 0) return "none";
+    return std::to_string(covered[0]) + " / " + std::to_string(covered[1]) + " / " + std::to_string(covered[2]) +
+           " of " + std::to_string(poses);
+  }
+};
+
 // One row's settings and costs.
 struct RowSetting {
   double a_spacings;
@@ -105,7 +117,8 @@ struct RowSetting {
 };
 
 // Prints one row of the table and returns it as JSON.
-nlohmann::json report_row(const RowSetting& r, const ErrorSums& trunc, const ErrorSums& near_err,
+nlohmann::json report_row(const RowSetting& r, const LeftOutCover& beyond, const ErrorSums& trunc,
+                          const ErrorSums& near_err,
                           const ErrorSums& split, const ErrorSums& split_tricubic) {
   const auto percent = [](const ErrorSums& e, int digits) {
     return bench::fixed(100 * e.rel(0), digits) + " / " + bench::fixed(100 * e.rel(1), digits) + " / " +
@@ -113,6 +126,7 @@ nlohmann::json report_row(const RowSetting& r, const ErrorSums& trunc, const Err
   };
   std::cout << "| " << r.a_spacings << " | " << r.modes << " | " << percent(trunc, 2) << " | " << r.kernel_width
             << " | " << r.samples_median << " | " << bench::fixed(r.near_ms_median, 2) << " | " << percent(near_err, 3)
+            << " | " << beyond.text()
             << " | " << percent(split, 2) << " | " << percent(split_tricubic, 2) << " |\n";
   const auto rel = [](const ErrorSums& e) { return nlohmann::json{e.rel(0), e.rel(1), e.rel(2)}; };
   return {{"a_spacings", r.a_spacings},
@@ -122,6 +136,8 @@ nlohmann::json report_row(const RowSetting& r, const ErrorSums& trunc, const Err
           {"samples_evaluated_median", r.samples_median},
           {"near_ms_median", r.near_ms_median},
           {"near_error", rel(near_err)},
+          {"poses_beyond_kept_nodes", beyond.poses},
+          {"left_out_bound_covers", {beyond.covered[0], beyond.covered[1], beyond.covered[2]}},
           {"far_truncation", rel(trunc)},
           {"split_error", rel(split)},
           {"split_tricubic_error", rel(split_tricubic)}};
@@ -152,6 +168,9 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(2, 15));
     app.add_option("--margin", margin, "fine nodes kept beyond part 1's samples, in widths a (100: the whole box)")
         ->check(CLI::PositiveNumber);
+    bool no_reach = false;
+    app.add_flag("--no-reach", no_reach,
+                 "keep part 1's samples and --margin beyond them, not the region part 2 can reach");
     bench::parse(app, argc, argv);
     if (quick) pose_count = 2, widths = {2.0}, kernel_widths = {5};
     const std::string load_start = bench::read_loadavg();
@@ -183,9 +202,9 @@ int main(int argc, char** argv) {
     mode_terms(product, poses, terms, reference);
     nlohmann::json rows = nlohmann::json::array();
     std::cout << "\n| a (h) | m' | far truncation E / F / T | kernel width | samples evaluated (median) | "
-                 "near ms (1 thread, median) | near vs its modes E / F / T | split E / F / T | split, far part "
-                 "tricubic E / F / T |\n"
-              << "|---|---|---|---|---|---|---|---|---|\n";
+                 "near ms (1 thread, median) | near vs its modes E / F / T | poses beyond the kept nodes: left-out "
+                 "bound covers E / F / T | split E / F / T | split, far part tricubic E / F / T |\n"
+              << "|---|---|---|---|---|---|---|---|---|---|\n";
     for (double a_h : widths) {
       const double a = a_h * sp.spacing;
       const SplitByModes by_modes = split_by_modes(terms, reference, w, a, levels);
@@ -196,6 +215,7 @@ int main(int argc, char** argv) {
         options.width_spacings = a_h;
         options.kernel_width = kw;
         options.margin_widths = margin;
+        if (!no_reach && pair.region.box_known) options.reach = pair.region.box;
         const NearField near_field = build_near_field(fft, ctx, sp, grid2, rho2, options);
         std::cerr << "a " << a_h << " h, kernel width " << kw << ": " << near_field.dims[0] << " x "
                   << near_field.dims[1] << " x " << near_field.dims[2] << " fine nodes, " << near_field.samples.size()
@@ -205,6 +225,7 @@ int main(int argc, char** argv) {
           std::vector<Wrench> near(poses.size());
           std::vector<double> ms, counts;
           ErrorSums near_err;
+          LeftOutCover beyond;
           for (std::size_t p = 0; p < poses.size(); ++p) {
             const auto t1 = std::chrono::steady_clock::now();
             const NearWrench n = near_wrench(near_field, poses[p]);
@@ -212,6 +233,14 @@ int main(int argc, char** argv) {
             counts.push_back(double(n.samples));
             near[p].e = n.energy, near[p].f = n.force, near[p].t = n.torque;
             near_err.add(near[p], near_modes[p]);
+            // Where part 2 reaches beyond the kept nodes: does the left-out bound cover
+            // the near part's error there?
+            if (n.left_out.energy > 0) {
+              ++beyond.poses;
+              beyond.covered[0] += std::abs(near[p].e - near_modes[p].e) <= n.left_out.energy;
+              beyond.covered[1] += (near[p].f - near_modes[p].f).norm() <= n.left_out.force;
+              beyond.covered[2] += (near[p].t - near_modes[p].t).norm() <= n.left_out.torque;
+            }
           }
           // The far part as the loop would sum it: tricubic interpolation of part 2's spectrum.
           const PairSpectra far_sp = far_spectra(sp, near_field);
@@ -232,8 +261,8 @@ int main(int argc, char** argv) {
             // The far part's truncation relative to the reference's size, not its own.
             for (int q = 0; q < 3; ++q) trunc.r[q] = split.r[q];
             rows.push_back(
-                report_row({a_h, levels[lv], kw, near_field.seconds, bench::median(counts), bench::median(ms)}, trunc,
-                           near_err, split, split_tricubic));
+                report_row({a_h, levels[lv], kw, near_field.seconds, bench::median(counts), bench::median(ms)}, beyond,
+                           trunc, near_err, split, split_tricubic));
           }
         }
       }

@@ -89,12 +89,15 @@ void compute_assembly_spectra(AssemblyPair& pair, const ComputeContext& ctx, con
       pair.spectra = compute_pair_spectra(fft, ctx, pair.fields1.fields, pair.fields2.fields, spectrum);
     if (options.use_cache) save_cached_spectra(key, pair.spectra, note);
   }
-  // The near part sums part 2's grid samples, the ones its spectrum was made from.
+  // The near part sums part 2's grid samples, the ones its spectrum was made from, over
+  // the region they can reach.
   if (options.near_field && pair.plan.rotation && !spheres && pair.spectra.conjugate_pairs()) {
     std::vector<Complex> rho2;
     for (float v : affinity_imaginary(pair.fields2.fields)) rho2.emplace_back(0.0f, v);
+    NearFieldOptions near = options.near;
+    if (!near.reach && pair.region.box_known) near.reach = pair.region.box;
     pair.spectra.near = std::make_shared<const NearField>(
-        build_near_field(fft, ctx, pair.spectra, pair.fields2.fields.grid, rho2, options.near));
+        build_near_field(fft, ctx, pair.spectra, pair.fields2.fields.grid, rho2, near));
   }
 }
 

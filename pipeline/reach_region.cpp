@@ -103,7 +103,7 @@ ReachRegion reach_region(const Scene& scene, const GridSpec& part2_grid) {
   }
   r.box.min().array() -= r.margin;
   r.box.max().array() += r.margin;
-  r.bounded = true;
+  r.bounded = r.box_known = true;
   std::ostringstream why;
   why.precision(4);
   why << r.reason << ", plus a margin of " << r.margin << " " << scene.units << " (" << box_text(r.box) << " "

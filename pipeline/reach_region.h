@@ -16,6 +16,7 @@ namespace snapfit {
 
 struct ReachRegion {
   bool bounded = false;     // false: all of part 1
+  bool box_known = false;   // `box` says where part 2 can be, whether or not part 1's grid is cut to it
   Eigen::AlignedBox3d box;  // part 1's frame: part 2's grid box at every allowed pose, plus the margin
   double margin = 0;        // scene units
   double fade = 0;          // width of the fade outside `box`, scene units

@@ -17,6 +17,8 @@
 #include "engine/query/near_field.h"
 #include "engine/query/query_engine.h"
 #include "engine/spectra/spectra.h"
+#include "pipeline/assembly_pair.h"
+#include "scheduler/haptics/trajectory.h"
 #include "snapfit/error.h"
 #include "tests/stability_support.h"
 
@@ -95,6 +97,109 @@ TEST_CASE("near field: the near part in space is the all-mode exact sum over par
   }
 }
 
+// Part 2's grid box at `pose`, in part 1's frame: where its samples are.
+Eigen::AlignedBox3d part2_box_at(const GridSpec& g2, const Pose& pose) {
+  Eigen::AlignedBox3d box;
+  const Vector3d size = g2.spacing * (g2.dims - Eigen::Vector3i::Ones()).cast<double>();
+  for (int c = 0; c < 8; ++c) {
+    const Vector3d corner = g2.origin + Vector3d((c & 1) * size.x(), ((c >> 1) & 1) * size.y(), (c >> 2) * size.z());
+    box.extend(pose.rotation * corner + pose.translation);
+  }
+  return box;
+}
+
+TEST_CASE("near field: what the kept nodes leave out is within its bound; where part 2 can reach, nothing is") {
+  SmallPair p;
+  const FftLibrary fft;
+  NearFieldOptions options;
+  options.width_spacings = 1.5;
+  options.kernel_width = 5;
+  options.margin_widths = 100;  // the whole periodic box: the near part with nothing left out
+  const NearField whole = build_near_field(fft, test::test_context(), p.spectra, p.g2, p.rho2, options);
+  REQUIRE(whole.periodic);
+  options.margin_widths = 0.5;  // part 1's samples and a little beyond
+  const NearField tight = build_near_field(fft, test::test_context(), p.spectra, p.g2, p.rho2, options);
+  REQUIRE_FALSE(tight.wraps[0]);
+  CHECK(tight.edge_value > 0);
+  CHECK(tight.edge_gradient > 0);
+
+  // Part 2 partly beyond part 1's samples, turned off the lattice: its taps there read the
+  // residual's ringing, which the tight field leaves out and bounds.
+  for (const Pose& pose : {pose_of(0.37, {1, 2, 3}, {3.4, -0.1, 0.3}), pose_of(2.2, {-1, 0.5, 0.2}, {-0.4, 3.2, 0.1}),
+                           pose_of(0.8, {0, 1, 1}, {2.9, 2.7, -2.5}), pose_of(1e-3, {0, 0, 1}, {0.05, 0.0, -3.3})}) {
+    CAPTURE(pose.translation.transpose());
+    const NearWrench all = near_wrench(whole, pose), cut = near_wrench(tight, pose);
+    CHECK(all.left_out.energy == 0);
+    CHECK(all.left_out.torque == 0);
+    CHECK(cut.left_out.energy > 0);
+    CHECK(std::abs(cut.energy - all.energy) <= cut.left_out.energy);
+    CHECK((cut.force - all.force).norm() <= cut.left_out.force);
+    CHECK((cut.torque - all.torque).norm() <= cut.left_out.torque);
+
+    // Kept where part 2 is at this pose (its reach): nothing left out, the whole-box values.
+    NearFieldOptions reaching = options;
+    reaching.reach = part2_box_at(p.g2, pose);
+    const NearField covering = build_near_field(fft, test::test_context(), p.spectra, p.g2, p.rho2, reaching);
+    const NearWrench n = near_wrench(covering, pose);
+    CHECK(n.left_out.energy == 0);
+    CHECK(n.left_out.force == 0);
+    CHECK(std::abs(n.energy - all.energy) <= 1e-5 * std::abs(all.energy));
+    CHECK((n.force - all.force).norm() <= 1e-5 * all.force.norm());
+    CHECK((n.torque - all.torque).norm() <= 1e-5 * all.torque.norm());
+  }
+}
+
+TEST_CASE("near field: a scene's pair keeps the nodes part 2 can reach along its trajectory, and bounds the rest") {
+  const Scene scene = test::small_peg_hole_scene();
+  REQUIRE_FALSE(scene.trajectory.keyframes.empty());
+  const AssemblyPair pair = test::build_small_pair(scene, 2, true);
+  REQUIRE(pair.spectra.near);
+  REQUIRE(pair.region.box_known);
+  const NearField& near = *pair.spectra.near;
+  const auto& keys = scene.trajectory.keyframes;
+  for (int i = 0; i <= 20; ++i) {
+    const Pose pose = trajectory_pose(scene.trajectory, keys.front().time_s +
+                                                            (keys.back().time_s - keys.front().time_s) * i / 20.0);
+    CAPTURE(i);
+    const NearWrench n = near_wrench(near, pose);
+    CHECK(n.samples == near.samples.size());
+    CHECK(n.left_out.energy == 0);
+  }
+  // Far off to the side, beyond the region and the nodes kept: left out, and bounded.
+  Pose aside = keys.back().pose;
+  aside.translation += pair.region.box.sizes().cwiseProduct(Vector3d(1.5, 0, 0));
+  const NearWrench n = near_wrench(near, aside);
+  CHECK(n.samples < near.samples.size());
+  CHECK(n.left_out.energy > 0);
+  CHECK(n.left_out.force > 0);
+  CHECK(n.left_out.torque > 0);
+}
+
+TEST_CASE("near field: kept whole along one axis only, the taps wrap along it and not along the others") {
+  SmallPair p;
+  const FftLibrary fft;
+  NearFieldOptions options;
+  options.width_spacings = 1.5;
+  options.kernel_width = 7;
+  options.margin_widths = 100;
+  const NearField whole = build_near_field(fft, test::test_context(), p.spectra, p.g2, p.rho2, options);
+  // Part 2 straddling the box's period along z (its edge at c1 +- L_z / 2).
+  const Pose pose = pose_of(0.4, {1, -1, 2}, {0.3, -0.2, 0.5 * p.spectra.length.z()});
+  Eigen::AlignedBox3d reach = part2_box_at(p.g2, pose);
+  reach.min().z() -= 10 * p.spectra.length.z();
+  reach.max().z() += 10 * p.spectra.length.z();
+  options.reach = reach;
+  const NearField slab = build_near_field(fft, test::test_context(), p.spectra, p.g2, p.rho2, options);
+  CHECK(slab.wraps[2]);
+  CHECK_FALSE(slab.wraps[0]);
+  CHECK_FALSE(slab.periodic);
+  const NearWrench all = near_wrench(whole, pose), n = near_wrench(slab, pose);
+  CHECK(n.left_out.energy == 0);
+  CHECK(std::abs(n.energy - all.energy) <= 1e-5 * std::abs(all.energy));
+  CHECK((n.force - all.force).norm() <= 1e-5 * all.force.norm());
+  CHECK((n.torque - all.torque).norm() <= 1e-5 * all.torque.norm());
+}
+
 TEST_CASE("near field: the far part is part 1's spectrum times G, and far plus near at every mode is the exact sum") {
   const AssemblyPair pair = [] {
     const FftLibrary fft;
@@ -104,6 +209,7 @@ TEST_CASE("near field: the far part is part 1's spectrum times G, and far plus n
     options.descriptors.program_cache = test::test_program_cache();
     options.near_field = true;
     options.near.margin_widths = 100;  // the whole box and a tight kernel, for the identity
+    options.near.reach = Eigen::AlignedBox3d(Vector3d::Constant(-1e3), Vector3d::Constant(1e3));
     options.near.kernel_width = 7;
     return build_assembly_pair(test::small_peg_hole_scene(), test::test_context(), fft, options);
   }();

@@ -23,12 +23,68 @@ std::array<std::vector<double>, 3> gaussian_factors(const PairSpectra& s, double
   return g;
 }
 
+// The fine nodes kept along each axis: indices first .. first + count - 1 (node n at
+// c1 + n h / 2, c1 part 1's centre), the whole period 2 N_ax when that is as many.
+struct KeptNodes {
+  std::array<int, 3> first{}, count{};
+  std::size_t bytes() const { return sizeof(Eigen::Vector4f) * std::size_t(count[0]) * count[1] * count[2]; }
+};
+
+// Nodes covering [low, high] (scene units from c1) per axis and the kernel's reach.
+KeptNodes nodes_covering(const PairSpectra& s, const Eigen::Vector3d& low, const Eigen::Vector3d& high,
+                         double fine_spacing, int kernel_width) {
+  KeptNodes k;
+  for (int ax = 0; ax < 3; ++ax) {
+    const int period = 2 * static_cast<int>(s.dims[ax]);
+    const int first = static_cast<int>(std::floor(low[ax] / fine_spacing)) - kernel_width;
+    const int last = static_cast<int>(std::ceil(high[ax] / fine_spacing)) + kernel_width;
+    if (last - first + 1 >= period) {
+      k.first[ax] = -period / 2, k.count[ax] = period;
+    } else {
+      k.first[ax] = first, k.count[ax] = std::max(0, last - first + 1);
+    }
+  }
+  return k;
+}
+
+// The nodes kept. Without a reach: part 1's samples and margin_widths a beyond them. With
+// one: where part 2's samples can be, as far beyond part 1's samples as max_bytes allows
+// (margins of margin_widths a and up, by halves), since r1 falls off away from them.
+KeptNodes kept_nodes(const PairSpectra& s, const NearFieldOptions& o, double width, double fine_spacing,
+                     int kernel_width) {
+  const Eigen::Vector3d& half = s.part1.half_extent;
+  const auto around_part1 = [&](double widths) {
+    return Eigen::AlignedBox3d(-half.array() - widths * width, half.array() + widths * width);
+  };
+  if (!o.reach) {
+    const Eigen::AlignedBox3d b = around_part1(o.margin_widths);
+    return nodes_covering(s, b.min(), b.max(), fine_spacing, kernel_width);
+  }
+  const Eigen::AlignedBox3d reach(o.reach->min() - s.part1.centre, o.reach->max() - s.part1.centre);
+  const KeptNodes all = nodes_covering(s, reach.min(), reach.max(), fine_spacing, kernel_width);
+  KeptNodes kept;
+  for (double widths = std::max(o.margin_widths, 1.0);; widths *= 1.5) {
+    const Eigen::AlignedBox3d b = reach.intersection(around_part1(widths));
+    if (b.isEmpty()) continue;  // part 2 stays farther from part 1's samples
+    const KeptNodes k = nodes_covering(s, b.min(), b.max(), fine_spacing, kernel_width);
+    if (kept.bytes() > 0 && k.bytes() > o.max_bytes) break;
+    kept = k;
+    if (k.first == all.first && k.count == all.count) break;
+  }
+  if (kept.bytes() == 0) {
+    const Eigen::AlignedBox3d b = around_part1(o.margin_widths);
+    return nodes_covering(s, b.min(), b.max(), fine_spacing, kernel_width);
+  }
+  return kept;
+}
+
 }  // namespace
 
 NearField build_near_field(const FftLibrary& library, const ComputeContext& ctx, const PairSpectra& spectra,
                            const GridSpec& grid2, const std::vector<Complex>& rho2, const NearFieldOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   if (!(options.width_spacings > 0)) throw Error("near field: the Gaussian's width must be positive");
+  if (!(options.margin_widths >= 0)) throw Error("near field: the margin must not be negative");
   if (options.kernel_width < 2 || options.kernel_width > 16) throw Error("near field: the kernel width must be 2-16");
   const int parity = spectra.part1.sample_parity;
   if (parity == 0 || parity != spectra.part2.sample_parity)
@@ -50,16 +106,13 @@ NearField build_near_field(const FftLibrary& library, const ComputeContext& ctx,
         near.far_rho1[x + d[0] * (y + d[1] * z)] *= static_cast<float>(g[0][x] * g[1][y] * g[2][z]);
 
   // The fine box (twice the FFT box per axis, node n at c1 + n h / 2, periodic) and the
-  // nodes kept: part 1's samples, 3 a beyond them and the kernel's reach.
+  // nodes kept (kept_nodes).
   const std::array<std::size_t, 3> m{2 * d[0], 2 * d[1], 2 * d[2]};
-  std::array<int, 3> lo{};
-  for (int ax = 0; ax < 3; ++ax) {
-    const double reach = spectra.part1.half_extent[ax] + options.margin_widths * near.width;
-    const int half = static_cast<int>(std::ceil(reach / near.fine_spacing)) + near.kernel.width;
-    near.dims[ax] = std::min(2 * half + 1, static_cast<int>(m[ax]));
-    lo[ax] = near.dims[ax] == static_cast<int>(m[ax]) ? -static_cast<int>(m[ax] / 2) : -half;
-  }
-  near.periodic = near.dims[0] == int(m[0]) && near.dims[1] == int(m[1]) && near.dims[2] == int(m[2]);
+  const KeptNodes kept = kept_nodes(spectra, options, near.width, near.fine_spacing, near.kernel.width);
+  const std::array<int, 3>& lo = kept.first;
+  near.dims = kept.count;
+  for (int ax = 0; ax < 3; ++ax) near.wraps[ax] = near.dims[ax] == int(m[ax]);
+  near.periodic = near.wraps[0] && near.wraps[1] && near.wraps[2];
   near.origin = spectra.part1.centre + near.fine_spacing * Eigen::Vector3d(lo[0], lo[1], lo[2]);
 
   // Series coefficients: B_k = S1 (1 - G) dw / Phi per axis (Phi at k / (2 N): the fine
@@ -127,6 +180,27 @@ NearField build_near_field(const FftLibrary& library, const ComputeContext& ctx,
       }
     }
 
+  // The bound on what lies beyond the kept nodes: the largest residual on their outer shell.
+  if (!near.periodic) {
+    const int w = near.kernel.width;
+    double value = 0, gradient = 0;
+    std::size_t count = 0;
+    const auto on_shell = [&](int i, int ax) { return !near.wraps[ax] && (i < w || i >= near.dims[ax] - w); };
+    for (int k = 0; k < near.dims[2]; ++k)
+      for (int j = 0; j < near.dims[1]; ++j)
+        for (int i = 0; i < near.dims[0]; ++i) {
+          if (!on_shell(i, 0) && !on_shell(j, 1) && !on_shell(k, 2)) continue;
+          const Eigen::Vector4f& n = near.node[near.index(i, j, k)];
+          value += double(n[0]) * n[0];
+          gradient += double(n.tail<3>().squaredNorm());
+          ++count;
+        }
+    if (count > 0) {
+      near.edge_value = std::sqrt(value / double(count));
+      near.edge_gradient = std::sqrt(gradient / double(count));
+    }
+  }
+
   // E_near = -Re h^3 sum_j rho2_j r1: for imaginary samples (i v2)(i r1) = -v2 r1, for real ones v2 r1.
   const double h3 = grid2.spacing * grid2.spacing * grid2.spacing;
   for (std::size_t j = 0; j < rho2.size(); ++j) {
@@ -148,18 +222,32 @@ NearWrench near_wrench(const NearField& near, const Pose& pose) {
   NearWrench out;
   double e = 0;
   Eigen::Vector3d f = Eigen::Vector3d::Zero(), tq = Eigen::Vector3d::Zero();
+  double left_weight = 0, left_moment = 0;  // sum |q_j| and |q_j| |lever_j| with taps off the kept nodes
   for (const Eigen::Vector4f& s : near.samples) {
     const Eigen::Vector3f lever = R * s.head<3>();
     const Eigen::Vector3f u = lever * scale + t;  // fine-node units from near.origin
     int first[3];
     float wv[3][16];
-    bool inside = true, touches = true;
+    bool inside = true, touches = true, beyond = false;  // beyond: a tap off the kept nodes
     for (int ax = 0; ax < 3; ++ax) {
       first[ax] = static_cast<int>(std::ceil(u[ax] - half));
-      inside = inside && first[ax] >= 0 && first[ax] + w <= near.dims[ax];
+      const bool in = first[ax] >= 0 && first[ax] + w <= near.dims[ax];
+      inside = inside && in;
+      if (near.wraps[ax]) continue;
+      beyond = beyond || !in;
       touches = touches && first[ax] + w > 0 && first[ax] < near.dims[ax];
     }
-    if (!touches && !near.periodic) continue;
+    // A sample with taps off the kept nodes: its weight times the share of its kernel's
+    // weight they carry.
+    const auto leave_out = [&](double share) {
+      const double q = std::abs(double(s[3])) * share;
+      left_weight += q;
+      left_moment += q * double(lever.norm());
+    };
+    if (!touches) {
+      if (beyond) leave_out(1);
+      continue;
+    }
     for (int ax = 0; ax < 3; ++ax)
       for (int q = 0; q < w; ++q) wv[ax][q] = float(near.kernel.value(double(u[ax]) - (first[ax] + q)));
     Eigen::Vector4f acc = Eigen::Vector4f::Zero();
@@ -172,19 +260,32 @@ NearWrench near_wrench(const NearField& near, const Pose& pose) {
           acc += (wv[1][qy] * wv[2][qz]) * line;
         }
     } else {
-      // Taps off the kept nodes: wrapped where the fine box is periodic (all of it kept),
+      // Taps off the kept nodes: wrapped along an axis where the fine box is kept whole,
       // else left out, the nodes beyond taken as zero, so that the energy stays continuous
       // (to the kernel's edge value) as a sample's taps leave the kept region.
+      double kept = 0;  // sum |tap| over the kept nodes
       auto at = [&](int i, int ax) {
-        if (near.periodic) return ((i % near.dims[ax]) + near.dims[ax]) % near.dims[ax];
+        if (near.wraps[ax]) return ((i % near.dims[ax]) + near.dims[ax]) % near.dims[ax];
         return i >= 0 && i < near.dims[ax] ? i : -1;
       };
       for (int qz = 0; qz < w; ++qz)
         for (int qy = 0; qy < w; ++qy)
           for (int qx = 0; qx < w; ++qx) {
             const int i = at(first[0] + qx, 0), j = at(first[1] + qy, 1), k = at(first[2] + qz, 2);
-            if (i >= 0 && j >= 0 && k >= 0) acc += (wv[0][qx] * wv[1][qy] * wv[2][qz]) * near.node[near.index(i, j, k)];
+            if (i < 0 || j < 0 || k < 0) continue;
+            const float tap = wv[0][qx] * wv[1][qy] * wv[2][qz];
+            acc += tap * near.node[near.index(i, j, k)];
+            kept += std::abs(tap);
           }
+      if (beyond) {
+        double all = 1;
+        for (int ax = 0; ax < 3; ++ax) {
+          double sum = 0;
+          for (int q = 0; q < w; ++q) sum += std::abs(wv[ax][q]);
+          all *= sum;
+        }
+        leave_out(std::max(0.0, 1 - kept / all));
+      }
     }
     ++out.samples;
     const double q = s[3];
@@ -196,6 +297,9 @@ NearWrench near_wrench(const NearField& near, const Pose& pose) {
   out.energy = e;
   out.force = f;
   out.torque = tq;
+  out.left_out.energy = left_weight * near.edge_value;
+  out.left_out.force = left_weight * near.edge_gradient;
+  out.left_out.torque = left_moment * near.edge_gradient;
   return out;
 }
 

@@ -16,13 +16,23 @@
 // sampled: it is evaluated as a type-2 non-uniform FFT evaluates a Fourier series
 // (engine/spectra/es_kernel.h), from a grid twice as fine as part 1's whose values are its
 // series divided by the kernel's transform, over width^3 taps; its gradient likewise from
-// the series of 2 pi i w times it, so value and gradient share the taps. Only the fine
-// nodes within part 1's grid and a margin of 3 a (where the residual of its smoothing
-// still reaches) are kept; a sample's taps beyond them add nothing (the nodes there count as
-// zero, so the near energy stays continuous as a sample leaves the kept region).
+// the series of 2 pi i w times it, so value and gradient share the taps.
+//
+// Only the fine nodes where part 2's samples can be are kept: the box the scene's
+// trajectory or workspace lets part 2's grid sweep (pipeline/reach_region.h), as far beyond
+// part 1's grid as a memory cap allows, or, when the scene does not say, part 1's grid and
+// a margin of 3 a. r1 is a trigonometric interpolant: off the sample lattice it rings
+// beyond part 1's grid, far more than 3 a, where part 1's field is sharp at the grid's
+// scale. A sample's taps beyond the kept nodes
+// add nothing (the nodes there count as zero, so the near energy stays continuous as a
+// sample leaves the kept region), and what they leave out is bounded, for the error
+// estimate, by the largest |r1| and |grad r1| on the kept region's outer shell times the
+// samples' weights (NearWrench::left_out).
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "engine/runtime/compute_context.h"
@@ -31,13 +41,19 @@
 #include "engine/spectra/spectra.h"
 #include "snapfit/grid.h"
 #include "snapfit/pose.h"
+#include "snapfit/query.h"
 
 namespace snapfit {
 
 struct NearFieldOptions {
   double width_spacings = 2.0;  // a, in grid spacings
   int kernel_width = 5;         // taps per axis: about 1e-4 of the near part, its force within 0.3 % of -dE/dt
-  double margin_widths = 3;     // fine nodes kept beyond part 1's samples, in widths a
+  double margin_widths = 3;     // fine nodes kept beyond part 1's samples, in widths a (no reach)
+  // Where part 2's samples can be, part 1's frame (the scene's reach region): the nodes
+  // kept cover it, as far beyond part 1's samples (margin_widths a and more) as max_bytes
+  // of nodes allow.
+  std::optional<Eigen::AlignedBox3d> reach;
+  std::size_t max_bytes = std::size_t(512) << 20;
 };
 
 struct NearField {
@@ -46,7 +62,12 @@ struct NearField {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // fine node (0, 0, 0), part 1's frame
   double fine_spacing = 0;                           // h / 2
   std::array<int, 3> dims{};                         // fine nodes kept per axis
-  bool periodic = false;                             // the whole fine box is kept: taps wrap around
+  std::array<bool, 3> wraps{};                       // the whole fine box is kept along the axis: taps wrap around
+  bool periodic = false;                             // along every axis
+  // The largest |r1| and |grad r1| on the outer shell of the kept nodes (a kernel's width
+  // deep, on the faces that do not wrap), the bound NearWrench::left_out takes for the
+  // nodes beyond; 0 when periodic.
+  double edge_value = 0, edge_gradient = 0;
   std::vector<Eigen::Vector4f> node;                 // r1 and its gradient (d/dx, d/dy, d/dz); x fastest
   // Part 2's nonzero samples: x_j in its frame and the weight q_j with E_near = sum_j q_j r1(y_j).
   std::vector<Eigen::Vector4f> samples;
@@ -71,6 +92,9 @@ struct NearWrench {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // about part 2's origin, part 1's frame
   std::size_t samples = 0;                           // part 2's samples with a tap on a kept node
+  // What the taps off the kept nodes leave out, at most (as NearField::edge_value): sum
+  // |q_j| |r1|, |q_j| |grad r1| and |q_j| |lever_j| |grad r1| over the samples with such taps.
+  ErrorEstimate left_out;
 };
 
 // E_near, F_near, T_near at part 2's pose in part 1's frame. No heap allocation.

@@ -110,10 +110,15 @@ class SplitQuery final : public QueryEngine {
         return;
       }
       n = carried(frame_snapshot_, pose.translation, R);
+      n.left_out = frame_snapshot_.near.left_out;
       r.error_estimate.energy += frame_snapshot_.staleness.energy;
       r.error_estimate.force += frame_snapshot_.staleness.force;
       r.error_estimate.torque += frame_snapshot_.staleness.torque;
     }
+    // What the near part's kept nodes leave out.
+    r.error_estimate.energy += n.left_out.energy;
+    r.error_estimate.force += n.left_out.force;
+    r.error_estimate.torque += n.left_out.torque;
     r.energy += n.energy;
     r.force += n.force;
     r.torque += n.torque;
