@@ -108,6 +108,38 @@ struct LeftOutCover {
   }
 };
 
+// The near part in space at each pose: its values, time, samples evaluated, error
+// against its own modes, and where part 2 reaches beyond the kept nodes whether the
+// left-out bound covers that error.
+struct NearAtPoses {
+  std::vector<Wrench> near;
+  std::vector<double> ms, counts;
+  ErrorSums error;
+  LeftOutCover beyond;
+};
+
+NearAtPoses near_at_poses(const NearField& field, const std::vector<Pose>& poses,
+                          const std::vector<Wrench>& near_modes) {
+  NearAtPoses out;
+  out.near.resize(poses.size());
+  for (std::size_t p = 0; p < poses.size(); ++p) {
+    const auto t1 = std::chrono::steady_clock::now();
+    const NearWrench n = near_wrench(field, poses[p]);
+    out.ms.push_back(1e3 * bench::seconds_since(t1));
+    out.counts.push_back(double(n.samples));
+    Wrench& x = out.near[p];
+    x.e = n.energy, x.f = n.force, x.t = n.torque;
+    out.error.add(x, near_modes[p]);
+    if (n.left_out.energy > 0) {
+      ++out.beyond.poses;
+      out.beyond.covered[0] += std::abs(x.e - near_modes[p].e) <= n.left_out.energy;
+      out.beyond.covered[1] += (x.f - near_modes[p].f).norm() <= n.left_out.force;
+      out.beyond.covered[2] += (x.t - near_modes[p].t).norm() <= n.left_out.torque;
+    }
+  }
+  return out;
+}
+
 // One row's settings and costs.
 struct RowSetting {
   double a_spacings;
@@ -222,26 +254,11 @@ int main(int argc, char** argv) {
                   << " samples of part 2, " << near_field.bytes() / 1e6 << " MB, built in " << near_field.seconds
                   << " s\n";
         {
-          std::vector<Wrench> near(poses.size());
-          std::vector<double> ms, counts;
-          ErrorSums near_err;
-          LeftOutCover beyond;
-          for (std::size_t p = 0; p < poses.size(); ++p) {
-            const auto t1 = std::chrono::steady_clock::now();
-            const NearWrench n = near_wrench(near_field, poses[p]);
-            ms.push_back(1e3 * bench::seconds_since(t1));
-            counts.push_back(double(n.samples));
-            near[p].e = n.energy, near[p].f = n.force, near[p].t = n.torque;
-            near_err.add(near[p], near_modes[p]);
-            // Where part 2 reaches beyond the kept nodes: does the left-out bound cover
-            // the near part's error there?
-            if (n.left_out.energy > 0) {
-              ++beyond.poses;
-              beyond.covered[0] += std::abs(near[p].e - near_modes[p].e) <= n.left_out.energy;
-              beyond.covered[1] += (near[p].f - near_modes[p].f).norm() <= n.left_out.force;
-              beyond.covered[2] += (near[p].t - near_modes[p].t).norm() <= n.left_out.torque;
-            }
-          }
+          const NearAtPoses at = near_at_poses(near_field, poses, near_modes);
+          const std::vector<Wrench>& near = at.near;
+          const std::vector<double>&ms = at.ms, &counts = at.counts;
+          const ErrorSums& near_err = at.error;
+          const LeftOutCover& beyond = at.beyond;
           // The far part as the loop would sum it: tricubic interpolation of part 2's spectrum.
           const PairSpectra far_sp = far_spectra(sp, near_field);
           auto tricubic = make_query_engine(ctx, far_sp, query_variant_for(scene, Interpolation::tricubic));

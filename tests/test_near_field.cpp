@@ -108,7 +108,7 @@ Eigen::AlignedBox3d part2_box_at(const GridSpec& g2, const Pose& pose) {
   return box;
 }
 
-TEST_CASE("near field: what the kept nodes leave out is within its bound; where part 2 can reach, nothing is") {
+TEST_CASE("near field: what the kept nodes leave out is within its bound, and where part 2 can reach nothing is") {
   SmallPair p;
   const FftLibrary fft;
   NearFieldOptions options;

@@ -78,6 +78,29 @@ KeptNodes kept_nodes(const PairSpectra& s, const NearFieldOptions& o, double wid
   return kept;
 }
 
+// NearField::edge_value and edge_gradient: the root mean square of |r1| and |grad r1| over
+// the kept nodes' outer shell (a kernel's width deep, on the faces that do not wrap).
+void set_edge_bounds(NearField& near) {
+  if (near.periodic) return;
+  const int w = near.kernel.width;
+  double value = 0, gradient = 0;
+  std::size_t count = 0;
+  const auto on_shell = [&](int i, int ax) { return !near.wraps[ax] && (i < w || i >= near.dims[ax] - w); };
+  for (int k = 0; k < near.dims[2]; ++k)
+    for (int j = 0; j < near.dims[1]; ++j)
+      for (int i = 0; i < near.dims[0]; ++i) {
+        if (!on_shell(i, 0) && !on_shell(j, 1) && !on_shell(k, 2)) continue;
+        const Eigen::Vector4f& n = near.node[near.index(i, j, k)];
+        value += double(n[0]) * n[0];
+        gradient += double(n.tail<3>().squaredNorm());
+        ++count;
+      }
+  if (count > 0) {
+    near.edge_value = std::sqrt(value / double(count));
+    near.edge_gradient = std::sqrt(gradient / double(count));
+  }
+}
+
 }  // namespace
 
 NearField build_near_field(const FftLibrary& library, const ComputeContext& ctx, const PairSpectra& spectra,
@@ -180,26 +203,7 @@ NearField build_near_field(const FftLibrary& library, const ComputeContext& ctx,
       }
     }
 
-  // The bound on what lies beyond the kept nodes: the largest residual on their outer shell.
-  if (!near.periodic) {
-    const int w = near.kernel.width;
-    double value = 0, gradient = 0;
-    std::size_t count = 0;
-    const auto on_shell = [&](int i, int ax) { return !near.wraps[ax] && (i < w || i >= near.dims[ax] - w); };
-    for (int k = 0; k < near.dims[2]; ++k)
-      for (int j = 0; j < near.dims[1]; ++j)
-        for (int i = 0; i < near.dims[0]; ++i) {
-          if (!on_shell(i, 0) && !on_shell(j, 1) && !on_shell(k, 2)) continue;
-          const Eigen::Vector4f& n = near.node[near.index(i, j, k)];
-          value += double(n[0]) * n[0];
-          gradient += double(n.tail<3>().squaredNorm());
-          ++count;
-        }
-    if (count > 0) {
-      near.edge_value = std::sqrt(value / double(count));
-      near.edge_gradient = std::sqrt(gradient / double(count));
-    }
-  }
+  set_edge_bounds(near);
 
   // E_near = -Re h^3 sum_j rho2_j r1: for imaginary samples (i v2)(i r1) = -v2 r1, for real ones v2 r1.
   const double h3 = grid2.spacing * grid2.spacing * grid2.spacing;
