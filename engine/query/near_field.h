@@ -64,9 +64,9 @@ struct NearField {
   std::array<int, 3> dims{};                         // fine nodes kept per axis
   std::array<bool, 3> wraps{};                       // the whole fine box is kept along the axis: taps wrap around
   bool periodic = false;                             // along every axis
-  // The largest |r1| and |grad r1| on the outer shell of the kept nodes (a kernel's width
-  // deep, on the faces that do not wrap), the bound NearWrench::left_out takes for the
-  // nodes beyond; 0 when periodic.
+  // The root mean square of |r1| and |grad r1| on the outer shell of the kept nodes (a
+  // kernel's width deep, on the faces that do not wrap), the scale NearWrench::left_out
+  // takes for the nodes beyond; 0 when periodic.
   double edge_value = 0, edge_gradient = 0;
   std::vector<Eigen::Vector4f> node;                 // r1 and its gradient (d/dx, d/dy, d/dz); x fastest
   // Part 2's nonzero samples: x_j in its frame and the weight q_j with E_near = sum_j q_j r1(y_j).
@@ -92,8 +92,9 @@ struct NearWrench {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // about part 2's origin, part 1's frame
   std::size_t samples = 0;                           // part 2's samples with a tap on a kept node
-  // What the taps off the kept nodes leave out, at most (as NearField::edge_value): sum
-  // |q_j| |r1|, |q_j| |grad r1| and |q_j| |lever_j| |grad r1| over the samples with such taps.
+  // The estimate of what the taps off the kept nodes leave out: sum over the samples with
+  // such taps of |q_j| times the share of their kernel's weight there, times
+  // NearField::edge_value, edge_gradient and |lever_j| edge_gradient (E, F, T).
   ErrorEstimate left_out;
 };
 
