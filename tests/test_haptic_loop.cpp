@@ -271,6 +271,31 @@ TEST_CASE("haptic loop: misses from waking late are counted but do not step m' d
   CHECK(*std::max_element(r.wake_late_ms.begin(), r.wake_late_ms.end()) == doctest::Approx(1.2));
 }
 
+TEST_CASE("haptic loop: misses from the loop's own callbacks running past the tick step m' down") {
+  ManualClock clock;
+  FixedDevice device;
+  CostedEvaluator engine{&clock};
+  LoopConfig c = config(1.0);
+  c.modes.predicted_ms = [](std::size_t m) { return 0.02 * double(m) / 1000.0; };
+  // Frames 200-209 spend 1.5 ms in on_frame, after their wrench is sent: the next tick
+  // starts late without the thread ever sleeping, which is the loop's work, not the OS.
+  std::size_t seen = 0;
+  c.on_frame = [&](const FrameRecord&, const LoopReport&) {
+    if (seen >= 200 && seen < 210) clock.t += 1.5e-3;
+    ++seen;
+  };
+  const LoopReport r = run_haptic_loop(device, engine.evaluator(), c, clock.clock(), BodyState{});
+  CHECK(r.misses >= 2);
+  CHECK(r.late_wakeup_misses == 0);
+  CHECK(r.stall_misses == 0);  // the query itself took what the model predicts
+  REQUIRE(!r.mode_changes.empty());
+  CHECK(r.mode_changes[0].to == 8192);
+  CHECK(r.mode_changes[0].frame > 200);
+  CHECK(r.mode_changes[0].frame < 212);
+  // The OS never woke the loop late.
+  CHECK(*std::max_element(r.wake_late_ms.begin(), r.wake_late_ms.end()) == 0.0);
+}
+
 TEST_CASE("haptic loop: stalls far beyond the cost model are counted but do not step m' down, unless they persist") {
   // Model: 0.02 ms per 1000 modes, as the evaluator costs (0.33 ms at 16384); `extra`
   // adds ms of work at given queries.

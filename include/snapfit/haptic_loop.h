@@ -9,8 +9,9 @@
 // A frame that ends after its deadline (tick i + 1) is a miss: the device kept the last
 // wrench meanwhile, and the ticks that passed are not replayed (no catch-up burst); the
 // part is integrated over them with the held geometric wrench (the physics stays on
-// the fixed step). A miss whose own work (wake-up to wrench sent) fit in `up_headroom`
-// of the budget is a late wake-up, which m' cannot fix; it is counted, not acted on.
+// the fixed step). A miss whose own work (wake-up to wrench sent, plus whatever of the
+// previous frame's callbacks ran past this tick) fit in `up_headroom` of the budget is
+// a late wake-up, which m' cannot fix; it is counted, not acted on.
 // So is a stall: a miss whose work took more than `stall_factor` times the cost model's
 // p99 at its m' (`predicted_ms`), which a smaller m' would not have avoided (the
 // machine stopped), unless stalls fill more than half of the last `miss_window` frames, when the machine
@@ -128,7 +129,8 @@ struct FrameRecord {
   std::uint8_t constraint = 0;   // QueryResult::constraint: the hybrid's engaged constraint
   double constraint_weight = 0;  // and its blend weight x
   double trust = 1;              // the share of the engine's wrench rendered (WrenchTrust); 0 when flagged
-  double wake_late_ms = 0;       // how late the loop's thread woke after the tick
+  double wake_late_ms = 0;       // how late the OS woke the loop's thread (after the tick, or after the
+                                 // previous frame's callbacks when they ran past it)
 };
 
 // How much of the engine's wrench the loop renders, from its per-query error estimate
@@ -243,7 +245,7 @@ LoopCounts counts_between(const LoopCounts& start, const LoopCounts& end);
 
 struct LoopReport : LoopCounts {
   std::vector<double> frame_ms;         // every frame: tick to wrench sent (keep_frame_times)
-  std::vector<double> wake_late_ms;     // every frame: how late the thread woke after its tick (keep_frame_times)
+  std::vector<double> wake_late_ms;     // every frame: FrameRecord::wake_late_ms (keep_frame_times)
   std::vector<FrameRecord> log;         // when keep_log
   std::vector<ModeChange> mode_changes;
 };

@@ -359,18 +359,22 @@ struct FrameTiming {
   bool missed = false, compute_miss = false, stall = false;
 };
 
-FrameTiming frame_timing(double end, double tick_time, double compute_ms, double period, const LoopConfig& config,
-                         const ModeGovernor& governor, LoopReport& report) {
+// `work_ms` is the loop thread's own work in this tick: the frame's (wake-up to wrench
+// sent) plus `carried_ms`, the previous frame's tail (its callbacks, the governor) that
+// ran past this tick, so that the thread never slept.
+FrameTiming frame_timing(double end, double tick_time, double work_ms, double carried_ms, double period,
+                         const LoopConfig& config, const ModeGovernor& governor, LoopReport& report) {
   FrameTiming t;
   t.missed = end > tick_time + period;
-  // A miss whose own work fit in the headroom share of the budget came from waking
-  // late (the OS), which a smaller m' cannot fix: it is counted, not acted on.
-  t.compute_miss = t.missed && compute_ms > config.modes.up_headroom * config.budget_ms;
+  // A miss whose work fit in the headroom share of the budget came from waking late
+  // (the OS), which a smaller m' cannot fix: it is counted, not acted on.
+  t.compute_miss = t.missed && work_ms > config.modes.up_headroom * config.budget_ms;
   if (t.missed && !t.compute_miss) ++report.late_wakeup_misses;
-  // Only a work-bound miss asks the cost model (not every frame).
+  // Only a work-bound miss asks the cost model (not every frame). The model predicts
+  // the query, so a stall is judged on the frame's own work, not the carried tail.
   if (t.compute_miss && config.modes.stall_factor > 0 && config.modes.predicted_ms) {
     const double predicted = config.modes.predicted_ms(governor.modes());
-    t.stall = predicted > 0 && compute_ms > config.modes.stall_factor * predicted;
+    t.stall = predicted > 0 && work_ms - carried_ms > config.modes.stall_factor * predicted;
   }
   if (t.stall) ++report.stall_misses;
   return t;
@@ -437,6 +441,7 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
     const double tick_time = tick * period;  // loop time of this tick
     if (config.duration_s > 0 && tick_time >= config.duration_s - 1e-12) break;
     if (config.stop && config.stop->load()) break;
+    const double ready = clock.now() - start;  // the previous frame's tail done
     clock.wait_until(start + tick_time);
     const double woke = clock.now() - start;  // later than the tick when the OS wakes us late
     if (config.replace_part && config.replace_part(part)) {
@@ -454,9 +459,10 @@ LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, 
 
     const double end = clock.now() - start;
     const double frame_ms = 1e3 * (end - tick_time);
-    const double compute_ms = 1e3 * (end - woke);
-    const FrameTiming timing = frame_timing(end, tick_time, compute_ms, period, config, s.governor, report);
-    const double wake_late_ms = 1e3 * (woke - tick_time);
+    const double carried_ms = 1e3 * std::max(0.0, ready - tick_time);
+    const double compute_ms = 1e3 * (end - woke) + carried_ms;
+    const FrameTiming timing = frame_timing(end, tick_time, compute_ms, carried_ms, period, config, s.governor, report);
+    const double wake_late_ms = 1e3 * (woke - std::max(ready, tick_time));
     if (config.keep_frame_times) report.frame_ms.push_back(frame_ms), report.wake_late_ms.push_back(wake_late_ms);
     ++report.frames;
     if (timing.missed) ++report.misses;
