@@ -21,6 +21,11 @@
 
 namespace snapfit {
 
+// Seconds of steady time since `start`.
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 // Durations for people: "0.0s" to "59.9s" (tenths), then "1m05s", then "1h02m03s"
 // (whole seconds, rounded). "?" for a negative or non-finite value.
 std::string format_duration(double seconds);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <sstream>
 
+#include "core/progress.h"
 #include "jobs/job_steps.h"
 #include "scheduler/haptics/haptic_setup.h"
 #include "scheduler/vps/vps_hybrid.h"
@@ -12,10 +13,6 @@
 
 namespace snapfit {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 VpsFacts model_facts(const VpsModel& model) {
   VpsFacts facts;

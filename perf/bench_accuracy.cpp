@@ -91,7 +91,7 @@ Row float_row(QueryEngine& engine, const Inputs& in, double os, const std::strin
     const Pose& timed = poses[exact ? 0 : k % poses.size()];
     const auto t0 = std::chrono::steady_clock::now();
     engine.query(timed);
-    times.push_back(1e3 * bench::seconds_since(t0));
+    times.push_back(1e3 * seconds_since(t0));
   }
   f.ms = quantile(times, 0.5);
   f.err_energy = fe.relative(0), f.err_force = fe.relative(1), f.err_torque = fe.relative(2);

@@ -302,7 +302,7 @@ Summary run_method(const Options& o, TrialFiles& out, const Cell& cell, const Be
   const auto build_start = std::chrono::steady_clock::now();
   Model model = build_model(scene, method, cell, parts, ctx, fft, o.contact);
   std::cout << "  " << bench::padr(method.name, 20) << " built in "
-            << bench::fixed(bench::seconds_since(build_start), 1) << " s" << std::flush;
+            << bench::fixed(seconds_since(build_start), 1) << " s" << std::flush;
   Summary summary{cell.pair, method.name, cell.fit.clearance, {}};
   std::mt19937 rng(static_cast<unsigned>(o.seed));  // the same users for every method of a cell
   for (long t = 0; t < o.trials; ++t) {
@@ -421,7 +421,7 @@ int main(int argc, char** argv) {
       for (const BenchMethod& method : methods)
         summaries.push_back(run_method(o, out, cell, method, parts, i1, i2, ctx, fft));
     }
-    const double seconds = bench::seconds_since(started);
+    const double seconds = seconds_since(started);
     const std::string load_end = bench::read_loadavg();
 
     // The summary per cell: success rate, medians of the errors, the worst penetration.

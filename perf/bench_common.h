@@ -20,6 +20,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "core/progress.h"  // seconds_since
 #include "core/quantile.h"
 #include "engine/maps/full_map.h"
 #include "engine/query/query_engine.h"
@@ -136,10 +137,9 @@ inline double other_cores(const CpuSample& a, const CpuSample& b) {
   return std::max(0.0, ((b.machine_busy_s - a.machine_busy_s) - (b.own_s - a.own_s)) / wall);
 }
 
+using snapfit::seconds_since;  // core/progress.h, for the benches that use this namespace only
+
 // Table formatting shared by the benchmarks' console reports.
-inline double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 // v with `prec` digits in `format` (std::ios_base::fixed, scientific, or {}: significant
 // digits); '-' when it is not finite.
 inline std::string formatted(double v, int prec, std::ios_base::fmtflags format) {

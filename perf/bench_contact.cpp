@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
           for (const Pose& pose : poses) {
             const auto start = std::chrono::steady_clock::now();
             kept = rows[e].evaluate(pose).energy_j;
-            const double t = 1e3 * bench::seconds_since(start);
+            const double t = 1e3 * seconds_since(start);
             ms[e].push_back(t);
             total += t;
           }

@@ -125,7 +125,7 @@ NearAtPoses near_at_poses(const NearField& field, const std::vector<Pose>& poses
   for (std::size_t p = 0; p < poses.size(); ++p) {
     const auto t1 = std::chrono::steady_clock::now();
     const NearWrench n = near_wrench(field, poses[p]);
-    out.ms.push_back(1e3 * bench::seconds_since(t1));
+    out.ms.push_back(1e3 * seconds_since(t1));
     out.counts.push_back(double(n.samples));
     Wrench& x = out.near[p];
     x.e = n.energy, x.f = n.force, x.t = n.torque;

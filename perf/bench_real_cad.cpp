@@ -129,10 +129,10 @@ ColdRun cold_run(const Options& o, const std::string& scene_file, const fs::path
   while (std::fgets(line, sizeof line, pipe)) {
     log << line << std::flush;
     if (std::isnan(r.first_frame_s) && std::string(line).rfind("[7/7]", 0) == 0)
-      r.first_frame_s = bench::seconds_since(start);
+      r.first_frame_s = seconds_since(start);
   }
   const int status = pclose(pipe);
-  r.total_s = bench::seconds_since(start);
+  r.total_s = seconds_since(start);
   if (status != 0) throw Error("`snapfit run " + scene_file + "` failed (see " + log_file.string() + ")");
   std::ifstream in(report / "summary.json");
   const nlohmann::json s = nlohmann::json::parse(in);
@@ -188,7 +188,7 @@ PairResult run_users(const Options& o, const test::CadPairInfo& info, const Scen
   result.strategy = variant_name(engine->variant());
   const auto rigid = rigid_contact_for(scene, m1, m2, spacing);
   const MeshDistanceIndex i1(m1), i2(m2);
-  result.prepare_s = bench::seconds_since(start);
+  result.prepare_s = seconds_since(start);
   std::cout << "  users' engine (" << result.strategy << ", m' " << modes << ") and contact ready in " << bench::fixed(result.prepare_s, 1)
             << " s:" << std::flush;
   const bench::Fit fit{info.clearance, info.entry, info.engaged};
@@ -320,7 +320,7 @@ int main(int argc, char** argv) {
       r.cold = cold;
       results.push_back(std::move(r));
     }
-    const double seconds = bench::seconds_since(started);
+    const double seconds = seconds_since(started);
 
     std::ostringstream md;
     bench::CsvFile scsv(out / "summary.csv",

@@ -97,7 +97,7 @@ MapStageSeconds stage_medians(TranslationMapper& mapper, const So3Grid& grid, co
       stages.push_back(mapper.time_stages(R, energy));
       const auto t0 = Clock::now();
       map_minima(mapper.grid(), energy, options.minima_per_rotation, options.separation, map);
-      stages.back().minima = bench::seconds_since(t0);
+      stages.back().minima = seconds_since(t0);
     }
   }
   auto stage = [&](double MapStageSeconds::*field) {
@@ -142,7 +142,7 @@ Row measure_row(const FftLibrary& fft, const ComputeContext& ctx, const PairSpec
   row.load_before = bench::load1();
   auto t0 = Clock::now();
   TranslationMapper mapper(fft, ctx, spectra, interpolation, 0, kind, default_program_cache(), batch);
-  row.setup_s = bench::seconds_since(t0);
+  row.setup_s = seconds_since(t0);
   const So3Grid grid = so3_grid_for_count(row.rotations);
   std::vector<std::size_t> warm{1, 2}, all(grid.rotations.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
@@ -165,7 +165,7 @@ Row measure_row(const FftLibrary& fft, const ComputeContext& ctx, const PairSpec
     intervals.push_back(std::chrono::duration<double>(now - last).count());
     last = now;
   });
-  const double scan_s = bench::seconds_since(t0);
+  const double scan_s = seconds_since(t0);
   row.rotations = all.size();
   row.scan_rate = double(all.size()) / scan_s;
   if (batch > 1) intervals = per_rotation(intervals, batch);
@@ -177,7 +177,7 @@ Row measure_row(const FftLibrary& fft, const ComputeContext& ctx, const PairSpec
     for (int k = 0; k < (quick ? 1 : 3); ++k) {
       t0 = Clock::now();
       translational_energy_map(fft, ctx, spectra, grid.rotations[std::size_t(k)].toRotationMatrix(), interpolation);
-      one_shot.push_back(bench::seconds_since(t0));
+      one_shot.push_back(seconds_since(t0));
     }
     row.one_shot_s = median(one_shot);
   }

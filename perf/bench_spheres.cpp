@@ -109,7 +109,7 @@ nlohmann::json bunny_table(const ComputeContext& ctx, const Mesh& bunny, bool qu
     const GridSpec grid = sphere_grid(bunny, eps);
     DescriptorParams sdf;
     const DescriptorFields f = compute_descriptors(ctx, bunny, grid, sdf, quiet);
-    const double field_s = bench::seconds_since(t0);
+    const double field_s = seconds_since(t0);
     nlohmann::json row = {{"m", 1 << e}, {"epsilon", eps}, {"grid_nodes", grid.count()}, {"field_seconds", field_s}};
     std::cout << "  2^" << e << "  " << bench::fixed(eps, 4);
     for (int i = 0; i < 3; ++i) {
@@ -117,7 +117,7 @@ nlohmann::json bunny_table(const ComputeContext& ctx, const Mesh& bunny, bool qu
       const SphereDecomposition d =
           decompose_into_balls(grid, f.winding, f.signed_distance, f.skeletal_density, eps, mus[i]);
       row["mu_" + bench::fixed(mus[i], 2)] = {
-          {"n1", d.sampled_balls}, {"n3", d.balls.size()}, {"seconds", bench::seconds_since(t1)}};
+          {"n1", d.sampled_balls}, {"n3", d.balls.size()}, {"seconds", seconds_since(t1)}};
       n3[i].x.push_back(double(1 << e));
       n3[i].y.push_back(double(d.balls.size()));
       std::cout << "   " << bench::pad(std::to_string(d.sampled_balls) + "/" + std::to_string(d.balls.size()), 13);
@@ -215,7 +215,7 @@ void add_grid_points(const FftLibrary& fft, const ComputeContext& ctx, const Mes
     so.exact_rotation_width = 0;
     const PairSpectra s = compute_pair_spectra(fft, ctx, grid, samples, grid, samples, so);
     // Both parts' FFTs ran; one part's share is half the spectra time.
-    const double seconds = bench::seconds_since(t0) - 0.5 * s.seconds;
+    const double seconds = seconds_since(t0) - 0.5 * s.seconds;
     const double error = spectrum_error(peg, volume, s, s.part2.rho, s.part2.centre);
     points.push_back({"grid", h, seconds, error});
     std::cout << "  grid    spacing " << h << ": " << bench::fixed(seconds, 2) << " s, error "
@@ -253,7 +253,7 @@ void add_sphere_points(const FftLibrary& fft, const ComputeContext& ctx, const M
       const std::vector<std::complex<float>> values = method == "direct"
                                                           ? ball_spectrum_direct(ctx, d.balls, lattice)
                                                           : ball_spectrum_nufft(fft, ctx, d.balls, lattice);
-      const double seconds = d.seconds + bench::seconds_since(t0);
+      const double seconds = d.seconds + seconds_since(t0);
       std::vector<Complex> rho(values.size());
       for (std::size_t k = 0; k < values.size(); ++k) rho[k] = Complex(0, float(weight)) * values[k];
       const double error = spectrum_error(peg, volume, lattice_of, rho, lattice.centre);

@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 
+#include "core/progress.h"
 #include "engine/fields/triangle_bvh.h"
 #include "engine/fields/winding_propagation.h"
 #include "engine/runtime/kernel_sources.h"
@@ -88,10 +89,6 @@ struct EvalPoints {
   bool explicit_points() const { return x != nullptr; }
   std::size_t count() const { return grid.count(); }
 };
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 void check_inputs(const Mesh& mesh, const DescriptorParams& params, const DescriptorOptions& options) {
   if (mesh.empty()) throw Error("cannot compute descriptors of an empty mesh");

@@ -6,14 +6,11 @@
 #include <numeric>
 #include <string>
 
+#include "core/progress.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 Eigen::AlignedBox3d mesh_box(const Mesh& mesh) {
   Eigen::AlignedBox3d box;

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/progress.h"
 #include "core/quantile.h"
 #include "engine/query/query_engine.h"
 #include "scheduler/haptics/haptic_setup.h"
@@ -24,10 +25,6 @@ QueryVariant exact_product(const QueryVariant& base, ProductUpdate update, std::
   v.product_update = update;
   v.product_modes = product_modes;
   return v;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::string percent(double x) {
