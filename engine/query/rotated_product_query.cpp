@@ -11,6 +11,8 @@
 #include <mutex>
 #include <thread>
 
+#include "core/background_priority.h"
+#include "core/thread_name.h"
 #include "engine/query/line_kernel.h"
 #include "engine/query/query_launch.h"
 #include "engine/query/rotated_product.h"
@@ -64,7 +66,12 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
                   std::to_string(e.err()) + ")");
     }
     select(product_modes);
-    if (variant.product_update == ProductUpdate::background) worker_ = std::thread([this] { work(); });
+    if (variant.product_update == ProductUpdate::background)
+      worker_ = std::thread([this] {
+        name_this_thread("snapfit-product");
+        yield_to_the_frame();
+        work();
+      });
   }
 
   ~RotatedProductQuery() override {
@@ -300,6 +307,7 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
     double previous_time = 0, product_seconds = 0;
     bool have_previous = false;
     for (;;) {
+      yield_to_the_frame();
       {
         std::unique_lock<std::mutex> lock(mutex_);
         wake_.wait_for(lock, std::chrono::milliseconds(5), [&] { return stop_ || pose_seq_.load() != seen; });

@@ -3,9 +3,10 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
-#include <sched.h>
 #include <thread>
 
+#include "core/background_priority.h"
+#include "core/thread_name.h"
 #include "engine/query/near_field.h"
 #include "engine/query/query_engine.h"
 #include "engine/query/so3_maps.h"
@@ -33,18 +34,6 @@ NearWrench carried(const NearSnapshot& s, const Eigen::Vector3d& t, const Eigen:
   return w;
 }
 
-// The near part's worker takes only what the frame leaves of the CPU (SCHED_IDLE on
-// Linux), put back each round in case the process's priority was raised since.
-void yield_to_the_frame() {
-#ifdef __linux__
-  if (sched_getscheduler(0) != SCHED_IDLE) {
-    sched_param none{};
-    none.sched_priority = 0;
-    sched_setscheduler(0, SCHED_IDLE, &none);
-  }
-#endif
-}
-
 class SplitQuery final : public QueryEngine {
  public:
   SplitQuery(const ComputeContext& ctx, const PairSpectra& spectra, const QueryVariant& variant,
@@ -58,7 +47,12 @@ class SplitQuery final : public QueryEngine {
     QueryVariant far = variant;
     far.near_far = false;
     far_ = make_query_engine(ctx, far_spectra(spectra, *near_), far, cache);
-    if (variant.product_update == ProductUpdate::background) worker_ = std::thread([this] { work(); });
+    if (variant.product_update == ProductUpdate::background)
+      worker_ = std::thread([this] {
+        name_this_thread("snapfit-near");
+        yield_to_the_frame();
+        work();
+      });
   }
 
   ~SplitQuery() override {

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "core/quantile.h"
+#include "core/thread_name.h"
 #include "scheduler/haptics/force_rate_limit.h"
 #include "scheduler/haptics/virtual_coupling.h"
 #include "scheduler/haptics/wrench_trust.h"
@@ -527,6 +528,7 @@ HapticLoopThread::HapticLoopThread(HapticDevice& device, WrenchEvaluator engine,
   config.stop = &stop_;
   state_->result =
       std::async(std::launch::async, [&device, engine = std::move(engine), config, part, clock = std::move(clock)] {
+        name_this_thread("snapfit-loop");
         return run_haptic_loop(device, engine, config, clock, part);
       });
 }

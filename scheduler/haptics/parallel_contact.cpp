@@ -8,6 +8,8 @@
 #include <thread>
 #include <vector>
 
+#include "core/thread_name.h"
+
 namespace snapfit {
 namespace {
 
@@ -26,7 +28,11 @@ class ContactTeam {
   ContactTeam(std::shared_ptr<const RigidContactModel> model, unsigned threads, ContactShareFunction share)
       : model_(std::move(model)), share_(share), shares_(threads * kSharesPerThread), results_(shares_) {
     helpers_.reserve(threads - 1);
-    for (unsigned i = 1; i < threads; ++i) helpers_.emplace_back([this] { serve(); });
+    for (unsigned i = 1; i < threads; ++i)
+      helpers_.emplace_back([this] {
+        name_this_thread("snapfit-contact");
+        serve();
+      });
   }
   ~ContactTeam() {
     {

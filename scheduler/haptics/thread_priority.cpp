@@ -4,6 +4,8 @@
 #include <cstring>
 #include <filesystem>
 
+#include "core/background_priority.h"
+
 #ifdef __linux__
 #include <sched.h>
 #include <sys/resource.h>
@@ -32,7 +34,7 @@ PriorityChange raise_process_priority(const PriorityRequest& request) {
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator("/proc/self/task", ec)) {
     const int tid = std::atoi(entry.path().filename().c_str());
-    if (tid <= 0) continue;
+    if (tid <= 0 || is_background_thread(tid)) continue;  // a worker that yields to the frame
     PriorityChange::Previous before;
     before.tid = tid;
     before.policy = sched_getscheduler(tid);

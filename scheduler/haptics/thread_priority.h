@@ -26,8 +26,9 @@ struct PriorityChange : ThreadPriority {
   std::vector<Previous> previous;
 };
 
-// Raises every thread of this process: SCHED_FIFO at request.realtime_priority when
-// asked and allowed (CAP_SYS_NICE), else the nice value. Linux only; elsewhere nothing
+// Raises every thread of this process but the background workers (SCHED_IDLE,
+// core/background_priority.h), which stay below the frame: SCHED_FIFO at
+// request.realtime_priority when asked and allowed (CAP_SYS_NICE), else the nice value. Linux only; elsewhere nothing
 // changes and `reason` says so.
 PriorityChange raise_process_priority(const PriorityRequest& request);
 
