@@ -69,7 +69,6 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
     if (variant.product_update == ProductUpdate::background)
       worker_ = std::thread([this] {
         name_this_thread("snapfit-product");
-        yield_to_the_frame();
         work();
       });
   }
@@ -300,7 +299,8 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
 
   // The worker: for each new pose, the rotation a product made now will be needed at
   // (the last rotation carried on at the measured rate for the time a product takes),
-  // made into a free slot and published.
+  // made into a free slot and published. Each round starts by yielding to the frame
+  // (SCHED_IDLE), before any product is made.
   void work() {
     unsigned seen = 0;
     Eigen::Quaterniond previous = Eigen::Quaterniond::Identity();

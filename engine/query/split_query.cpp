@@ -50,7 +50,6 @@ class SplitQuery final : public QueryEngine {
     if (variant.product_update == ProductUpdate::background)
       worker_ = std::thread([this] {
         name_this_thread("snapfit-near");
-        yield_to_the_frame();
         work();
       });
   }
