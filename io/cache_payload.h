@@ -20,8 +20,8 @@ struct PayloadWriter {
     const auto* p = reinterpret_cast<const unsigned char*>(&value);
     bytes.insert(bytes.end(), p, p + sizeof(T));
   }
-  template <typename T>
-  void put_array(const std::vector<T>& v) {
+  template <typename T, typename Allocator>
+  void put_array(const std::vector<T, Allocator>& v) {
     static_assert(std::is_trivially_copyable_v<T>);
     put<std::uint64_t>(v.size());
     const auto* p = reinterpret_cast<const unsigned char*>(v.data());
@@ -47,11 +47,11 @@ struct PayloadReader {
     at += sizeof(T);
     return value;
   }
-  template <typename T>
-  std::vector<T> get_array() {
+  template <typename T, typename Allocator = std::allocator<T>>
+  std::vector<T, Allocator> get_array() {
     const std::uint64_t n = get<std::uint64_t>();
-    if (!ok || (bytes.size() - at) / sizeof(T) < n) return ok = false, std::vector<T>();
-    std::vector<T> v(n);
+    if (!ok || (bytes.size() - at) / sizeof(T) < n) return ok = false, std::vector<T, Allocator>();
+    std::vector<T, Allocator> v(n);
     std::memcpy(v.data(), bytes.data() + at, n * sizeof(T));
     at += n * sizeof(T);
     return v;

@@ -71,7 +71,7 @@ SignedDistanceGrid build_signed_distance_grid(const Mesh& mesh, double spacing, 
   // Cells that may hold a point within `band` of the surface get a fine brick.
   const double reach = band + g.coarse * std::sqrt(3.0);
   const std::size_t cx = nx - 1, cy = ny - 1, cz = nz - 1;
-  g.brick_of_cell.assign(cx * cy * cz, -1);
+  g.brick_of_cell.assign(cx * cy * cz, kCoarseOutside);
   std::vector<std::size_t> refined;
   for (std::size_t k = 0; k < cz; ++k)
     for (std::size_t j = 0; j < cy; ++j)
@@ -83,18 +83,23 @@ SignedDistanceGrid build_signed_distance_grid(const Mesh& mesh, double spacing, 
         if (nearest <= reach) {
           g.brick_of_cell[i + cx * (j + cy * k)] = static_cast<std::int32_t>(refined.size());
           refined.push_back(i + cx * (j + cy * k));
+        } else if (g.coarse_values[i + nx * (j + ny * k)] < 0) {  // |d| > band over the cell: one sign
+          g.brick_of_cell[i + cx * (j + cy * k)] = kCoarseInside;
         }
       }
   const std::size_t per = g.brick_nodes(), side = refine + 1;
   g.brick_values.resize(refined.size() * per);
   const double h = g.fine_spacing();
+  g.brick_step = h / kBrickStepsPerSpacing;
   tbb::parallel_for(std::size_t(0), refined.size(), [&](std::size_t b) {
     const std::size_t cell = refined[b];
     const Eigen::Vector3d corner =
         g.origin + g.coarse * Eigen::Vector3d(double(cell % cx), double(cell / cx % cy), double(cell / (cx * cy)));
-    for (std::size_t n = 0; n < per; ++n)
-      g.brick_values[b * per + n] = static_cast<float>(index.signed_distance(
-          corner + h * Eigen::Vector3d(double(n % side), double(n / side % side), double(n / (side * side)))));
+    for (std::size_t n = 0; n < per; ++n) {
+      const double d = index.signed_distance(
+          corner + h * Eigen::Vector3d(double(n % side), double(n / side % side), double(n / (side * side))));
+      g.brick_values[b * per + n] = static_cast<std::int16_t>(std::clamp(std::round(d / g.brick_step), -32767.0, 32767.0));
+    }
   });
   return g;
 }
@@ -135,9 +140,9 @@ double sample(const SignedDistanceGrid& g, const Eigen::Vector3d& p, Eigen::Vect
     sub[a] = std::clamp(static_cast<int>(std::floor(s)), 0, r - 1);
     f[a] = s - sub[a];
   }
-  const float* v = g.brick_values.data() + std::size_t(brick) * g.brick_nodes();
+  const std::size_t first = std::size_t(brick) * g.brick_nodes();
   for (int n = 0; n < 8; ++n)
-    c[n] = v[(sub.x() + (n & 1)) + side * ((sub.y() + (n >> 1 & 1)) + side * (sub.z() + (n >> 2)))];
+    c[n] = g.brick_value(first + (sub.x() + (n & 1)) + side * ((sub.y() + (n >> 1 & 1)) + side * (sub.z() + (n >> 2))));
   cell_spacing = g.fine_spacing();
   return trilinear(c, f, g.fine_spacing(), gradient);
 }
@@ -152,7 +157,7 @@ double sample_signed_distance(const SignedDistanceGrid& g, const Eigen::Vector3d
 double signed_distance_lower_bound(const SignedDistanceGrid& g, const Eigen::Vector3d& p) {
   double cell_spacing = 0;
   const double d = sample(g, p, nullptr, cell_spacing);
-  return d - (0.5 * std::sqrt(3.0) + 1e-4) * cell_spacing - 1e-6 * std::abs(d);
+  return d - (0.5 * std::sqrt(3.0) + 1e-4) * cell_spacing - 1e-6 * std::abs(d) - g.brick_step;
 }
 
 }  // namespace snapfit

@@ -7,6 +7,8 @@
 #include <doctest/doctest.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <iostream>
 #include <random>
 
@@ -74,6 +76,43 @@ Pose moved(const Pose& p, const Eigen::Vector3d& dt, const Eigen::Vector3d& dthe
 }
 
 }  // namespace
+
+TEST_CASE("rigid contact: each brick node holds its exact distance to half a brick step; a cell without one, its side") {
+  const ShippedPair& p = default_pair();
+  const RigidContactModel& m = default_contact();
+  for (int part = 1; part <= 2; ++part) {
+    const SignedDistanceGrid& g = part == 1 ? m.part1_distance : m.part2_distance;
+    const MeshDistanceIndex exact(p.pair.part(part).mesh);
+    CHECK(g.brick_step == doctest::Approx(g.fine_spacing() / kBrickStepsPerSpacing));
+    CHECK(reinterpret_cast<std::uintptr_t>(g.brick_values.data()) % 64 == 0);  // a brick: whole cache lines
+    const std::size_t cx = g.dims.x() - 1, cy = g.dims.y() - 1, side = g.refine + 1;
+    double worst = 0;
+    std::size_t nodes = 0, outside = 0, inside = 0;
+    for (std::size_t cell = 0; cell < g.brick_of_cell.size(); cell += 7) {
+      const Eigen::Vector3d corner =
+          g.origin + g.coarse * Eigen::Vector3d(double(cell % cx), double(cell / cx % cy), double(cell / (cx * cy)));
+      const std::int32_t brick = g.brick_of_cell[cell];
+      if (brick < 0) {  // the whole cell beyond the band, on the side its code says
+        const double d = exact.signed_distance(corner + 0.5 * g.coarse * Eigen::Vector3d::Ones());
+        CHECK(std::abs(d) > g.band);
+        CHECK((d > 0) == (brick == kCoarseOutside));
+        ++(brick == kCoarseOutside ? outside : inside);
+        continue;
+      }
+      for (std::size_t n = 0; n < g.brick_nodes(); n += 5, ++nodes) {
+        const Eigen::Vector3d at =
+            corner + g.fine_spacing() * Eigen::Vector3d(double(n % side), double(n / side % side), double(n / (side * side)));
+        const double stored = g.brick_values[std::size_t(brick) * g.brick_nodes() + n] * g.brick_step;
+        worst = std::max(worst, std::abs(stored - exact.signed_distance(at)));
+      }
+    }
+    MESSAGE("part " << part << ": " << nodes << " brick nodes, largest |stored - exact| " << worst << " (brick step "
+                    << g.brick_step << "); " << outside << " cells outside, " << inside << " inside without a brick");
+    CHECK(nodes > 0);
+    CHECK(outside > 0);
+    CHECK(worst <= 0.5 * g.brick_step * (1 + 1e-6));
+  }
+}
 
 TEST_CASE("rigid contact: the distance grid matches the exact signed distance near the shipped parts") {
   const ShippedPair& p = default_pair();

@@ -16,7 +16,7 @@ PointMap point_map(const Eigen::Matrix3d& to_grid, const Eigen::Matrix3d& to_arm
     for (int c = 0; c < 3; ++c) {
       m.to_fine[3 * r + c] = per_spacing * to_grid(r, c);
       m.to_arm_f[3 * r + c] = float(to_arm(r, c));
-      m.to_dphi_dt[3 * r + c] = float(sign * per_spacing * to_world(r, c));
+      m.to_dphi_dt[3 * r + c] = float(sign * per_spacing * grid.brick_step * to_world(r, c));
     }
   return m;
 }
@@ -42,7 +42,7 @@ int floor_int(double x) {
 // Where a point (the grid's frame) lies on the fine level: the node at its cell's lowest
 // corner (null off the fine level) and its fraction in the cell.
 struct FineCell {
-  const float* node = nullptr;
+  const std::int16_t* node = nullptr;
   double fraction[3] = {0, 0, 0};
 };
 
@@ -71,13 +71,14 @@ double lower_bound(const FineDistanceView& view, const SignedDistanceGrid& grid,
                    const Eigen::Vector3d& p) {
   if (!c.node) return signed_distance_lower_bound(grid, p);
   const double d = view.value(c.node, c.fraction[0], c.fraction[1], c.fraction[2]);
-  return d - (0.5 * std::sqrt(3.0) + 1e-4) * grid.fine_spacing() - 1e-6 * std::abs(d);
+  return d - (0.5 * std::sqrt(3.0) + 1e-4) * grid.fine_spacing() - 1e-6 * std::abs(d) - grid.brick_step;
 }
 
 // Each point of a block, at this frame's pose: the node at its fine cell's lowest corner
 // (null off the fine level) and its fraction in the cell.
 struct BlockCells {
-  const float* node[kMaxBlockPoints];
+  const std::int16_t* node[kMaxBlockPoints];
+  bool outside[kMaxBlockPoints];  // off the fine level, outside the part beyond the band: no term
   double fx[kMaxBlockPoints], fy[kMaxBlockPoints], fz[kMaxBlockPoints];
 };
 
@@ -119,7 +120,10 @@ bool locate_block(const ContactBlocks& points, const ShellChunk& block, const Po
   // bricks' reads, not the arithmetic, bound the evaluation).
   for (std::size_t i = 0; i < n; ++i) {
     cells.node[i] = view.node(base[0] + ci[i], base[1] + cj[i], base[2] + ck[i]);
-    if (cells.node[i]) view.prefetch(cells.node[i]);
+    if (cells.node[i])
+      view.prefetch(cells.node[i]);
+    else
+      cells.outside[i] = view.outside_beyond_band(base[0] + ci[i], base[1] + cj[i], base[2] + ck[i]);
   }
   return true;
 }
@@ -144,7 +148,7 @@ void add_block_contact(const ContactBlocks& points, const ShellChunk& block, con
     for (std::size_t i = 0; i < n; ++i) add_exactly(i);
     return;
   }
-  const float* const* nodes = cells.node;
+  const std::int16_t* const* nodes = cells.node;
   const double *fx = cells.fx, *fy = cells.fy, *fz = cells.fz;
   const FineDistanceView view = shared_view;  // a local copy: its fields stay in registers
 
@@ -154,7 +158,7 @@ void add_block_contact(const ContactBlocks& points, const ShellChunk& block, con
   std::size_t deeper = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!nodes[i]) {
-      add_exactly(i);
+      if (!cells.outside[i]) add_exactly(i);
       continue;
     }
     const double phi = view.value(nodes[i], fx[i], fy[i], fz[i]);
@@ -180,7 +184,7 @@ void add_block_contact(const ContactBlocks& points, const ShellChunk& block, con
     if (h < deeper) {
       const std::size_t i = deep[h];
       float corner[8];
-      view.corners(nodes[i], corner);
+      view.corner_steps(nodes[i], corner);
       for (int q = 0; q < 8; ++q) c[q][h] = corner[q];
       f[0][h] = float(fx[i]), f[1][h] = float(fy[i]), f[2][h] = float(fz[i]);
       d[0][h] = x[i], d[1][h] = y[i], d[2][h] = z[i];
@@ -199,7 +203,7 @@ void add_block_contact(const ContactBlocks& points, const ShellChunk& block, con
   const float uf = float(u);
   alignas(16) float term[kContactTerms][kMaxBlockPoints];
   for (std::size_t h = 0; h < lanes; ++h) {
-    // The trilinear distance's gradient (per fine spacing).
+    // The trilinear distance's gradient (brick steps per fine spacing).
     const float x0 = f[0][h], y0 = f[1][h], z0 = f[2][h];
     const float d00 = c[1][h] - c[0][h], d10 = c[3][h] - c[2][h], d01 = c[5][h] - c[4][h], d11 = c[7][h] - c[6][h];
     const float c00 = c[0][h] + d00 * x0, c10 = c[2][h] + d10 * x0, c01 = c[4][h] + d01 * x0, c11 = c[6][h] + d11 * x0;

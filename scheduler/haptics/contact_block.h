@@ -10,7 +10,8 @@
 // wrench and stiffness terms in single precision over arrays of them (vectorized), summed
 // per block in single precision and into the contact's sums in double. Cells, fractions
 // and distances are in double: the energy's change over a small motion may be 1e-5 of
-// itself. Points off the grid's fine level take sample_signed_distance.
+// itself. Points off the grid's fine level take sample_signed_distance, but for those in a
+// coarse cell that lies wholly outside the part beyond the band (no term: skipped).
 #include <Eigen/Core>
 
 #include "mesh/contact_blocks.h"
@@ -30,8 +31,8 @@ struct PointMap {
   Eigen::Matrix3d to_grid, to_arm, to_world;
   double sign = 1;
   double to_fine[9];  // to_grid in fine spacings of the grid, row-major
-  // Single-precision forms, row-major: to_arm; and sign to_world per fine spacing, taking
-  // the fine level's gradient to dphi/dt.
+  // Single-precision forms, row-major: to_arm; and sign to_world times the brick step per
+  // fine spacing, taking the fine level's gradient (brick steps per fine spacing) to dphi/dt.
   float to_arm_f[9], to_dphi_dt[9];
 };
 

@@ -13,13 +13,13 @@
 namespace snapfit {
 namespace {
 
-constexpr std::uint32_t kContactCacheVersion = 1;
+constexpr std::uint32_t kContactCacheVersion = 3;
 constexpr const char* kContactCacheKind = "rigid-contact";
 
 void put_grid(PayloadWriter& w, const SignedDistanceGrid& g) {
   w.put_vector3(g.origin), w.put(g.coarse), w.put(std::int32_t(g.refine)), w.put_vector3(g.dims);
   w.put_vector3(g.part_min), w.put_vector3(g.part_max), w.put(g.band);
-  w.put_array(g.coarse_values), w.put_array(g.brick_of_cell), w.put_array(g.brick_values);
+  w.put_array(g.coarse_values), w.put_array(g.brick_of_cell), w.put_array(g.brick_values), w.put(g.brick_step);
 }
 
 // False when what was read cannot be a grid the sampler can use.
@@ -32,15 +32,16 @@ bool get_grid(PayloadReader& r, SignedDistanceGrid& g) {
   g.part_max = r.get_vector3<Eigen::Vector3d>();
   g.band = r.get<double>();
   g.coarse_values = r.get_array<float>();
-  g.brick_of_cell = r.get_array<std::int32_t>();
-  g.brick_values = r.get_array<float>();
-  if (!r.ok || g.refine < 1 || g.refine > 16 || !(g.coarse > 0) || (g.dims.array() < 2).any()) return false;
+  g.brick_of_cell = r.get_array<std::int32_t, decltype(g.brick_of_cell)::allocator_type>();
+  g.brick_values = r.get_array<std::int16_t, decltype(g.brick_values)::allocator_type>();
+  g.brick_step = r.get<double>();
+  if (!r.ok || !(g.brick_step > 0) || g.refine < 1 || g.refine > 16 || !(g.coarse > 0) || (g.dims.array() < 2).any()) return false;
   const std::size_t nodes = std::size_t(g.dims.x()) * g.dims.y() * g.dims.z();
   const std::size_t cells = std::size_t(g.dims.x() - 1) * (g.dims.y() - 1) * (g.dims.z() - 1);
   if (g.coarse_values.size() != nodes || g.brick_of_cell.size() != cells || g.brick_values.size() % g.brick_nodes())
     return false;
   for (std::int32_t b : g.brick_of_cell)
-    if (b >= std::int32_t(g.bricks())) return false;
+    if (b >= std::int32_t(g.bricks()) || b < kCoarseInside) return false;
   return true;
 }
 
