@@ -77,7 +77,7 @@ Pose moved(const Pose& p, const Eigen::Vector3d& dt, const Eigen::Vector3d& dthe
 
 }  // namespace
 
-TEST_CASE("rigid contact: each brick node holds its exact distance to half a brick step; a cell without one, its side") {
+TEST_CASE("rigid contact: each brick node holds its exact distance to half a brick step, a cell without one its side") {
   const ShippedPair& p = default_pair();
   const RigidContactModel& m = default_contact();
   for (int part = 1; part <= 2; ++part) {
