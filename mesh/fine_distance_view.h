@@ -37,11 +37,9 @@ class FineDistanceView {
 
   // The brick node at fine cell (i, j, k)'s lowest corner; null outside the fine level.
   const std::int16_t* node(int i, int j, int k) const {
-    if (std::uint32_t(i) >= fine_cells_[0] || std::uint32_t(j) >= fine_cells_[1] || std::uint32_t(k) >= fine_cells_[2])
-      return nullptr;
+    if (!on_grid(i, j, k)) return nullptr;
     const int ci = coarse(i), cj = coarse(j), ck = coarse(k);
-    const std::int32_t brick =
-        brick_of_cell_[std::size_t(ci) + coarse_x_ * std::size_t(cj) + coarse_xy_ * std::size_t(ck)];
+    const std::int32_t brick = brick_of(ci, cj, ck);
     if (brick < 0) return nullptr;
     const std::size_t sub =
         std::size_t(i - ci * refine_) + side_ * (std::size_t(j - cj * refine_) + side_ * std::size_t(k - ck * refine_));
@@ -51,10 +49,7 @@ class FineDistanceView {
   // Whether fine cell (i, j, k) lies in a coarse cell without a brick outside the part:
   // every point in it is more than the band from the surface, outside.
   bool outside_beyond_band(int i, int j, int k) const {
-    if (std::uint32_t(i) >= fine_cells_[0] || std::uint32_t(j) >= fine_cells_[1] || std::uint32_t(k) >= fine_cells_[2])
-      return false;
-    return brick_of_cell_[std::size_t(coarse(i)) + coarse_x_ * std::size_t(coarse(j)) +
-                          coarse_xy_ * std::size_t(coarse(k))] == kCoarseOutside;
+    return on_grid(i, j, k) && brick_of(coarse(i), coarse(j), coarse(k)) == kCoarseOutside;
   }
 
   // Asks for the cache lines of the cell whose lowest node is `n` (its four rows of two nodes).
@@ -84,6 +79,13 @@ class FineDistanceView {
   }
 
  private:
+  bool on_grid(int i, int j, int k) const {
+    return std::uint32_t(i) < fine_cells_[0] && std::uint32_t(j) < fine_cells_[1] && std::uint32_t(k) < fine_cells_[2];
+  }
+  // The coarse cell's entry of brick_of_cell: a brick index, or kCoarseOutside / kCoarseInside.
+  std::int32_t brick_of(int ci, int cj, int ck) const {
+    return brick_of_cell_[std::size_t(ci) + coarse_x_ * std::size_t(cj) + coarse_xy_ * std::size_t(ck)];
+  }
   int coarse(int fine) const { return int((std::uint64_t(std::uint32_t(fine)) * inverse_) >> 40); }
 
   const std::int16_t* bricks_;

@@ -98,7 +98,8 @@ SignedDistanceGrid build_signed_distance_grid(const Mesh& mesh, double spacing, 
     for (std::size_t n = 0; n < per; ++n) {
       const double d = index.signed_distance(
           corner + h * Eigen::Vector3d(double(n % side), double(n / side % side), double(n / (side * side))));
-      g.brick_values[b * per + n] = static_cast<std::int16_t>(std::clamp(std::round(d / g.brick_step), -32767.0, 32767.0));
+      const double steps = std::clamp(std::round(d / g.brick_step), -32767.0, 32767.0);
+      g.brick_values[b * per + n] = static_cast<std::int16_t>(steps);
     }
   });
   return g;

@@ -100,8 +100,8 @@ TEST_CASE("rigid contact: each brick node holds its exact distance to half a bri
         continue;
       }
       for (std::size_t n = 0; n < g.brick_nodes(); n += 5, ++nodes) {
-        const Eigen::Vector3d at =
-            corner + g.fine_spacing() * Eigen::Vector3d(double(n % side), double(n / side % side), double(n / (side * side)));
+        const Eigen::Vector3d node(double(n % side), double(n / side % side), double(n / (side * side)));
+        const Eigen::Vector3d at = corner + g.fine_spacing() * node;
         const double stored = g.brick_values[std::size_t(brick) * g.brick_nodes() + n] * g.brick_step;
         worst = std::max(worst, std::abs(stored - exact.signed_distance(at)));
       }
