@@ -78,6 +78,16 @@ class FineDistanceView {
     c[4] = n[sz], c[5] = n[sz + 1], c[6] = n[sz + sy], c[7] = n[sz + sy + 1];
   }
 
+  // The layout, for a vectorized lookup that repeats node()'s arithmetic.
+  const std::int16_t* bricks() const { return bricks_; }
+  const std::int32_t* brick_of_cell() const { return brick_of_cell_; }
+  int refine() const { return refine_; }
+  std::size_t side() const { return side_; }                // nodes along a brick's edge
+  std::size_t brick_nodes() const { return brick_nodes_; }  // nodes per brick
+  std::size_t coarse_x() const { return coarse_x_; }        // brick_of_cell's stride along y
+  std::size_t coarse_xy() const { return coarse_xy_; }      // and along z
+  std::uint32_t fine_cells(int axis) const { return fine_cells_[axis]; }
+
  private:
   bool on_grid(int i, int j, int k) const {
     return std::uint32_t(i) < fine_cells_[0] && std::uint32_t(j) < fine_cells_[1] && std::uint32_t(k) < fine_cells_[2];

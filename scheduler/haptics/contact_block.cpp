@@ -1,5 +1,7 @@
 #include "scheduler/haptics/contact_block.h"
 
+#include "scheduler/haptics/block_distances.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -33,12 +35,6 @@ void add_term(const PointMap& map, const Eigen::Vector3d& centre_arm, const Eige
   sum.add(k.k_area * area, k.metres_per_unit * (phi + k.skin), j, phi);
 }
 
-// floor(x) for |x| < 2^31, inline (std::floor is a library call without SSE4.1).
-int floor_int(double x) {
-  const int i = int(x);
-  return i - (x < i);
-}
-
 // Where a point (the grid's frame) lies on the fine level: the node at its cell's lowest
 // corner (null off the fine level) and its fraction in the cell.
 struct FineCell {
@@ -51,7 +47,7 @@ FineCell locate(const FineDistanceView& view, const SignedDistanceGrid& grid, co
   const Eigen::Vector3d local = (p - grid.origin) * (1 / grid.fine_spacing());
   if (!(local.array().abs() < 1e9).all()) return c;  // far off the grid, or not finite
   int cell[3];
-  for (int a = 0; a < 3; ++a) cell[a] = floor_int(local[a]), c.fraction[a] = local[a] - cell[a];
+  for (int a = 0; a < 3; ++a) cell[a] = floor_to_int(local[a]), c.fraction[a] = local[a] - cell[a];
   c.node = view.node(cell[0], cell[1], cell[2]);
   return c;
 }
@@ -74,60 +70,6 @@ double lower_bound(const FineDistanceView& view, const SignedDistanceGrid& grid,
   return d - (0.5 * std::sqrt(3.0) + 1e-4) * grid.fine_spacing() - 1e-6 * std::abs(d) - grid.brick_step;
 }
 
-// Each point of a block, at this frame's pose: the node at its fine cell's lowest corner
-// (null off the fine level) and its fraction in the cell.
-struct BlockCells {
-  const std::int16_t* node[kMaxBlockPoints];
-  bool outside[kMaxBlockPoints];  // off the fine level, outside the part beyond the band: no term
-  double fx[kMaxBlockPoints], fy[kMaxBlockPoints], fz[kMaxBlockPoints];
-};
-
-// Fills `cells` for a block centred at `centre_grid` (the grid's frame) and fetches the
-// cells' nodes ahead; false when the centre is far off the grid or not finite (no fine
-// cell to find).
-bool locate_block(const ContactBlocks& points, const ShellChunk& block, const PointMap& map,
-                  const Eigen::Vector3d& centre_grid, const SignedDistanceGrid& grid,
-                  const FineDistanceView& shared_view, BlockCells& cells) {
-  // The centre in fine spacings from the grid's origin, as a whole cell `base` and a
-  // remainder `rest` lifted more than the block's radius above zero: every point's
-  // rest + to_fine d is then positive, and its cell found by truncation.
-  const double per_spacing = 1 / grid.fine_spacing();
-  const Eigen::Vector3d local = (centre_grid - grid.origin) * per_spacing;
-  if (!(local.array().abs() < 1e9).all()) return false;
-  const int lift = int(block.radius * per_spacing) + 2;
-  int base[3];
-  double rest[3];
-  for (int a = 0; a < 3; ++a) base[a] = floor_int(local[a]) - lift, rest[a] = local[a] - base[a];
-
-  // Pass 1: each point's fine cell (relative to base) and fraction in it. In double, as
-  // the distances of pass 3: the energy's change over a small motion (1e-5 of a degree
-  // of turn) may be 1e-5 of itself, below single precision's round-off.
-  const std::size_t n = block.end - block.begin;
-  const float *x = points.x.data() + block.begin, *y = points.y.data() + block.begin,
-              *z = points.z.data() + block.begin;
-  const double* m = map.to_fine;
-  int ci[kMaxBlockPoints], cj[kMaxBlockPoints], ck[kMaxBlockPoints];
-  for (std::size_t i = 0; i < n; ++i) {
-    const double u = rest[0] + m[0] * x[i] + m[1] * y[i] + m[2] * z[i];
-    const double v = rest[1] + m[3] * x[i] + m[4] * y[i] + m[5] * z[i];
-    const double w = rest[2] + m[6] * x[i] + m[7] * y[i] + m[8] * z[i];
-    ci[i] = int(u), cj[i] = int(v), ck[i] = int(w);
-    cells.fx[i] = u - ci[i], cells.fy[i] = v - cj[i], cells.fz[i] = w - ck[i];
-  }
-
-  const FineDistanceView view = shared_view;  // a local copy: its fields stay in registers
-  // Pass 2: each point's cell in the grid's bricks, its corners fetched ahead (the
-  // bricks' reads, not the arithmetic, bound the evaluation).
-  for (std::size_t i = 0; i < n; ++i) {
-    cells.node[i] = view.node(base[0] + ci[i], base[1] + cj[i], base[2] + ck[i]);
-    if (cells.node[i])
-      view.prefetch(cells.node[i]);
-    else
-      cells.outside[i] = view.outside_beyond_band(base[0] + ci[i], base[1] + cj[i], base[2] + ck[i]);
-  }
-  return true;
-}
-
 void add_block_contact(const ContactBlocks& points, const ShellChunk& block, const PointMap& map,
                        const Eigen::Vector3d& centre_grid, const Eigen::Vector3d& centre_arm,
                        const SignedDistanceGrid& grid, const FineDistanceView& shared_view, const ContactConstants& k,
@@ -143,8 +85,8 @@ void add_block_contact(const ContactBlocks& points, const ShellChunk& block, con
     if (phi < -k.skin) add_term(map, centre_arm, offset(i), phi, gradient, area[i], k, sum);
   };
 
-  BlockCells cells;
-  if (!locate_block(points, block, map, centre_grid, grid, shared_view, cells)) {
+  BlockDistances cells;
+  if (!block_distances(points, block, map.to_fine, centre_grid, grid, shared_view, cells)) {
     for (std::size_t i = 0; i < n; ++i) add_exactly(i);
     return;
   }
@@ -161,7 +103,7 @@ void add_block_contact(const ContactBlocks& points, const ShellChunk& block, con
       if (!cells.outside[i]) add_exactly(i);
       continue;
     }
-    const double phi = view.value(nodes[i], fx[i], fy[i], fz[i]);
+    const double phi = cells.phi[i];
     if (phi < -k.skin) deep[deeper] = std::uint8_t(i), deep_phi[deeper++] = phi;
   }
 

@@ -3,15 +3,13 @@
 // other part's distance grid, added to the contact's sums (scheduler/haptics/contact_sum.h): the
 // broad phase and the per-point work of contact_wrench_share (scheduler/haptics/rigid_contact.h).
 //
-// Passes over a block: every point's fine cell and fraction in the grid (vectorized);
-// every cell's nodes fetched ahead (the bricks' reads bound the evaluation); every
-// point's distance without gradient (near a fit most points lie within the band but not
-// deeper than the skin); and for those deeper, the energy in double and their gradient,
-// wrench and stiffness terms in single precision over arrays of them (vectorized), summed
-// per block in single precision and into the contact's sums in double. Cells, fractions
-// and distances are in double: the energy's change over a small motion may be 1e-5 of
-// itself. Points off the grid's fine level take sample_signed_distance, but for those in a
-// coarse cell that lies wholly outside the part beyond the band (no term: skipped).
+// Passes over a block: every point's fine cell, fraction and distance in the grid
+// (scheduler/haptics/block_distances.h; near a fit most points lie within the band but
+// not deeper than the skin); and for those deeper, the energy in double and their
+// gradient, wrench and stiffness terms in single precision over arrays of them
+// (vectorized), summed per block in single precision and into the contact's sums in
+// double. Points off the grid's fine level take sample_signed_distance, but for those in
+// a coarse cell that lies wholly outside the part beyond the band (no term: skipped).
 #include <Eigen/Core>
 
 #include "mesh/contact_blocks.h"
