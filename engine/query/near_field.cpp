@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "engine/spectra/box_fft.h"
 #include "snapfit/error.h"
 
 namespace snapfit {
@@ -156,9 +157,7 @@ NearField build_near_field(const FftLibrary& library, const ComputeContext& ctx,
         series[x + d[0] * (y + d[1] * z)] = std::complex<double>(spectra.part1.rho[x + d[0] * (y + d[1] * z)]) *
                                             (1 - g[0][x] * g[1][y] * g[2][z]) * dw * inverse_phi[0][x] *
                                             inverse_phi[1][y] * inverse_phi[2][z];
-  const Fft3d fft(library, ctx, d);
-  cl::Buffer in(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * count);
-  cl::Buffer out(ctx.context, CL_MEM_READ_WRITE, sizeof(Complex) * count);
+  const BoxFft fft(library, ctx, d);
   std::vector<Complex> coarse(count);
   near.node.assign(std::size_t(near.dims[0]) * near.dims[1] * near.dims[2], Eigen::Vector4f::Zero());
   for (int c = 0; c < 4; ++c)      // value, then the gradient's components
@@ -181,9 +180,7 @@ NearField build_near_field(const FftLibrary& library, const ComputeContext& ctx,
             coarse[i] = Complex(series[i] * shift[0][x] * yz);
           }
         }
-      ctx.queue.enqueueWriteBuffer(in, CL_TRUE, 0, sizeof(Complex) * count, coarse.data());
-      fft.transform(FftDirection::inverse, in, out);
-      ctx.queue.enqueueReadBuffer(out, CL_TRUE, 0, sizeof(Complex) * count, coarse.data());
+      fft.transform(FftDirection::inverse, coarse);
       // Kept fine node (i, j, k) is fine index lo + (i, j, k) (periodic in m), on this
       // sub-lattice when its parity matches s.
       for (int k = 0; k < near.dims[2]; ++k) {

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "core/hash.h"
+#include "engine/spectra/fftw_planner.h"
 #include "io/cache_file.h"
 #include "snapfit/error.h"
 
@@ -13,12 +14,6 @@ namespace {
 
 constexpr const char* kKind = "snapfit fftw wisdom";
 constexpr std::uint32_t kVersion = 1;
-
-// FFTW's planner and wisdom are process-wide and not thread-safe: one lock for both.
-std::mutex& planner_lock() {
-  static std::mutex lock;
-  return lock;
-}
 
 int planner_threads() { return int(std::max(1u, std::thread::hardware_concurrency())); }
 
@@ -45,9 +40,8 @@ FftwRealInverse::FftwRealInverse(std::array<std::size_t, 3> dims, int buffers) :
   }
   const std::string key = wisdom_key(dims);
   const std::string path = wisdom_path(key);
-  std::lock_guard<std::mutex> lock(planner_lock());
-  static const bool threads = fftwf_init_threads() != 0;
-  if (threads) fftwf_plan_with_nthreads(planner_threads());
+  std::lock_guard<std::mutex> lock(fftw_planner_lock());
+  fftw_plan_on_all_cores();
   bool from_cache = false;
   if (auto wisdom = read_cache_payload(path, kKind, kVersion, key, "FFTW wisdom", [](const std::string&) {})) {
     wisdom->push_back(0);
@@ -75,7 +69,7 @@ FftwRealInverse::~FftwRealInverse() { release(); }
 
 void FftwRealInverse::release() {
   if (plan_) {
-    std::lock_guard<std::mutex> lock(planner_lock());
+    std::lock_guard<std::mutex> lock(fftw_planner_lock());
     fftwf_destroy_plan(static_cast<fftwf_plan>(plan_));
     plan_ = nullptr;
   }

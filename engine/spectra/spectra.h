@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "engine/fields/descriptors.h"
+#include "engine/spectra/box_fft.h"
 #include "engine/spectra/es_kernel.h"
 #include "engine/spectra/fft3d.h"
 
@@ -31,6 +32,8 @@ struct SpectrumOptions {
   // exactly at rotated frequencies with this kernel (engine/spectra/es_kernel.h; 5: ~1e-4, 7: ~1e-6); 0:
   // not computed (a part that never rotates).
   int exact_rotation_width = 5;
+  // Where the forward FFTs run (engine/spectra/box_fft.h).
+  FftPlace fft = FftPlace::automatic;
 };
 
 struct PartSpectrum {
