@@ -23,6 +23,7 @@ class BoxFft {
   BoxFft(const FftLibrary& library, const ComputeContext& ctx, std::array<std::size_t, 3> dims,
          FftPlace place = FftPlace::automatic);
   bool on_host() const { return !device_; }
+  std::array<std::size_t, 3> dims() const { return dims_; }
   // box holds dims' points, x fastest.
   void transform(FftDirection direction, std::vector<std::complex<float>>& box) const;
 

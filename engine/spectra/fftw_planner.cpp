@@ -11,11 +11,11 @@ std::mutex& fftw_planner_lock() {
   return lock;
 }
 
-int fftw_plan_on_all_cores() {
-  const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
+int fftw_planner_threads() { return int(std::max(1u, std::thread::hardware_concurrency())); }
+
+void fftw_plan_on_all_cores() {
   static const bool with_threads = fftwf_init_threads() != 0;
-  if (with_threads) fftwf_plan_with_nthreads(threads);
-  return with_threads ? threads : 1;
+  if (with_threads) fftwf_plan_with_nthreads(fftw_planner_threads());
 }
 
 }  // namespace snapfit

@@ -7,7 +7,9 @@
 namespace snapfit {
 
 std::mutex& fftw_planner_lock();
-// Calls fftwf_plan_with_nthreads for the next plan (under the lock); the threads planned.
-int fftw_plan_on_all_cores();
+// The threads a plan uses: every core.
+int fftw_planner_threads();
+// Calls fftwf_plan_with_nthreads(fftw_planner_threads()) for the next plan (under the lock).
+void fftw_plan_on_all_cores();
 
 }  // namespace snapfit

@@ -2,7 +2,6 @@
 
 #include <fftw3.h>
 #include <mutex>
-#include <thread>
 
 #include "core/hash.h"
 #include "engine/spectra/fftw_planner.h"
@@ -15,11 +14,9 @@ namespace {
 constexpr const char* kKind = "snapfit fftw wisdom";
 constexpr std::uint32_t kVersion = 1;
 
-int planner_threads() { return int(std::max(1u, std::thread::hardware_concurrency())); }
-
 std::string wisdom_key(const std::array<std::size_t, 3>& d) {
   return std::string("fftwf ") + fftwf_version + " c2r " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
-         std::to_string(d[2]) + " threads " + std::to_string(planner_threads()) + " measure";
+         std::to_string(d[2]) + " threads " + std::to_string(fftw_planner_threads()) + " measure";
 }
 
 std::string wisdom_path(const std::string& key) { return cache_root() + "/fftw/" + hex64(fnv1a64(key)) + ".wisdom"; }

@@ -25,14 +25,11 @@ Placement place(const GridSpec& grid, const std::array<std::size_t, 3>& dims) {
   return p;
 }
 
-// The forward FFT of a padded box, in place.
-using ForwardFft = std::function<void(std::vector<Complex>&)>;
-
 // S(w_k) = rho^(w_k) exp(2 pi i w_k.c) = h^3 exp(-2 pi i w_k.(o' - c)) DFT[k] with
 // o' - c = -h N / 2: the factor is h^3 (-1)^(k'x + k'y + k'z) (seed 000 eq. 13).
-std::vector<Complex> centred_spectrum(const ForwardFft& forward, const std::array<std::size_t, 3>& dims,
-                                      const GridSpec& grid, const Placement& placement,
+std::vector<Complex> centred_spectrum(const BoxFft& fft, const GridSpec& grid, const Placement& placement,
                                       const std::function<Complex(std::size_t, int, int, int)>& sample) {
+  const auto dims = fft.dims();
   std::vector<Complex> padded(dims[0] * dims[1] * dims[2], Complex(0, 0));
   for (int k = 0; k < grid.dims.z(); ++k)
     for (int j = 0; j < grid.dims.y(); ++j)
@@ -41,7 +38,7 @@ std::vector<Complex> centred_spectrum(const ForwardFft& forward, const std::arra
             (i + placement.offset[0]) + dims[0] * ((j + placement.offset[1]) + dims[1] * (k + placement.offset[2]));
         padded[at] = sample(grid.index(i, j, k), i, j, k);
       }
-  forward(padded);
+  fft.transform(FftDirection::forward, padded);
   const float h3 = static_cast<float>(grid.spacing * grid.spacing * grid.spacing);
   for (std::size_t z = 0; z < dims[2]; ++z)
     for (std::size_t y = 0; y < dims[1]; ++y)
@@ -90,8 +87,7 @@ PairSpectra compute_pair_spectra(const FftLibrary& library, const ComputeContext
     out.dims[a] = next_even_fft_size(static_cast<std::size_t>(std::ceil(points - 1e-9)));
     out.length[a] = out.dims[a] * out.spacing;
   }
-  const BoxFft box_fft(library, ctx, out.dims, options.fft);
-  const ForwardFft fft = [&](std::vector<Complex>& box) { box_fft.transform(FftDirection::forward, box); };
+  const BoxFft fft(library, ctx, out.dims, options.fft);
   const Placement p1 = place(grid1, out.dims), p2 = place(grid2, out.dims);
   out.part1.centre = p1.centre;
   out.part2.centre = p2.centre;
@@ -110,8 +106,8 @@ PairSpectra compute_pair_spectra(const FftLibrary& library, const ComputeContext
   };
   out.part1.sample_parity = parity(rho1);
   out.part2.sample_parity = parity(rho2);
-  out.part1.rho = centred_spectrum(fft, out.dims, grid1, p1, [&](std::size_t i, int, int, int) { return rho1[i]; });
-  out.part2.rho = centred_spectrum(fft, out.dims, grid2, p2, [&](std::size_t i, int, int, int) { return rho2[i]; });
+  out.part1.rho = centred_spectrum(fft, grid1, p1, [&](std::size_t i, int, int, int) { return rho1[i]; });
+  out.part2.rho = centred_spectrum(fft, grid2, p2, [&](std::size_t i, int, int, int) { return rho2[i]; });
   // The kernel is accurate while part 2's samples stay within L / 4 of its centre (2x
   // oversampling); a coarser box (oversampling < 2) gets no deconvolved spectrum.
   const bool deconvolve =
@@ -131,7 +127,7 @@ PairSpectra compute_pair_spectra(const FftLibrary& library, const ComputeContext
         inverse[a][std::size_t(i)] = 1.0 / kernel.transform(x / out.length[a]);
       }
     }
-    out.part2.deconvolved = centred_spectrum(fft, out.dims, grid2, p2, [&](std::size_t i, int x, int y, int z) {
+    out.part2.deconvolved = centred_spectrum(fft, grid2, p2, [&](std::size_t i, int x, int y, int z) {
       return rho2[i] *
              static_cast<float>(inverse[0][std::size_t(x)] * inverse[1][std::size_t(y)] * inverse[2][std::size_t(z)]);
     });
