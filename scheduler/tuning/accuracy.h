@@ -68,6 +68,13 @@ std::size_t lowest_error_that_fits(const std::vector<StrategyAccuracy>& strategi
 // the next best's (the comparison itself is the strategies' table).
 std::string strategy_reason(const std::vector<StrategyAccuracy>& strategies, std::size_t chosen);
 
+// Times `s`'s frame at s.modes with `timer` (the loop's pacing) into s.frame_ms_p50/p99;
+// s.fits stays true only when the tuner said so (s.fits on entry) and the p99 beside
+// options.reserved_ms is within options.budget_ms. A p99 over the budget is timed once more
+// and the lower kept, as the tuner does with its levels: a burst of other work on the
+// machine only adds time, and one burst should not rule a strategy out for later runs.
+void time_strategy_frame(const QueryTimer& timer, const AccuracyOptions& options, StrategyAccuracy& s);
+
 // The poses the reference is computed at: the scene's trajectory at `count` evenly spaced
 // times (both ends included), else part 2's scene pose.
 std::vector<Pose> accuracy_poses(const Scene& scene, std::size_t count);
