@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "core/background_priority.h"
+#include "core/subnormal_flush.h"
 #include "core/thread_name.h"
 #include "engine/query/line_kernel.h"
 #include "engine/query/query_launch.h"
@@ -69,6 +70,7 @@ class RotatedProductQuery final : public QueryEngine, private QueryHooks {
     if (variant.product_update == ProductUpdate::background)
       worker_ = std::thread([this] {
         name_this_thread("snapfit-product");
+        const SubnormalFlush flush;  // core/subnormal_flush.h: a pose at rest at the fit
         work();
       });
   }

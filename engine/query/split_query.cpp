@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "core/background_priority.h"
+#include "core/subnormal_flush.h"
 #include "core/thread_name.h"
 #include "engine/query/near_field.h"
 #include "engine/query/query_engine.h"
@@ -50,6 +51,7 @@ class SplitQuery final : public QueryEngine {
     if (variant.product_update == ProductUpdate::background)
       worker_ = std::thread([this] {
         name_this_thread("snapfit-near");
+        const SubnormalFlush flush;  // core/subnormal_flush.h: a pose at rest at the fit
         work();
       });
   }

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "core/quantile.h"
+#include "core/subnormal_flush.h"
 #include "core/thread_name.h"
 #include "scheduler/haptics/force_rate_limit.h"
 #include "scheduler/haptics/virtual_coupling.h"
@@ -423,6 +424,9 @@ WrenchEvaluator wrench_evaluator(QueryEngine& engine) {
 LoopReport run_haptic_loop(HapticDevice& device, const WrenchEvaluator& engine, const LoopConfig& config,
                            const LoopClock& clock, BodyState part) {
   check_config(config);
+  // A part at rest at its fit has pose offsets that turn subnormal in single precision,
+  // which would make every frame several times slower (core/subnormal_flush.h).
+  const SubnormalFlush flush;
   const double period = 1.0 / config.rate_hz;
   const DeviceLimits limits = device.limits();
   LoopState s(config);

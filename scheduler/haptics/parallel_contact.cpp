@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/subnormal_flush.h"
 #include "core/thread_name.h"
 
 namespace snapfit {
@@ -31,6 +32,7 @@ class ContactTeam {
     for (unsigned i = 1; i < threads; ++i)
       helpers_.emplace_back([this] {
         name_this_thread("snapfit-contact");
+        const SubnormalFlush flush;  // as in the loop's own thread (run_haptic_loop)
         serve();
       });
   }
