@@ -32,7 +32,7 @@ while [ $# -gt 0 ]; do
   shift
 done
 
-benches=(bench_descriptors bench_queries bench_haptic_loop bench_fft bench_search bench_peers bench_accuracy bench_error_estimate bench_mode_selection bench_mesh_import bench_assembly bench_spheres bench_collision bench_ndft_crossover bench_contact bench_vouched_wrench bench_mode_step bench_real_cad)
+benches=(bench_descriptors bench_queries bench_haptic_loop bench_fft bench_search bench_peers bench_accuracy bench_error_estimate bench_mode_selection bench_mesh_import bench_assembly bench_spheres bench_collision bench_ndft_crossover bench_contact bench_vouched_wrench bench_mode_step bench_resting_pose bench_real_cad)
 mkdir -p "$out"
 index="$out/index.md"
 {
