@@ -57,7 +57,7 @@ nlohmann::json read_json(const fs::path& file) {
 
 }  // namespace
 
-TEST_CASE("query strategy: one burst of other work does not rule a strategy out; a slow frame does") {
+TEST_CASE("query strategy: one burst of other work does not rule a strategy out, a slow frame does") {
   AccuracyOptions options;
   options.budget_ms = 1.0;
   options.reserved_ms = 0.2;
