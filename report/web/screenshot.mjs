@@ -22,6 +22,21 @@ if (!chromiumAvailable()) {
   console.error('screenshot.mjs: no chromium (apt-get install chromium)');
   process.exit(77);
 }
+// Chromium now and then refuses one capture ("Unable to capture screenshot") and takes the
+// same picture when asked again a moment later: a transient of the browser, retried twice.
+async function screenshotWithRetry(page, out) {
+  for (let attempt = 1; ; attempt++) {
+    try {
+      await page.screenshot({ path: out, fullPage: true });
+      return;
+    } catch (e) {
+      if (attempt >= 3 || !String(e.message).includes('Unable to capture screenshot')) throw e;
+      console.error(`screenshot.mjs: ${out}: ${e.message.split('\n')[0]}; retrying`);
+      await new Promise((resolve) => setTimeout(resolve, 500 * attempt));
+    }
+  }
+}
+
 const { context, close } = await launchChromium();
 try {
   for (let i = 0; i < pairs.length; i += 2) {
@@ -34,7 +49,7 @@ try {
                                { timeout: 60000 });
     if (time !== null) await page.evaluate((t) => window.snapfitReport && window.snapfitReport.setTime(t), time);
     if (errors.length) throw new Error(`${pairs[i]}: ${errors.join('; ')}`);
-    await page.screenshot({ path: pairs[i + 1], fullPage: true });
+    await screenshotWithRetry(page, pairs[i + 1]);
     console.log(`wrote ${pairs[i + 1]}`);
     await page.close();
   }
