@@ -8,7 +8,8 @@
 // on x86 (tens to hundreds of cycles an operation), which makes a frame several times
 // slower while nothing moves; values that small are zero to every force the loop renders.
 // Real-time audio and haptics set the same bits in their frame threads for this reason.
-// OpenCL kernels that a CPU device runs in the calling thread inherit the setting.
+// A CPU OpenCL device may set its own bits around each kernel (PoCL does, from the program's
+// build options): the query kernels are built with -cl-denorms-are-zero for that.
 
 namespace snapfit {
 

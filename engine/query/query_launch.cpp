@@ -75,9 +75,9 @@ QueryLaunch::QueryLaunch(const ComputeContext& ctx, const PairSpectra& spectra, 
     queue_ = cl::CommandQueue(ctx.context, ctx.device.device, 0);
     // Subnormals flushed: a pose at rest at the fit has offsets whose products fall below
     // float's smallest normal, and the slow path for them would lengthen the frame several
-    // times (core/subnormal_flush.h; a CPU device that keeps the thread's setting gets it here).
-    const std::string all =
-        "-cl-std=CL1.2 -cl-denorms-are-zero -D WG_SIZE=" + std::to_string(wg_) + " -D MAX_HALF=" + std::to_string(reach) + options;
+    // times (core/subnormal_flush.h; PoCL sets its flush bits around a kernel from this option).
+    const std::string all = "-cl-std=CL1.2 -cl-denorms-are-zero -D WG_SIZE=" + std::to_string(wg_) +
+                            " -D MAX_HALF=" + std::to_string(reach) + options;
     kernel_ = cl::Kernel(
         build_program(ctx, "pose_query", kernel_source("spectrum_sample") + kernel_source("pose_query"), all, cache)
             .program,

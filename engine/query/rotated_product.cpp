@@ -63,7 +63,8 @@ RotatedProduct::RotatedProduct(const ComputeContext& ctx, const PairSpectra& spe
   const EsKernel es = spectra.rotation_kernel();
   try {
     const std::string options =
-        "-cl-std=CL1.2 -cl-denorms-are-zero -D ES_WIDTH=" + std::to_string(es.width) + " -D ES_BETA=" + std::to_string(es.beta) + "f";
+        "-cl-std=CL1.2 -cl-denorms-are-zero -D ES_WIDTH=" + std::to_string(es.width) +  // as the query's
+        " -D ES_BETA=" + std::to_string(es.beta) + "f";
     kernel_ =
         cl::Kernel(build_program(ctx, "rotated_product", kernel_source("rotated_product"), options, cache).program,
                    "rotated_product");

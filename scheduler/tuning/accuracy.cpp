@@ -242,7 +242,6 @@ void compare_with_reference(QueryEngine& engine, const std::vector<Pose>& poses,
   s.torque_error = sums.relative(2);
 }
 
-
 }  // namespace
 
 void time_strategy_frame(const QueryTimer& timer, const AccuracyOptions& options, StrategyAccuracy& s) {
